@@ -1,0 +1,89 @@
+// Validated configuration of bodies and of the world: the one place that knows every key, its range
+// and what it is called in YAML, ROS parameters and dynamic_reconfigure.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rigid_body_sim/core/rod.h"
+#include "rigid_body_sim/core/roller.h"
+
+namespace rigid_body_sim {
+
+// A refused value. what() is one line naming the body, the key, the value and what is allowed.
+class ConfigError : public std::runtime_error {
+ public:
+  ConfigError(const std::string& body, const std::string& key, const std::string& value,
+              const std::string& allowed);
+  explicit ConfigError(const std::string& message);  // for errors that concern no single key
+};
+
+// An interval of allowed values; an open end excludes its bound.
+struct Range {
+  double min;
+  double max;
+  bool min_open = false;
+  bool max_open = false;
+  bool contains(double value) const;  // false for NaN and infinities
+  std::string describe() const;       // e.g. "a number in (0, 1e+09]"
+};
+
+struct RodConfig {
+  RodParams params;
+  RodState initial;
+};
+
+struct RollerConfig {
+  RollerParams params;
+  RollerInitial initial;
+};
+
+// A numeric key of a body: its YAML name, where it lives in the config, and its allowed range.
+template <class Config>
+struct NumericKey {
+  const char* name;
+  double& (*field)(Config&);
+  Range range;
+};
+
+const std::vector<NumericKey<RodConfig>>& rodNumericKeys();
+const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys();
+
+// Throw ConfigError on the first refused value (ranges, then relations between keys such as
+// mu_d <= mu_s, x0 on the slope, inertia_factor matching the shape).
+void validate(const std::string& body, const RodConfig& config);
+void validate(const std::string& body, const RollerConfig& config);
+
+struct BodyConfig {
+  std::string name;  // also the TF frame and the topic namespace
+  std::variant<RodConfig, RollerConfig> config;
+};
+
+struct WorldConfig {
+  double rate = 1000.0;         // physics steps per simulated second
+  double publish_rate = 50.0;   // samples per simulated second
+  double gravity = 9.8;         // copied into every body
+  std::string world_frame = "world";
+  std::vector<BodyConfig> bodies;
+};
+
+// World-level ranges.
+Range rateRange();
+Range publishRateRange();
+Range gravityRange();
+
+// True for a name usable as a ROS graph name component and as a TF frame: [A-Za-z][A-Za-z0-9_]*.
+bool isValidName(const std::string& name);
+
+// Checks the world keys, every body, name validity and uniqueness, and that publish_rate divides rate.
+void validate(const WorldConfig& config);
+
+// True when `divisor` divides `rate` to rounding: rate / divisor is a whole number >= 1.
+bool dividesRate(double rate, double divisor);
+
+// Formats a double the way error messages and CSV files show it (shortest round-trip form).
+std::string formatNumber(double value);
+
+}  // namespace rigid_body_sim

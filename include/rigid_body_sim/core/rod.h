@@ -1,0 +1,65 @@
+// A rigid rod bouncing on a floor (y = 0); each end below the floor is pushed up by N = -k y_end.
+//
+// Rod plane: x horizontal, y up; theta is measured from +x towards +y; u = (cos theta, sin theta).
+// End A is at R + (L/2) u, end B at R - (L/2) u. No friction, no damping. See DESIGN.md.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace rigid_body_sim {
+
+enum class Integrator { EulerCromer, VelocityVerlet, Rk4 };
+std::string toString(Integrator integrator);
+// Parses "euler_cromer", "velocity_verlet", "rk4"; nullopt for anything else.
+std::optional<Integrator> integratorFromString(const std::string& name);
+
+struct RodParams {
+  double length = 1.0;  // m
+  double mass = 0.5;    // kg
+  double k = 1000.0;    // N/m, floor spring constant per end
+  double gravity = 9.8; // m/s^2
+  Integrator integrator = Integrator::EulerCromer;
+};
+
+struct RodState {
+  double x = 0.0;
+  double y = 4.0;
+  double theta = 0.3;
+  double vx = 2.0;
+  double vy = 0.0;
+  double omega = 0.0;
+};
+
+class Rod {
+ public:
+  // Sub-stepping starts where omega_c * dt exceeds this fraction of the stability bound 2
+  // (omega_c = sqrt(4 k / M), the stiffest contact mode: one end of a flat rod).
+  static constexpr double kSubstepFraction = 0.1;
+
+  Rod(const RodParams& params, const RodState& initial);
+
+  // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator.
+  void step(double dt);
+
+  void setParams(const RodParams& params);   // applies from the next step; the state is kept
+  void setInitial(const RodState& initial);  // restarts from it
+  void reset();                              // back to the initial state
+
+  const RodParams& params() const { return params_; }
+  const RodState& initial() const { return initial_; }
+  const RodState& state() const { return state_; }
+
+  double momentOfInertia() const;  // M L^2 / 12
+  double energy() const;           // kinetic + gravitational + elastic (J)
+  double endHeightA() const;       // y of end A
+  double endHeightB() const;       // y of end B
+  int substepsFor(double dt) const;
+
+ private:
+  RodParams params_;
+  RodState initial_;
+  RodState state_;
+};
+
+}  // namespace rigid_body_sim

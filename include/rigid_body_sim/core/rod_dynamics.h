@@ -1,0 +1,22 @@
+// The rod's forces and the single-step integrators, as free functions so that tests can drive them.
+#pragma once
+
+#include "rigid_body_sim/core/rod.h"
+
+namespace rigid_body_sim {
+
+// Linear and angular acceleration of the rod in a given state (the text's force model).
+struct RodAcceleration {
+  double ax = 0.0;
+  double ay = 0.0;
+  double alpha = 0.0;
+};
+RodAcceleration rodAcceleration(const RodParams& params, const RodState& state);
+
+// One step of each scheme, no sub-stepping. eulerCromerStep follows the text's program operation for
+// operation (forces of end A, then end B, then gravity; v, then r; omega, then theta).
+RodState eulerCromerStep(const RodParams& params, const RodState& state, double dt);
+RodState velocityVerletStep(const RodParams& params, const RodState& state, double dt);
+RodState rk4Step(const RodParams& params, const RodState& state, double dt);
+
+}  // namespace rigid_body_sim

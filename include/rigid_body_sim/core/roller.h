@@ -1,0 +1,107 @@
+// A round body (sphere, cylinder, ring, shell) on an incline with Coulomb friction.
+//
+// Slope frame: x along the slope, positive downhill; y normal to the slope, away from it; z = x × y.
+// State: centre position x along the slope, velocity v, rotation theta about +z, omega = dtheta/dt.
+// Rolling without slipping means v = -omega * R (omega < 0 while rolling downhill).
+//
+// Between events every acceleration is constant, so a step is integrated in closed form; a slip-to-roll
+// transition inside a step splits the step at that instant. See DESIGN.md for the physics.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace rigid_body_sim {
+
+enum class Shape { Sphere, Cylinder, Ring, SphericalShell, Custom };
+
+// c = I / (M R^2) for the named shapes; Custom has no fixed value (returns NaN).
+double inertiaFactorOf(Shape shape);
+std::string toString(Shape shape);
+// Parses "sphere", "cylinder", "ring", "spherical_shell"; nullopt for anything else.
+std::optional<Shape> shapeFromString(const std::string& name);
+
+enum class RollMode { Rolling, Slipping };
+std::string toString(RollMode mode);
+
+struct RollerParams {
+  Shape shape = Shape::Sphere;
+  double inertia_factor = 0.4;  // c; must equal inertiaFactorOf(shape) unless shape is Custom
+  double radius = 0.1;          // m
+  double mass = 1.0;            // kg
+  double incline_angle = 0.349; // rad, 0 <= phi < pi/2
+  double incline_length = 5.0;  // m of slope; the centre runs over x in [0, incline_length]
+  double mu_s = 0.3;            // static friction coefficient
+  double mu_d = 0.2;            // kinetic friction coefficient, mu_d <= mu_s
+  double gravity = 9.8;         // m/s^2
+};
+
+struct RollerInitial {
+  double x0 = 0.0;
+  double v0 = 0.0;
+  double theta0 = 0.0;
+  double omega0 = 0.0;
+};
+
+struct RollerState {
+  double x = 0.0;
+  double v = 0.0;
+  double theta = 0.0;
+  double omega = 0.0;
+};
+
+// What happened inside one call of Roller::step.
+struct RollerStepEvents {
+  std::optional<double> stuck_at;    // offset in [0, dt] at which slipping turned into rolling
+  bool started_slipping = false;     // a rolling body could not hold (only after setParams)
+  bool restarted = false;            // the centre left the slope and the body restarted
+};
+
+class Roller {
+ public:
+  Roller(const RollerParams& params, const RollerInitial& initial);
+
+  // Advances by dt seconds in closed form, splitting at a slip-to-roll instant. When the centre leaves
+  // the slope (x > incline_length or x < 0) at the end of the step, the body restarts from its initial
+  // conditions (a new "lap"); the restart is reported in the returned events.
+  RollerStepEvents step(double dt);
+
+  // New parameters apply from the next step; a rolling body whose static friction no longer holds
+  // starts slipping forward. The state is kept.
+  void setParams(const RollerParams& params);
+  // Restarts from new initial conditions.
+  void setInitial(const RollerInitial& initial);
+  // Back to the initial conditions.
+  void reset();
+
+  const RollerParams& params() const { return params_; }
+  const RollerInitial& initial() const { return initial_; }
+  const RollerState& state() const { return state_; }
+  RollMode mode() const { return mode_; }
+  int laps() const { return laps_; }
+
+  double slipSpeed() const;      // u = v + omega R
+  double frictionForce() const;  // on the body, along slope +x (N)
+  double normalForce() const;    // on the body, along slope +y (N)
+  double energy() const;         // 1/2 M v^2 + 1/2 I omega^2 - M g x sin(phi)  (J)
+  double acceleration() const;   // dv/dt in the current mode
+  double angularAcceleration() const;
+
+  // True when static friction can hold a rolling body: tan(phi) <= mu_s (1 + c) / c.
+  static bool canRoll(const RollerParams& params);
+
+ private:
+  // +1 when the contact point slides downhill (u > 0), -1 for topspin (u < 0); unused while rolling.
+  int slipDirection() const;
+  void enterModeFromState();
+  void advance(double h);
+
+  RollerParams params_;
+  RollerInitial initial_;
+  RollerState state_;
+  RollMode mode_ = RollMode::Rolling;
+  int slip_sign_ = 1;
+  int laps_ = 0;
+};
+
+}  // namespace rigid_body_sim
