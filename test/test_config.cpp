@@ -1,1 +1,215 @@
-// placeholder
+// The config loader: good files load with the text's values, every kind of bad value is refused with
+// one line naming the body, the key, the value and what is allowed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "rigid_body_sim/adapters/config_loader.h"
+
+using namespace rigid_body_sim;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+WorldConfig parse(const std::string& yaml) { return parseWorldConfig(YAML::Load(yaml)); }
+
+const RodConfig& rodOf(const WorldConfig& config, std::size_t i = 0) {
+  return std::get<RodConfig>(config.bodies.at(i).config);
+}
+const RollerConfig& rollerOf(const WorldConfig& config, std::size_t i = 0) {
+  return std::get<RollerConfig>(config.bodies.at(i).config);
+}
+
+std::string refusal(const std::string& yaml) {
+  try {
+    parse(yaml);
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(ConfigFiles, ShippedFilesLoad) {
+  for (const char* name : {"rod.yaml", "incline.yaml", "demo.yaml"}) {
+    SCOPED_TRACE(name);
+    const WorldConfig config = loadWorldConfigFile(std::string(RBS_CONFIG_DIR) + "/" + name);
+    EXPECT_EQ(config.rate, 1000.0);
+    EXPECT_EQ(config.publish_rate, 50.0);
+    EXPECT_FALSE(config.bodies.empty());
+  }
+}
+
+TEST(ConfigFiles, RodFileIsTheTextsRod) {
+  const WorldConfig config = loadWorldConfigFile(std::string(RBS_CONFIG_DIR) + "/rod.yaml");
+  const RodConfig& rod = rodOf(config);
+  EXPECT_EQ(rod.params.mass, 0.5);
+  EXPECT_EQ(rod.params.length, 1.0);
+  EXPECT_EQ(rod.params.k, 1000.0);
+  EXPECT_EQ(rod.params.integrator, Integrator::EulerCromer);
+  EXPECT_EQ(rod.initial.y, 4.0);
+  EXPECT_EQ(rod.initial.vx, 2.0);
+  EXPECT_EQ(rod.params.gravity, 9.8);
+}
+
+TEST(ConfigFiles, InclineFileShowsTheCriticalAngleTable) {
+  // On the shipped slope the sphere is below its critical angle, the cylinder and the ring above.
+  const WorldConfig config = loadWorldConfigFile(std::string(RBS_CONFIG_DIR) + "/incline.yaml");
+  ASSERT_EQ(config.bodies.size(), 3u);
+  EXPECT_TRUE(Roller::canRoll(rollerOf(config, 0).params));
+  EXPECT_FALSE(Roller::canRoll(rollerOf(config, 1).params));
+  EXPECT_FALSE(Roller::canRoll(rollerOf(config, 2).params));
+}
+
+TEST(ConfigDefaults, MissingKeysTakeTheTextsValues) {
+  const WorldConfig config = parse("bodies: {rod: {type: rod}, ball: {type: roller}}");
+  EXPECT_EQ(config.rate, 1000.0);
+  EXPECT_EQ(config.publish_rate, 50.0);
+  EXPECT_EQ(config.gravity, 9.8);
+  EXPECT_EQ(config.world_frame, "world");
+  const RodConfig& rod = rodOf(config);
+  EXPECT_EQ(rod.params.mass, 0.5);
+  EXPECT_EQ(rod.params.length, 1.0);
+  EXPECT_EQ(rod.params.k, 1000.0);
+  EXPECT_EQ(rod.initial.x, 0.0);
+  EXPECT_EQ(rod.initial.y, 4.0);
+  EXPECT_EQ(rod.initial.vx, 2.0);
+  EXPECT_EQ(rod.initial.theta, 0.3);
+  EXPECT_EQ(rod.initial.omega, 0.0);
+  const RollerConfig& ball = rollerOf(config, 1);
+  EXPECT_EQ(ball.params.shape, Shape::Sphere);
+  EXPECT_DOUBLE_EQ(ball.params.inertia_factor, 0.4);
+  EXPECT_EQ(ball.params.mu_s, 0.3);
+  EXPECT_EQ(ball.params.mu_d, 0.2);
+  EXPECT_EQ(ball.params.incline_angle, 0.349);
+}
+
+TEST(ConfigDefaults, GravityReachesEveryBody) {
+  const WorldConfig config = parse("gravity: 1.62\nbodies: {rod: {type: rod}, ball: {type: roller}}");
+  EXPECT_EQ(rodOf(config).params.gravity, 1.62);
+  EXPECT_EQ(rollerOf(config, 1).params.gravity, 1.62);
+}
+
+TEST(ConfigShapes, NamedShapesAndExplicitFactor) {
+  const WorldConfig config = parse(
+      "bodies: {a: {type: roller, shape: ring}, b: {type: roller, shape: spherical_shell},"
+      " c: {type: roller, inertia_factor: 0.7}, d: {type: roller, shape: cylinder}}");
+  EXPECT_EQ(rollerOf(config, 0).params.inertia_factor, 1.0);
+  EXPECT_DOUBLE_EQ(rollerOf(config, 1).params.inertia_factor, 2.0 / 3.0);
+  EXPECT_EQ(rollerOf(config, 2).params.shape, Shape::Custom);
+  EXPECT_EQ(rollerOf(config, 2).params.inertia_factor, 0.7);
+  EXPECT_EQ(rollerOf(config, 3).params.inertia_factor, 0.5);
+}
+
+TEST(ConfigSeed, SeedDrawsAReproducibleAngle) {
+  const double a = rodOf(parse("bodies: {rod: {type: rod, seed: 42}}")).initial.theta;
+  const double b = rodOf(parse("bodies: {rod: {type: rod, seed: 42}}")).initial.theta;
+  const double c = rodOf(parse("bodies: {rod: {type: rod, seed: 43}}")).initial.theta;
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  EXPECT_GE(a, 0.0);
+  EXPECT_LT(a, 2 * kPi);
+  EXPECT_EQ(a, theta0FromSeed(42));
+}
+
+TEST(ConfigSeed, DrawsSpreadOverTheCircle) {
+  // 1000 seeds fill each quarter of [0, 2 pi) with roughly a quarter of the draws.
+  int quarters[4] = {0, 0, 0, 0};
+  for (unsigned long long seed = 0; seed < 1000; ++seed) {
+    quarters[static_cast<int>(theta0FromSeed(seed) / (kPi / 2))]++;
+  }
+  for (const int count : quarters) {
+    EXPECT_GT(count, 200);
+    EXPECT_LT(count, 300);
+  }
+}
+
+struct BadInput {
+  const char* what;
+  const char* yaml;
+  std::vector<const char*> expected;  // fragments of the one-line message
+};
+
+class ConfigRefusal : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(ConfigRefusal, NamesBodyKeyValueAndRange) {
+  const BadInput& bad = GetParam();
+  const std::string message = refusal(bad.yaml);
+  EXPECT_NE(message, "(accepted)");
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  for (const char* fragment : bad.expected) {
+    EXPECT_NE(message.find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryKind, ConfigRefusal,
+    ::testing::Values(
+        BadInput{"negative k", "bodies: {rod: {type: rod, k: -5}}", {"'rod'", "'k'", "-5", "(0, "}},
+        BadInput{"zero mass", "bodies: {rod: {type: rod, mass: 0}}", {"'rod'", "'mass'", "value 0", "(0, "}},
+        BadInput{"nan length", "bodies: {rod: {type: rod, length: .nan}}", {"'length'", "nan"}},
+        BadInput{"infinite k", "bodies: {rod: {type: rod, k: .inf}}", {"'k'", "inf", "finite"}},
+        BadInput{"absurd mass", "bodies: {rod: {type: rod, mass: 1e300}}", {"'mass'", "1e+300", "1e+09]"}},
+        BadInput{"string for number", "bodies: {rod: {type: rod, y0: high}}", {"'rod'", "'y0'", "'high'", "a number"}},
+        BadInput{"list for number", "bodies: {rod: {type: rod, y0: [1, 2]}}", {"'y0'", "(a list)", "a number"}},
+        BadInput{"unknown rod key", "bodies: {rod: {type: rod, stiffness: 5}}", {"'rod'", "'stiffness'", "no such key", "k"}},
+        BadInput{"unknown roller key", "bodies: {b: {type: roller, mu: 0.5}}", {"'b'", "'mu'", "no such key", "mu_s"}},
+        BadInput{"unknown world key", "rates: 10\nbodies: {rod: {type: rod}}", {"(world)", "'rates'", "no such key"}},
+        BadInput{"unknown integrator", "bodies: {rod: {type: rod, integrator: leapfrog}}", {"'integrator'", "'leapfrog'", "euler_cromer"}},
+        BadInput{"unknown body type", "bodies: {box: {type: cube}}", {"'box'", "'type'", "'cube'", "rod or roller"}},
+        BadInput{"missing type", "bodies: {box: {mass: 1}}", {"'box'", "'type'", "rod or roller"}},
+        BadInput{"unknown shape", "bodies: {b: {type: roller, shape: cube}}", {"'b'", "'shape'", "'cube'", "sphere"}},
+        BadInput{"custom without factor", "bodies: {b: {type: roller, shape: custom}}", {"'shape'", "inertia_factor"}},
+        BadInput{"factor contradicts shape", "bodies: {b: {type: roller, shape: ring, inertia_factor: 0.3}}", {"'inertia_factor'", "0.3", "ring"}},
+        BadInput{"zero factor", "bodies: {b: {type: roller, inertia_factor: 0}}", {"'inertia_factor'", "(0, "}},
+        BadInput{"negative mu_s", "bodies: {b: {type: roller, mu_s: -0.1, mu_d: 0}}", {"'b'", "'mu_s'", "-0.1", "[0, "}},
+        BadInput{"mu_d above mu_s", "bodies: {b: {type: roller, mu_s: 0.2, mu_d: 0.5}}", {"'mu_d'", "0.5", "mu_s = 0.2"}},
+        BadInput{"vertical slope", "bodies: {b: {type: roller, incline_angle: 1.5707963267948966}}", {"'incline_angle'", "1.5707963267948966)"}},
+        BadInput{"negative slope", "bodies: {b: {type: roller, incline_angle: -0.1}}", {"'incline_angle'", "-0.1"}},
+        BadInput{"zero radius", "bodies: {b: {type: roller, radius: 0}}", {"'radius'", "value 0"}},
+        BadInput{"x0 past the slope", "bodies: {b: {type: roller, x0: 6, incline_length: 5}}", {"'x0'", "6", "incline_length = 5"}},
+        BadInput{"negative x0", "bodies: {b: {type: roller, x0: -1}}", {"'x0'", "-1"}},
+        BadInput{"seed and theta0", "bodies: {rod: {type: rod, seed: 1, theta0: 0.5}}", {"'seed'", "theta0"}},
+        BadInput{"fractional seed", "bodies: {rod: {type: rod, seed: 1.5}}", {"'seed'", "whole number"}},
+        BadInput{"zero rate", "rate: 0\nbodies: {rod: {type: rod}}", {"(world)", "'rate'", "value 0"}},
+        BadInput{"publish_rate not dividing", "publish_rate: 30\nbodies: {rod: {type: rod}}", {"'publish_rate'", "30", "divisor of rate = 1000"}},
+        BadInput{"publish_rate above rate", "rate: 100\npublish_rate: 200\nbodies: {rod: {type: rod}}", {"'publish_rate'", "200"}},
+        BadInput{"negative gravity", "gravity: -9.8\nbodies: {rod: {type: rod}}", {"'gravity'", "-9.8"}},
+        BadInput{"missing bodies", "rate: 1000", {"'bodies'", "(missing)"}},
+        BadInput{"bodies not a map", "bodies: [rod]", {"'bodies'", "(a list)"}},
+        BadInput{"empty bodies", "bodies: {}", {"'bodies'", "at least one body"}},
+        BadInput{"body not a map", "bodies: {rod: 5}", {"'rod'", "'5'"}},
+        BadInput{"invalid body name", "bodies: {'my rod': {type: rod}}", {"'my rod'", "letters, digits"}},
+        BadInput{"name starting with digit", "bodies: {'2rod': {type: rod}}", {"'2rod'"}},
+        BadInput{"body named like world", "bodies: {world: {type: rod}}", {"'world'", "differ"}},
+        BadInput{"invalid world_frame", "world_frame: /map\nbodies: {rod: {type: rod}}", {"'world_frame'", "'/map'"}},
+        BadInput{"file is a list", "[1, 2]", {"(world)", "(a list)"}},
+        BadInput{"empty document", "", {"(world)", "(nothing)"}}));
+
+TEST(ConfigFileErrors, MissingFileAndSyntaxError) {
+  try {
+    loadWorldConfigFile("/nonexistent/rigid_body_sim.yaml");
+    FAIL() << "accepted a missing file";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("/nonexistent/rigid_body_sim.yaml"), std::string::npos);
+  }
+  const std::string path = ::testing::TempDir() + "/bad_syntax.yaml";
+  FILE* file = std::fopen(path.c_str(), "w");
+  ASSERT_NE(file, nullptr);
+  std::fputs("bodies: {rod: {type: rod\n", file);
+  std::fclose(file);
+  try {
+    loadWorldConfigFile(path);
+    FAIL() << "accepted a YAML syntax error";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("not valid YAML"), std::string::npos) << error.what();
+  }
+}
+
+TEST(ConfigDuplicates, DuplicateBodyNamesAreRefused) {
+  // yaml-cpp keeps both entries of a duplicated key; the loader must not silently pick one.
+  EXPECT_NE(refusal("bodies:\n  rod: {type: rod}\n  rod: {type: rod, k: 5}\n").find("'rod'"), std::string::npos);
+}

@@ -1,1 +1,142 @@
-// placeholder
+// `simulate` end to end, as a user runs it: command line, CSV header and sample times, exit codes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/adapters/csv_writer.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace fs = std::filesystem;
+using namespace rigid_body_sim;
+
+namespace {
+
+struct ToolRun {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+class SimulateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("simulate_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+
+  ToolRun simulate(const std::string& args) {
+    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" + (dir_ / "stdout").string() +
+                                " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
+  }
+
+  std::string config(const std::string& name) { return std::string(RBS_CONFIG_DIR) + "/" + name; }
+
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+
+  std::vector<std::string> lines(const fs::path& path) {
+    std::vector<std::string> result;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) result.push_back(line);
+    return result;
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(SimulateTest, WritesOneCsvPerBodyWithTheContractsColumns) {
+  const ToolRun run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(lines(dir_ / "rod.csv").at(0), "t,x,y,theta,vx,vy,omega,energy");
+  for (const char* roller : {"sphere", "cylinder", "ring", "bowler"}) {
+    const auto rows = lines(dir_ / (std::string(roller) + ".csv"));
+    ASSERT_FALSE(rows.empty()) << roller;
+    EXPECT_EQ(rows.at(0), "t,x,v,theta,omega,mode,friction,normal,energy");
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "rod.csv.tmp"));
+}
+
+TEST_F(SimulateTest, SamplesAtWholeMultiplesOfTheSamplePeriodFromZero) {
+  const ToolRun run = simulate(config("rod.yaml") + " --duration 1.5 --sample-rate 20 --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const auto rows = lines(dir_ / "rod.csv");
+  ASSERT_EQ(rows.size(), 1u + 31u);  // header, t = 0, 0.05, ..., 1.5
+  for (std::size_t j = 1; j < rows.size(); ++j) {
+    const double t = std::stod(rows[j].substr(0, rows[j].find(',')));
+    EXPECT_EQ(t, static_cast<double>((j - 1) * 50) / 1000.0) << rows[j];
+  }
+}
+
+TEST_F(SimulateTest, CsvRowsAreTheCoresStatesAtThoseTimes) {
+  const ToolRun run = simulate(config("demo.yaml") + " --duration 3 --sample-rate 100 --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  World world(loadWorldConfigFile(config("demo.yaml")));
+  std::vector<std::vector<std::string>> files;
+  for (const auto& body : world.bodies()) files.push_back(lines(dir_ / (body.name + ".csv")));
+  for (int j = 0; j <= 300; ++j) {
+    for (std::size_t b = 0; b < world.bodies().size(); ++b) {
+      ASSERT_EQ(files[b].at(1 + j), csvRow(world.time(), world.bodies()[b])) << world.bodies()[b].name;
+    }
+    for (int s = 0; s < 10; ++s) world.step();
+  }
+}
+
+TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
+  const ToolRun run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("bowler"), std::string::npos);
+  EXPECT_NE(run.out.find("started rolling"), std::string::npos) << run.out;
+}
+
+TEST_F(SimulateTest, WritesABag) {
+  const ToolRun run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
+                           (dir_ / "run.bag").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir_ / "run.bag"));
+  EXPECT_FALSE(fs::exists(dir_ / "run.bag.active"));
+  EXPECT_GT(fs::file_size(dir_ / "run.bag"), 1000u);
+}
+
+TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
+  const fs::path bad = write("bad.yaml", "bodies: {rod: {type: rod, k: -1}}\n");
+  const ToolRun run = simulate(bad.string() + " --out-dir " + (dir_ / "out").string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("body 'rod', key 'k': value -1"), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "rod.csv"));
+}
+
+TEST_F(SimulateTest, BadOptionsAreRefused) {
+  EXPECT_NE(simulate(config("rod.yaml") + " --sample-rate 300 --out-dir " + dir_.string()).exit_code, 0);
+  EXPECT_NE(simulate(config("rod.yaml") + " --duration -1 --out-dir " + dir_.string()).exit_code, 0);
+  EXPECT_NE(simulate(config("rod.yaml") + " --duration abc").exit_code, 0);
+  EXPECT_NE(simulate("/nonexistent.yaml").exit_code, 0);
+  EXPECT_NE(simulate("").exit_code, 0);
+  const ToolRun run = simulate(config("rod.yaml") + " --sample-rate 300 --out-dir " + dir_.string());
+  EXPECT_NE(run.err.find("--sample-rate"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "rod.csv"));
+}

@@ -1,1 +1,173 @@
-// placeholder
+#include "rigid_body_sim/adapters/config_loader.h"
+
+#include <cmath>
+#include <random>
+#include <set>
+
+namespace rigid_body_sim {
+
+namespace {
+
+const std::string kWorld = "(world)";
+
+std::string describe(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsMap()) return "(a map)";
+  if (node.IsSequence()) return "(a list)";
+  return "(nothing)";
+}
+
+double asNumber(const std::string& body, const std::string& key, const YAML::Node& node) {
+  try {
+    if (node.IsScalar()) return node.as<double>();
+  } catch (const YAML::Exception&) {
+  }
+  throw ConfigError(body, key, describe(node), "a number");
+}
+
+std::string asString(const std::string& body, const std::string& key, const YAML::Node& node,
+                     const std::string& allowed) {
+  if (!node.IsScalar()) throw ConfigError(body, key, describe(node), allowed);
+  return node.Scalar();
+}
+
+std::string joined(const std::set<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+// Refuses any key of `map` not in `known`, so that a typo cannot fall back to a default silently.
+void refuseUnknownKeys(const std::string& body, const YAML::Node& map, const std::set<std::string>& known) {
+  for (const auto& entry : map) {
+    const std::string key = entry.first.as<std::string>();
+    if (!known.count(key)) {
+      throw ConfigError(body, key, describe(entry.second), "no such key; known keys: " + joined(known));
+    }
+  }
+}
+
+template <class Config>
+std::set<std::string> keyNames(const std::vector<NumericKey<Config>>& keys, std::set<std::string> extra) {
+  for (const auto& key : keys) extra.insert(key.name);
+  return extra;
+}
+
+template <class Config>
+void readNumericKeys(const std::string& body, const YAML::Node& map, Config& config,
+                     const std::vector<NumericKey<Config>>& keys) {
+  for (const auto& key : keys) {
+    if (map[key.name]) key.field(config) = asNumber(body, key.name, map[key.name]);
+  }
+}
+
+RodConfig parseRod(const std::string& body, const YAML::Node& map) {
+  refuseUnknownKeys(body, map, keyNames(rodNumericKeys(), {"type", "integrator", "seed"}));
+  RodConfig config;
+  readNumericKeys(body, map, config, rodNumericKeys());
+  if (map["integrator"]) {
+    const std::string allowed = "euler_cromer, velocity_verlet or rk4";
+    const std::string name = asString(body, "integrator", map["integrator"], allowed);
+    const auto integrator = integratorFromString(name);
+    if (!integrator) throw ConfigError(body, "integrator", "'" + name + "'", allowed);
+    config.params.integrator = *integrator;
+  }
+  if (map["seed"]) {
+    if (map["theta0"]) {
+      throw ConfigError(body, "seed", describe(map["seed"]), "only when theta0 is not given");
+    }
+    const double seed = asNumber(body, "seed", map["seed"]);
+    if (!(seed >= 0 && seed < 9.007199254740992e15 && seed == std::floor(seed))) {
+      throw ConfigError(body, "seed", describe(map["seed"]), "a whole number in [0, 2^53)");
+    }
+    config.initial.theta = theta0FromSeed(static_cast<unsigned long long>(seed));
+  }
+  return config;
+}
+
+// shape names a body with a known c; inertia_factor alone (or with shape: custom) gives any c.
+void parseShape(const std::string& body, const YAML::Node& map, RollerParams& params) {
+  const std::string allowed = "sphere, cylinder, ring, spherical_shell or custom";
+  const bool has_factor = static_cast<bool>(map["inertia_factor"]);
+  std::string name = has_factor ? "custom" : "sphere";
+  if (map["shape"]) name = asString(body, "shape", map["shape"], allowed);
+  if (name == "custom") {
+    if (!has_factor) throw ConfigError(body, "shape", "'custom'", "custom only with inertia_factor");
+    params.shape = Shape::Custom;
+    return;
+  }
+  const auto shape = shapeFromString(name);
+  if (!shape) throw ConfigError(body, "shape", "'" + name + "'", allowed);
+  params.shape = *shape;
+  if (!has_factor) params.inertia_factor = inertiaFactorOf(*shape);
+}
+
+RollerConfig parseRoller(const std::string& body, const YAML::Node& map) {
+  refuseUnknownKeys(body, map, keyNames(rollerNumericKeys(), {"type", "shape"}));
+  RollerConfig config;
+  readNumericKeys(body, map, config, rollerNumericKeys());
+  parseShape(body, map, config.params);
+  return config;
+}
+
+BodyConfig parseBody(const std::string& name, const YAML::Node& map) {
+  if (!map.IsMap()) throw ConfigError(name, "(body)", describe(map), "a map of the body's keys");
+  if (!map["type"]) throw ConfigError(name, "type", "(missing)", "rod or roller");
+  const std::string type = asString(name, "type", map["type"], "rod or roller");
+  if (type == "rod") return {name, parseRod(name, map)};
+  if (type == "roller") return {name, parseRoller(name, map)};
+  throw ConfigError(name, "type", "'" + type + "'", "rod or roller");
+}
+
+std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
+  if (!bodies) throw ConfigError(kWorld, "bodies", "(missing)", "a map of bodies by name");
+  if (!bodies.IsMap()) throw ConfigError(kWorld, "bodies", describe(bodies), "a map of bodies by name");
+  std::vector<BodyConfig> parsed;
+  for (const auto& entry : bodies) {
+    parsed.push_back(parseBody(entry.first.as<std::string>(), entry.second));
+  }
+  return parsed;
+}
+
+}  // namespace
+
+double theta0FromSeed(unsigned long long seed) {
+  std::mt19937_64 generator(seed);
+  const double unit = static_cast<double>(generator() >> 11) * 0x1.0p-53;
+  return 2.0 * 3.14159265358979323846 * unit;
+}
+
+WorldConfig parseWorldConfig(const YAML::Node& root) {
+  if (!root.IsMap()) {
+    throw ConfigError(kWorld, "(file)", describe(root), "a map with rate, publish_rate, gravity, "
+                                                        "world_frame and bodies");
+  }
+  refuseUnknownKeys(kWorld, root, {"rate", "publish_rate", "gravity", "world_frame", "bodies"});
+  WorldConfig config;
+  if (root["rate"]) config.rate = asNumber(kWorld, "rate", root["rate"]);
+  if (root["publish_rate"]) config.publish_rate = asNumber(kWorld, "publish_rate", root["publish_rate"]);
+  if (root["gravity"]) config.gravity = asNumber(kWorld, "gravity", root["gravity"]);
+  if (root["world_frame"]) {
+    config.world_frame = asString(kWorld, "world_frame", root["world_frame"], "a frame name");
+  }
+  config.bodies = parseBodies(root["bodies"]);
+  for (auto& body : config.bodies) {
+    std::visit([&](auto& body_config) { body_config.params.gravity = config.gravity; }, body.config);
+  }
+  validate(config);
+  return config;
+}
+
+WorldConfig loadWorldConfigFile(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError("cannot read config file '" + path + "'");
+  } catch (const YAML::Exception& error) {
+    throw ConfigError("config file '" + path + "' is not valid YAML: " + error.what());
+  }
+  return parseWorldConfig(root);
+}
+
+}  // namespace rigid_body_sim

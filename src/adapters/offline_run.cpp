@@ -1,1 +1,146 @@
-// placeholder
+#include "rigid_body_sim/adapters/offline_run.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "rigid_body_sim/adapters/bag_recorder.h"
+#include "rigid_body_sim/adapters/csv_writer.h"
+
+namespace rigid_body_sim {
+
+namespace {
+
+const std::string kCommandLine = "(command line)";
+constexpr double kMaxDuration = 1e7;  // s; about four months of simulated time
+
+double effectiveSampleRate(const OfflineOptions& options, const WorldConfig& config) {
+  return options.sample_rate > 0.0 ? options.sample_rate : config.publish_rate;
+}
+
+// Follows the energy of every body from sample to sample.
+class EnergyTracker {
+ public:
+  explicit EnergyTracker(const std::vector<Body>& bodies) : records_(bodies.size()), rolling_start_(bodies.size()) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const double e = energyOf(bodies[i]);
+      records_[i] = {e, e, e, e, 0.0};
+      rolling_start_[i] = isRolling(bodies[i]) ? e : NAN;
+    }
+  }
+
+  void sample(const std::vector<Body>& bodies, const std::vector<bool>& interrupted) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const double e = energyOf(bodies[i]);
+      EnergyRecord& record = records_[i];
+      record.final = e;
+      record.min = std::min(record.min, e);
+      record.max = std::max(record.max, e);
+      if (!isRolling(bodies[i])) {
+        rolling_start_[i] = NAN;
+      } else if (std::isnan(rolling_start_[i]) || interrupted[i]) {
+        rolling_start_[i] = e;  // a new stretch of rolling begins at this sample
+      } else {
+        record.rolling_drift = std::max(record.rolling_drift, std::abs(e - rolling_start_[i]));
+      }
+    }
+  }
+
+  const std::vector<EnergyRecord>& records() const { return records_; }
+
+ private:
+  static bool isRolling(const Body& body) {
+    const auto* roller = std::get_if<Roller>(&body.model);
+    return roller && roller->mode() == RollMode::Rolling;
+  }
+  std::vector<EnergyRecord> records_;
+  std::vector<double> rolling_start_;
+};
+
+// Bodies that restarted or changed mode since the last sample: their rolling stretch starts anew.
+std::vector<bool> interruptedBodies(const std::vector<Body>& bodies, const std::vector<WorldEvent>& events) {
+  std::vector<bool> interrupted(bodies.size(), false);
+  for (const auto& event : events) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (bodies[i].name == event.body) interrupted[i] = true;
+    }
+  }
+  return interrupted;
+}
+
+}  // namespace
+
+void validate(const OfflineOptions& options, const WorldConfig& config) {
+  const Range duration{0.0, kMaxDuration, false, false};
+  if (!duration.contains(options.duration)) {
+    throw ConfigError(kCommandLine, "--duration", formatNumber(options.duration), duration.describe());
+  }
+  const double sample_rate = effectiveSampleRate(options, config);
+  if (!dividesRate(config.rate, sample_rate)) {
+    throw ConfigError(kCommandLine, "--sample-rate", formatNumber(sample_rate),
+                      "a divisor of rate = " + formatNumber(config.rate) + " (rate / sample_rate whole)");
+  }
+}
+
+OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options) {
+  validate(options, config);
+  World world(config);
+  const double sample_rate = effectiveSampleRate(options, config);
+  const auto steps_per_sample = static_cast<std::int64_t>(std::llround(config.rate / sample_rate));
+  // The last sample is the last t = j / sample_rate not after the duration (rounding forgiven).
+  const auto last_sample = static_cast<std::int64_t>(std::floor(options.duration * sample_rate + 1e-9));
+
+  CsvWriter csv(options.out_dir, world.bodies());
+  std::unique_ptr<BagRecorder> bag;
+  SnapshotBuilder snapshots(config.world_frame, world.bodies());
+  if (!options.bag.empty()) {
+    bag = std::make_unique<BagRecorder>(options.bag);
+    bag->writeStatic(snapshots.staticTransforms(simStamp(0.0)), snapshots.staticMarkers(simStamp(0.0)),
+                     simStamp(0.0));
+  }
+
+  OfflineSummary summary;
+  EnergyTracker energy(world.bodies());
+  for (std::int64_t j = 0;; ++j) {
+    const double t = world.time();
+    csv.write(t, world.bodies());
+    if (bag) bag->write(snapshots.build(t, simStamp(t), world.bodies()), world.bodies(), simStamp(t));
+    if (j == last_sample) break;
+    for (std::int64_t s = 0; s < steps_per_sample; ++s) world.step();
+    std::vector<WorldEvent> events = world.takeEvents();
+    energy.sample(world.bodies(), interruptedBodies(world.bodies(), events));
+    summary.events.insert(summary.events.end(), events.begin(), events.end());
+  }
+  csv.commit();
+  if (bag) bag->close();
+
+  summary.end_time = world.time();
+  summary.steps = world.stepCount();
+  summary.samples = last_sample + 1;
+  for (const auto& body : world.bodies()) {
+    summary.bodies.push_back(body.name);
+    summary.final_states.push_back(csvHeader(body) + " = " + csvRow(world.time(), body));
+  }
+  summary.energy = energy.records();
+  return summary;
+}
+
+std::string formatSummary(const OfflineSummary& summary) {
+  std::ostringstream out;
+  out << "simulated " << summary.end_time << " s in " << summary.steps << " steps, " << summary.samples
+      << " samples per body\n";
+  for (std::size_t i = 0; i < summary.bodies.size(); ++i) {
+    const EnergyRecord& e = summary.energy[i];
+    out << summary.bodies[i] << ":\n  final " << summary.final_states[i] << "\n  energy " << e.initial
+        << " J -> " << e.final << " J (min " << e.min << ", max " << e.max << ")";
+    if (e.rolling_drift > 0.0) out << ", largest drift while rolling " << e.rolling_drift << " J";
+    out << "\n";
+    for (const auto& event : summary.events) {
+      if (event.body == summary.bodies[i]) out << "  t = " << event.t << " s: " << toString(event.kind) << "\n";
+    }
+  }
+  return out.str();
+}
+
+}  // namespace rigid_body_sim

@@ -1,1 +1,188 @@
-// placeholder
+#include "rigid_body_sim/core/parameters.h"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <set>
+
+namespace rigid_body_sim {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Upper bounds are generous, but finite: an absurd value is far more often a typo than an intent.
+constexpr double kMaxMass = 1e9;
+constexpr double kMaxSize = 1e6;
+constexpr double kMaxSpeed = 1e4;
+constexpr double kMaxSpin = 1e6;
+constexpr double kMaxAngle = 1e6;
+constexpr double kMaxStiffness = 1e12;
+constexpr double kMaxFriction = 100.0;
+constexpr double kMaxInertiaFactor = 100.0;
+
+Range positive(double max) { return {0.0, max, true, false}; }
+Range closed(double min, double max) { return {min, max, false, false}; }
+
+template <class Config>
+void checkRanges(const std::string& body, const Config& config,
+                 const std::vector<NumericKey<Config>>& keys) {
+  auto& mutable_config = const_cast<Config&>(config);  // NumericKey fields are shared with the loader
+  for (const auto& key : keys) {
+    const double value = key.field(mutable_config);
+    if (!key.range.contains(value)) {
+      throw ConfigError(body, key.name, formatNumber(value), key.range.describe());
+    }
+  }
+}
+
+}  // namespace
+
+ConfigError::ConfigError(const std::string& body, const std::string& key, const std::string& value,
+                         const std::string& allowed)
+    : std::runtime_error("body '" + body + "', key '" + key + "': value " + value +
+                         " is not allowed (allowed: " + allowed + ")") {}
+
+ConfigError::ConfigError(const std::string& message) : std::runtime_error(message) {}
+
+bool Range::contains(double value) const {
+  if (!std::isfinite(value)) return false;
+  const bool above_min = min_open ? value > min : value >= min;
+  const bool below_max = max_open ? value < max : value <= max;
+  return above_min && below_max;
+}
+
+std::string Range::describe() const {
+  return std::string("a finite number in ") + (min_open ? "(" : "[") + formatNumber(min) + ", " +
+         formatNumber(max) + (max_open ? ")" : "]");
+}
+
+std::string formatNumber(double value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {
+  static const std::vector<NumericKey<RodConfig>> keys = {
+      {"length", [](RodConfig& c) -> double& { return c.params.length; }, positive(kMaxSize)},
+      {"mass", [](RodConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
+      {"k", [](RodConfig& c) -> double& { return c.params.k; }, positive(kMaxStiffness)},
+      {"x0", [](RodConfig& c) -> double& { return c.initial.x; }, closed(-kMaxSize, kMaxSize)},
+      {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(-kMaxSize, kMaxSize)},
+      {"vx0", [](RodConfig& c) -> double& { return c.initial.vx; }, closed(-kMaxSpeed, kMaxSpeed)},
+      {"vy0", [](RodConfig& c) -> double& { return c.initial.vy; }, closed(-kMaxSpeed, kMaxSpeed)},
+      {"theta0", [](RodConfig& c) -> double& { return c.initial.theta; },
+       closed(-kMaxAngle, kMaxAngle)},
+      {"omega0", [](RodConfig& c) -> double& { return c.initial.omega; },
+       closed(-kMaxSpin, kMaxSpin)},
+  };
+  return keys;
+}
+
+const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
+  static const std::vector<NumericKey<RollerConfig>> keys = {
+      {"radius", [](RollerConfig& c) -> double& { return c.params.radius; }, positive(kMaxSize)},
+      {"mass", [](RollerConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
+      {"inertia_factor", [](RollerConfig& c) -> double& { return c.params.inertia_factor; },
+       positive(kMaxInertiaFactor)},
+      {"incline_angle", [](RollerConfig& c) -> double& { return c.params.incline_angle; },
+       {0.0, kPi / 2, false, true}},
+      {"incline_length", [](RollerConfig& c) -> double& { return c.params.incline_length; },
+       positive(kMaxSize)},
+      {"mu_s", [](RollerConfig& c) -> double& { return c.params.mu_s; }, closed(0, kMaxFriction)},
+      {"mu_d", [](RollerConfig& c) -> double& { return c.params.mu_d; }, closed(0, kMaxFriction)},
+      {"x0", [](RollerConfig& c) -> double& { return c.initial.x0; }, closed(0, kMaxSize)},
+      {"v0", [](RollerConfig& c) -> double& { return c.initial.v0; }, closed(-kMaxSpeed, kMaxSpeed)},
+      {"theta0", [](RollerConfig& c) -> double& { return c.initial.theta0; },
+       closed(-kMaxAngle, kMaxAngle)},
+      {"omega0", [](RollerConfig& c) -> double& { return c.initial.omega0; },
+       closed(-kMaxSpin, kMaxSpin)},
+  };
+  return keys;
+}
+
+void validate(const std::string& body, const RodConfig& config) {
+  checkRanges(body, config, rodNumericKeys());
+  if (!gravityRange().contains(config.params.gravity)) {
+    throw ConfigError(body, "gravity", formatNumber(config.params.gravity), gravityRange().describe());
+  }
+}
+
+void validate(const std::string& body, const RollerConfig& config) {
+  checkRanges(body, config, rollerNumericKeys());
+  const RollerParams& p = config.params;
+  if (!gravityRange().contains(p.gravity)) {
+    throw ConfigError(body, "gravity", formatNumber(p.gravity), gravityRange().describe());
+  }
+  // Kinetic friction above static friction has no consistent Coulomb law at u = 0.
+  if (p.mu_d > p.mu_s) {
+    throw ConfigError(body, "mu_d", formatNumber(p.mu_d),
+                      "a finite number in [0, mu_s = " + formatNumber(p.mu_s) + "]");
+  }
+  if (config.initial.x0 > p.incline_length) {
+    throw ConfigError(body, "x0", formatNumber(config.initial.x0),
+                      "a position on the slope, in [0, incline_length = " +
+                          formatNumber(p.incline_length) + "]");
+  }
+  if (p.shape != Shape::Custom && p.inertia_factor != inertiaFactorOf(p.shape)) {
+    throw ConfigError(body, "inertia_factor", formatNumber(p.inertia_factor),
+                      "only with shape custom, or " + formatNumber(inertiaFactorOf(p.shape)) +
+                          " for shape " + toString(p.shape));
+  }
+}
+
+Range rateRange() { return {1.0, 1e6, false, false}; }
+Range publishRateRange() { return {0.0, 1e6, true, false}; }
+Range gravityRange() { return {0.0, 1e3, false, false}; }
+
+bool isValidName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  for (const char ch : name) {
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
+  }
+  return true;
+}
+
+bool dividesRate(double rate, double divisor) {
+  if (!(divisor > 0) || !std::isfinite(rate) || !std::isfinite(divisor)) return false;
+  const double ratio = rate / divisor;
+  return ratio >= 1.0 - 1e-9 && std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
+}
+
+void validate(const WorldConfig& config) {
+  const std::string world = "(world)";
+  if (!rateRange().contains(config.rate)) {
+    throw ConfigError(world, "rate", formatNumber(config.rate), rateRange().describe());
+  }
+  if (!publishRateRange().contains(config.publish_rate) ||
+      !dividesRate(config.rate, config.publish_rate)) {
+    throw ConfigError(world, "publish_rate", formatNumber(config.publish_rate),
+                      "a divisor of rate = " + formatNumber(config.rate) + " (rate / publish_rate whole)");
+  }
+  if (!gravityRange().contains(config.gravity)) {
+    throw ConfigError(world, "gravity", formatNumber(config.gravity), gravityRange().describe());
+  }
+  if (!isValidName(config.world_frame)) {
+    throw ConfigError(world, "world_frame", "'" + config.world_frame + "'",
+                      "a name of letters, digits and _ starting with a letter");
+  }
+  if (config.bodies.empty()) {
+    throw ConfigError(world, "bodies", "(none)", "a map of at least one body");
+  }
+  std::set<std::string> names{config.world_frame};
+  for (const auto& body : config.bodies) {
+    if (!isValidName(body.name)) {
+      throw ConfigError(world, "bodies", "'" + body.name + "'",
+                        "body names of letters, digits and _ starting with a letter");
+    }
+    if (!names.insert(body.name).second) {
+      throw ConfigError(world, "bodies", "'" + body.name + "'",
+                        "names that differ from each other and from world_frame");
+    }
+    std::visit([&](const auto& body_config) { validate(body.name, body_config); }, body.config);
+  }
+}
+
+}  // namespace rigid_body_sim

@@ -1,1 +1,186 @@
-// placeholder
+// Round body on an incline: rolling / slipping with Coulomb friction, integrated in closed form.
+#include "rigid_body_sim/core/roller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace rigid_body_sim {
+
+double inertiaFactorOf(Shape shape) {
+  switch (shape) {
+    case Shape::Sphere: return 2.0 / 5.0;
+    case Shape::Cylinder: return 1.0 / 2.0;
+    case Shape::Ring: return 1.0;
+    case Shape::SphericalShell: return 2.0 / 3.0;
+    case Shape::Custom: break;
+  }
+  // A custom body carries its own c in RollerParams::inertia_factor.
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string toString(Shape shape) {
+  switch (shape) {
+    case Shape::Sphere: return "sphere";
+    case Shape::Cylinder: return "cylinder";
+    case Shape::Ring: return "ring";
+    case Shape::SphericalShell: return "spherical_shell";
+    case Shape::Custom: break;
+  }
+  return "custom";
+}
+
+std::optional<Shape> shapeFromString(const std::string& name) {
+  // "custom" is deliberately not parsed: a custom body is described by its inertia factor instead.
+  if (name == "sphere") return Shape::Sphere;
+  if (name == "cylinder") return Shape::Cylinder;
+  if (name == "ring") return Shape::Ring;
+  if (name == "spherical_shell") return Shape::SphericalShell;
+  return std::nullopt;
+}
+
+std::string toString(RollMode mode) { return mode == RollMode::Rolling ? "rolling" : "slipping"; }
+
+bool Roller::canRoll(const RollerParams& params) {
+  const double c = params.inertia_factor;
+  return std::tan(params.incline_angle) <= params.mu_s * (1.0 + c) / c;
+}
+
+Roller::Roller(const RollerParams& params, const RollerInitial& initial)
+    : params_(params), initial_(initial) {
+  reset();
+}
+
+void Roller::setParams(const RollerParams& params) {
+  params_ = params;
+  // A slipping body keeps slipping until u reaches 0; only a rolling one can lose its grip here.
+  if (mode_ == RollMode::Rolling && !canRoll(params_)) {
+    mode_ = RollMode::Slipping;
+    slip_sign_ = 1;  // gravity wins over static friction, so the contact point starts sliding downhill
+    pending_started_slipping_ = true;
+  }
+}
+
+void Roller::setInitial(const RollerInitial& initial) {
+  initial_ = initial;
+  reset();
+}
+
+void Roller::reset() {
+  state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
+  enterModeFromState();
+  laps_ = 0;
+  pending_started_slipping_ = false;
+}
+
+void Roller::enterModeFromState() {
+  const double u = slipSpeed();
+  if (u == 0.0) {
+    // Exactly matched speeds: roll if static friction can hold, else gravity drags the contact downhill.
+    mode_ = canRoll(params_) ? RollMode::Rolling : RollMode::Slipping;
+    slip_sign_ = 1;
+  } else {
+    mode_ = RollMode::Slipping;
+    slip_sign_ = u > 0.0 ? 1 : -1;
+  }
+}
+
+int Roller::slipDirection() const { return slip_sign_; }
+
+double Roller::slipSpeed() const { return state_.v + state_.omega * params_.radius; }
+
+double Roller::normalForce() const {
+  return params_.mass * params_.gravity * std::cos(params_.incline_angle);
+}
+
+double Roller::frictionForce() const {
+  const double c = params_.inertia_factor;
+  if (mode_ == RollMode::Rolling) {
+    return -params_.mass * params_.gravity * std::sin(params_.incline_angle) * c / (1.0 + c);
+  }
+  // Kinetic friction opposes the sliding of the contact point.
+  return -slipDirection() * params_.mu_d * normalForce();
+}
+
+double Roller::acceleration() const {
+  const double c = params_.inertia_factor;
+  const double g_along = params_.gravity * std::sin(params_.incline_angle);
+  if (mode_ == RollMode::Rolling) return g_along / (1.0 + c);
+  return g_along + frictionForce() / params_.mass;
+}
+
+double Roller::angularAcceleration() const {
+  const double c = params_.inertia_factor;
+  const double r = params_.radius;
+  if (mode_ == RollMode::Rolling) return -acceleration() / r;
+  // Torque about +z of friction f at the contact (0, -R): tau = R f, and I = c M R^2.
+  return frictionForce() / (c * params_.mass * r);
+}
+
+double Roller::energy() const {
+  const double m = params_.mass;
+  const double inertia = params_.inertia_factor * m * params_.radius * params_.radius;
+  const double height_drop = state_.x * std::sin(params_.incline_angle);
+  return 0.5 * m * state_.v * state_.v + 0.5 * inertia * state_.omega * state_.omega -
+         m * params_.gravity * height_drop;
+}
+
+void Roller::advance(double h) {
+  // Constant accelerations between events, so these updates are exact (up to rounding).
+  const double a = acceleration();
+  const double alpha = angularAcceleration();
+  state_.x += state_.v * h + 0.5 * a * h * h;
+  state_.v += a * h;
+  state_.theta += state_.omega * h + 0.5 * alpha * h * h;
+  state_.omega += alpha * h;
+}
+
+namespace {
+constexpr double kNever = std::numeric_limits<double>::infinity();
+constexpr int kMaxPasses = 3;
+}  // namespace
+
+RollerStepEvents Roller::step(double dt) {
+  RollerStepEvents events;
+  events.started_slipping = std::exchange(pending_started_slipping_, false);
+  if (!(dt > 0.0)) return events;  // time only runs forward; a zero or NaN step changes nothing
+  double elapsed = 0.0;
+  // Each pass either ends the step or handles one u = 0 instant. After such an instant the body rolls
+  // or slips forward with du/dt > 0 (see below), so two passes suffice; the bound only guards against
+  // rounding making du/dt look negative right at the critical angle.
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    const double remaining = dt - elapsed;
+    double to_zero = kNever;
+    if (mode_ == RollMode::Slipping && pass + 1 < kMaxPasses) {
+      const double dudt = acceleration() + angularAcceleration() * params_.radius;
+      // u approaches 0 only when it changes against its own sign; clamp rounding-sized negative times.
+      if (slipDirection() * dudt < 0.0) to_zero = std::max(0.0, -slipSpeed() / dudt);
+    }
+    if (!(to_zero <= remaining)) {
+      advance(remaining);
+      break;
+    }
+    advance(to_zero);
+    elapsed += to_zero;
+    state_.omega = -state_.v / params_.radius;  // land exactly on u = 0
+    if (canRoll(params_)) {
+      mode_ = RollMode::Rolling;
+      events.stuck_at = elapsed;
+    } else {
+      // Only a topspin body on a too-steep slope gets here; gravity then drags the contact downhill,
+      // and du/dt > 0 because tan(phi) > mu_s (1+c)/c >= mu_d (1+c)/c.
+      slip_sign_ = 1;
+    }
+  }
+  if (state_.x > params_.incline_length || state_.x < 0.0) {
+    // Off either end of the slope: start a new lap from the initial conditions.
+    state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
+    enterModeFromState();
+    ++laps_;
+    events.restarted = true;
+  }
+  return events;
+}
+
+}  // namespace rigid_body_sim

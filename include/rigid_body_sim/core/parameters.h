@@ -32,7 +32,7 @@ struct Range {
 
 struct RodConfig {
   RodParams params;
-  RodState initial;
+  RodMotion initial;
 };
 
 struct RollerConfig {

@@ -22,7 +22,7 @@ struct RodParams {
   Integrator integrator = Integrator::EulerCromer;
 };
 
-struct RodState {
+struct RodMotion {
   double x = 0.0;
   double y = 4.0;
   double theta = 0.3;
@@ -35,20 +35,20 @@ class Rod {
  public:
   // Sub-stepping starts where omega_c * dt exceeds this fraction of the stability bound 2
   // (omega_c = sqrt(4 k / M), the stiffest contact mode: one end of a flat rod).
-  static constexpr double kSubstepFraction = 0.1;
+  static constexpr double kSubstepFraction = 0.05;
 
-  Rod(const RodParams& params, const RodState& initial);
+  Rod(const RodParams& params, const RodMotion& initial);
 
   // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator.
   void step(double dt);
 
   void setParams(const RodParams& params);   // applies from the next step; the state is kept
-  void setInitial(const RodState& initial);  // restarts from it
+  void setInitial(const RodMotion& initial);  // restarts from it
   void reset();                              // back to the initial state
 
   const RodParams& params() const { return params_; }
-  const RodState& initial() const { return initial_; }
-  const RodState& state() const { return state_; }
+  const RodMotion& initial() const { return initial_; }
+  const RodMotion& state() const { return state_; }
 
   double momentOfInertia() const;  // M L^2 / 12
   double energy() const;           // kinetic + gravitational + elastic (J)
@@ -58,8 +58,8 @@ class Rod {
 
  private:
   RodParams params_;
-  RodState initial_;
-  RodState state_;
+  RodMotion initial_;
+  RodMotion state_;
 };
 
 }  // namespace rigid_body_sim

@@ -11,12 +11,12 @@ struct RodAcceleration {
   double ay = 0.0;
   double alpha = 0.0;
 };
-RodAcceleration rodAcceleration(const RodParams& params, const RodState& state);
+RodAcceleration rodAcceleration(const RodParams& params, const RodMotion& state);
 
 // One step of each scheme, no sub-stepping. eulerCromerStep follows the text's program operation for
 // operation (forces of end A, then end B, then gravity; v, then r; omega, then theta).
-RodState eulerCromerStep(const RodParams& params, const RodState& state, double dt);
-RodState velocityVerletStep(const RodParams& params, const RodState& state, double dt);
-RodState rk4Step(const RodParams& params, const RodState& state, double dt);
+RodMotion eulerCromerStep(const RodParams& params, const RodMotion& state, double dt);
+RodMotion velocityVerletStep(const RodParams& params, const RodMotion& state, double dt);
+RodMotion rk4Step(const RodParams& params, const RodMotion& state, double dt);
 
 }  // namespace rigid_body_sim

@@ -43,7 +43,7 @@ struct RollerInitial {
   double omega0 = 0.0;
 };
 
-struct RollerState {
+struct RollerMotion {
   double x = 0.0;
   double v = 0.0;
   double theta = 0.0;
@@ -76,7 +76,7 @@ class Roller {
 
   const RollerParams& params() const { return params_; }
   const RollerInitial& initial() const { return initial_; }
-  const RollerState& state() const { return state_; }
+  const RollerMotion& state() const { return state_; }
   RollMode mode() const { return mode_; }
   int laps() const { return laps_; }
 
@@ -98,10 +98,11 @@ class Roller {
 
   RollerParams params_;
   RollerInitial initial_;
-  RollerState state_;
+  RollerMotion state_;
   RollMode mode_ = RollMode::Rolling;
   int slip_sign_ = 1;
   int laps_ = 0;
+  bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
 };
 
 }  // namespace rigid_body_sim

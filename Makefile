@@ -1,0 +1,32 @@
+# The two commands for a newcomer on a fresh Debian 12 machine:
+#   make demo   installs what is missing, builds, and runs the demo
+#   make test   installs what is missing, builds, and runs every test (ctest; honest exit code)
+SHELL := /bin/bash
+# Debian's python3 first: ROS's Python modules are Debian's (a pyenv python3 cannot import them).
+export PATH := /usr/bin:$(PATH)
+BUILD ?= build
+JOBS ?= $(shell nproc)
+
+.PHONY: all deps build demo test lint clean
+
+all: build
+
+deps:
+	bash scripts/install-deps all
+
+build: deps
+	cmake -S . -B $(BUILD) -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	cmake --build $(BUILD) -j$(JOBS) -- --no-print-directory
+
+demo: build
+	bash scripts/demo $(BUILD)
+
+test: build
+	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
+	ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
+
+lint: deps
+	catkin_lint -W2 .
+
+clean:
+	rm -rf $(BUILD)

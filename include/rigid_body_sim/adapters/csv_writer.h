@@ -1,0 +1,38 @@
+// One CSV file per body, in the contract's columns. Files are written under a temporary name and
+// renamed when complete, so that a failed run never leaves a half-written file behind.
+#pragma once
+
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+std::string csvHeader(const Body& body);
+std::string csvRow(double t, const Body& body);
+
+class CsvWriter {
+ public:
+  // Opens DIR/<body>.csv.tmp for every body and writes the headers; throws std::runtime_error.
+  CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies);
+  ~CsvWriter();  // removes the temporary files of an uncommitted run
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  void write(double t, const std::vector<Body>& bodies);
+  // Flushes and renames every file to its final name; throws std::runtime_error on a write error.
+  void commit();
+
+ private:
+  struct File {
+    std::string final_path;
+    std::string temp_path;
+    std::unique_ptr<std::ofstream> stream;
+  };
+  std::vector<File> files_;
+  bool committed_ = false;
+};
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,49 @@
+// The offline run behind `simulate`: steps a world without a master, samples it at t = j / sample_rate,
+// writes the CSV files (and a bag on request), and summarises what happened.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+struct OfflineOptions {
+  double duration = 10.0;    // s of simulated time (the text's 10 s)
+  double sample_rate = 0.0;  // Hz; 0 means the config's publish_rate
+  std::string out_dir = ".";
+  std::string bag;           // empty: no bag
+};
+
+// Energy of one body over the run.
+struct EnergyRecord {
+  double initial = 0.0;
+  double final = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  // Largest |E - E_start| within a stretch of uninterrupted rolling (rollers only; 0 for rods).
+  double rolling_drift = 0.0;
+};
+
+struct OfflineSummary {
+  double end_time = 0.0;
+  std::int64_t steps = 0;
+  std::int64_t samples = 0;              // per body
+  std::vector<std::string> bodies;
+  std::vector<std::string> final_states; // one CSV row per body, at end_time
+  std::vector<EnergyRecord> energy;      // per body
+  std::vector<WorldEvent> events;
+};
+
+// Checks the options against the config; throws ConfigError naming the option.
+void validate(const OfflineOptions& options, const WorldConfig& config);
+
+// Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure.
+OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options);
+
+// A few human lines: final states, slip-to-roll times, energy drift.
+std::string formatSummary(const OfflineSummary& summary);
+
+}  // namespace rigid_body_sim
