@@ -1,0 +1,95 @@
+// sim_node: a thin ROS adapter around the core World. It owns the stepping thread, the publishers, the
+// reconfigure servers and the services; physics and validation stay in the core and the config loader.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include "rigid_body_sim/RodReconfigureConfig.h"
+#include "rigid_body_sim/RollerReconfigureConfig.h"
+#include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/adapters/ros_conversions.h"
+#include "rigid_body_sim/adapters/step_pacer.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+// The node's own options (private parameters beside the config keys).
+struct NodeOptions {
+  double real_time_factor = 1.0;  // 1 = wall-clock pace, 0 = as fast as possible
+  bool publish_clock = false;     // publish /clock (simulated time) for use_sim_time users
+  double duration = 0.0;          // simulated seconds before the node shuts down; 0 = run until stopped
+};
+
+class SimNode {
+ public:
+  // Loads and validates the private parameters; throws ConfigError with the one refusal line.
+  SimNode(ros::NodeHandle node, ros::NodeHandle private_node);
+  ~SimNode();
+
+  // Starts the stepping thread and spins the callbacks until shutdown.
+  void run();
+
+ private:
+  using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
+  using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
+
+  void advertise();
+  void startReconfigureServers();
+  void onRodReconfigure(std::size_t index, RodReconfigureConfig& request);
+  void onRollerReconfigure(std::size_t index, RollerReconfigureConfig& request);
+  bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  bool onStep(Step::Request& request, Step::Response& response);
+
+  void stepLoop();
+  // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
+  void stepOnceLocked();
+  void publishLocked();
+  void publishStaticLocked();
+  ros::Time stampOf(double t) const;
+  double wallNow() const;
+
+  ros::NodeHandle node_;
+  ros::NodeHandle private_node_;
+  NodeOptions options_;
+  WorldConfig config_;  // the current config of every body (what reconfigure changes)
+
+  std::mutex mutex_;    // guards everything below that the stepping thread touches
+  World world_;
+  std::int64_t steps_per_publish_;
+  std::int64_t last_published_step_ = -1;
+  bool paused_ = false;
+  StepPacer pacer_;
+  std::condition_variable wake_;
+  std::unique_ptr<SnapshotBuilder> snapshots_;
+  ros::Time wall_start_;
+  bool use_sim_time_ = false;
+
+  ros::Publisher marker_publisher_;
+  ros::Publisher clock_publisher_;
+  std::vector<ros::Publisher> state_publishers_;
+  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  std::vector<ros::ServiceServer> services_;
+  std::vector<std::unique_ptr<RodServer>> rod_servers_;
+  std::vector<std::unique_ptr<RollerServer>> roller_servers_;
+
+  std::atomic<bool> stopping_{false};
+  std::thread stepper_;
+};
+
+}  // namespace rigid_body_sim

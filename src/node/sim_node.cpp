@@ -1,0 +1,311 @@
+#include "rigid_body_sim/node/sim_node.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <rosgraph_msgs/Clock.h>
+
+#include "rigid_body_sim/adapters/bag_recorder.h"
+#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/adapters/reconfigure.h"
+#include "rigid_body_sim/adapters/ros_params.h"
+
+namespace rigid_body_sim {
+
+namespace {
+
+const std::string kNode = "(node)";
+constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
+
+double numberOption(const YAML::Node& params, const std::string& key, double fallback, const Range& range) {
+  if (!params[key]) return fallback;
+  double value = NAN;
+  try {
+    value = params[key].as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", range.describe());
+  }
+  if (!range.contains(value)) throw ConfigError(kNode, key, formatNumber(value), range.describe());
+  return value;
+}
+
+bool boolOption(const YAML::Node& params, const std::string& key, bool fallback) {
+  if (!params[key]) return fallback;
+  try {
+    return params[key].as<bool>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", "true or false");
+  }
+}
+
+XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node) {
+  XmlRpc::XmlRpcValue params;
+  if (!ros::param::get(private_node.getNamespace(), params)) {
+    throw ConfigError("no parameters in " + private_node.getNamespace() +
+                      ": load a config (rosparam load, or the launch files' config arg)");
+  }
+  return params;
+}
+
+NodeOptions loadOptions(XmlRpc::XmlRpcValue& params) {
+  const YAML::Node yaml = toYaml(params);
+  NodeOptions options;
+  options.real_time_factor = numberOption(yaml, "real_time_factor", 1.0, {0.0, 1e6});
+  options.publish_clock = boolOption(yaml, "publish_clock", false);
+  options.duration = numberOption(yaml, "duration", 0.0, {0.0, 1e7});
+  return options;
+}
+
+// The config keys of the private namespace, without the node's options and the reconfigure servers'
+// namespaces (one per body name).
+WorldConfig loadConfig(XmlRpc::XmlRpcValue& params) {
+  std::set<std::string> ignored = {"real_time_factor", "publish_clock", "duration"};
+  if (params.getType() == XmlRpc::XmlRpcValue::TypeStruct && params.hasMember("bodies") &&
+      params["bodies"].getType() == XmlRpc::XmlRpcValue::TypeStruct) {
+    for (auto& body : params["bodies"]) ignored.insert(body.first);
+  }
+  return parseWorldConfig(configFromParams(params, ignored));
+}
+
+template <class Config>
+Config& configOf(WorldConfig& world, std::size_t index) {
+  return std::get<Config>(world.bodies[index].config);
+}
+
+}  // namespace
+
+SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
+    : node_(node),
+      private_node_(private_node),
+      options_([&] {
+        auto params = privateParams(private_node);
+        return loadOptions(params);
+      }()),
+      config_([&] {
+        auto params = privateParams(private_node);
+        return loadConfig(params);
+      }()),
+      world_(config_),
+      steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
+      pacer_(config_.rate, options_.real_time_factor) {
+  use_sim_time_ = ros::param::param("/use_sim_time", false);
+  wall_start_ = ros::Time(ros::WallTime::now().toSec());
+  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+  advertise();
+  startReconfigureServers();
+}
+
+SimNode::~SimNode() {
+  stopping_ = true;
+  wake_.notify_all();
+  if (stepper_.joinable()) stepper_.join();
+}
+
+void SimNode::advertise() {
+  marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 10);
+  if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  for (const auto& body : world_.bodies()) {
+    if (std::holds_alternative<Rod>(body.model)) {
+      state_publishers_.push_back(private_node_.advertise<RodState>(body.name + "/state", 100));
+    } else {
+      state_publishers_.push_back(private_node_.advertise<RollerState>(body.name + "/state", 100));
+    }
+  }
+  services_.push_back(private_node_.advertiseService("reset", &SimNode::onReset, this));
+  services_.push_back(private_node_.advertiseService("pause", &SimNode::onPause, this));
+  services_.push_back(private_node_.advertiseService("unpause", &SimNode::onUnpause, this));
+  services_.push_back(private_node_.advertiseService("step", &SimNode::onStep, this));
+}
+
+// The YAML's values go to each server before its callback is set, so that they win over the .cfg
+// defaults; the first callback then finds nothing to change.
+void SimNode::startReconfigureServers() {
+  for (std::size_t i = 0; i < config_.bodies.size(); ++i) {
+    const ros::NodeHandle body_node(private_node_, config_.bodies[i].name);
+    if (std::holds_alternative<RodConfig>(config_.bodies[i].config)) {
+      auto server = std::make_unique<RodServer>(body_node);
+      server->updateConfig(toReconfigure(configOf<RodConfig>(config_, i)));
+      server->setCallback([this, i](RodReconfigureConfig& request, uint32_t) { onRodReconfigure(i, request); });
+      rod_servers_.push_back(std::move(server));
+    } else {
+      auto server = std::make_unique<RollerServer>(body_node);
+      server->updateConfig(toReconfigure(configOf<RollerConfig>(config_, i)));
+      server->setCallback(
+          [this, i](RollerReconfigureConfig& request, uint32_t) { onRollerReconfigure(i, request); });
+      roller_servers_.push_back(std::move(server));
+    }
+  }
+}
+
+void SimNode::onRodReconfigure(std::size_t index, RodReconfigureConfig& request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string& name = config_.bodies[index].name;
+  RodConfig& current = configOf<RodConfig>(config_, index);
+  try {
+    const RodConfig wanted = fromReconfigure(name, request, current);
+    validate(name, wanted);
+    Rod& rod = std::get<Rod>(world_.bodies()[index].model);
+    rod.setParams(wanted.params);
+    if (initialChanged(wanted, current)) rod.setInitial(wanted.initial);
+    current = wanted;
+  } catch (const ConfigError& error) {
+    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+  }
+  request = toReconfigure(current);  // what the server shows is what runs
+}
+
+void SimNode::onRollerReconfigure(std::size_t index, RollerReconfigureConfig& request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::string& name = config_.bodies[index].name;
+  RollerConfig& current = configOf<RollerConfig>(config_, index);
+  try {
+    const RollerConfig wanted = fromReconfigure(name, request, current);
+    validate(name, wanted);
+    Roller& roller = std::get<Roller>(world_.bodies()[index].model);
+    roller.setParams(wanted.params);
+    if (initialChanged(wanted, current)) roller.setInitial(wanted.initial);
+    const bool moved = wanted.params.incline_angle != current.params.incline_angle ||
+                       wanted.params.incline_length != current.params.incline_length ||
+                       wanted.params.shape != current.params.shape;
+    current = wanted;
+    if (moved) {
+      // The slope's place (and the body's look) changed: new static frames and markers.
+      snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+      publishStaticLocked();
+    }
+  } catch (const ConfigError& error) {
+    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+  }
+  request = toReconfigure(current);
+}
+
+bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  world_.reset();
+  world_.takeEvents();
+  publishStaticLocked();  // DELETEALL, then the fixed markers again; trails start anew
+  publishLocked();
+  ROS_INFO("reset: every body back to its initial conditions at t = %.6f s", world_.time());
+  return true;
+}
+
+bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  paused_ = true;
+  return true;
+}
+
+bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    paused_ = false;
+    pacer_.restart(wallNow(), world_.stepCount());
+  }
+  wake_.notify_all();
+  return true;
+}
+
+bool SimNode::onStep(Step::Request& request, Step::Response& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto max_steps = static_cast<std::uint64_t>(kMaxStepSeconds * world_.rate());
+  if (!paused_) {
+    response.message = "refused: call ~pause first (the simulation is running)";
+  } else if (request.steps == 0 || request.steps > max_steps) {
+    response.message = "refused: steps " + std::to_string(request.steps) + " is not in [1, " +
+                       std::to_string(max_steps) + "] (at most " + formatNumber(kMaxStepSeconds) + " s)";
+  } else {
+    for (std::uint32_t i = 0; i < request.steps; ++i) stepOnceLocked();
+    if (last_published_step_ != world_.stepCount()) publishLocked();  // show where the steps ended
+    response.success = true;
+    response.message = "ok";
+  }
+  if (!response.success) ROS_ERROR_STREAM("~step " << response.message);
+  response.t = world_.time();
+  return true;
+}
+
+double SimNode::wallNow() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+ros::Time SimNode::stampOf(double t) const {
+  return use_sim_time_ ? simStamp(t) : wall_start_ + ros::Duration(t);
+}
+
+void SimNode::stepOnceLocked() {
+  world_.step();
+  for (const auto& event : world_.takeEvents()) {
+    ROS_DEBUG_STREAM(event.body << " " << toString(event.kind) << " at t = " << event.t << " s");
+  }
+  if (world_.stepCount() % steps_per_publish_ == 0) publishLocked();
+}
+
+void SimNode::publishLocked() {
+  const double t = world_.time();
+  const ros::Time stamp = stampOf(t);
+  if (options_.publish_clock) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = simStamp(t);
+    clock_publisher_.publish(clock);
+  }
+  const Snapshot snapshot = snapshots_->build(t, stamp, world_.bodies());
+  tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+  marker_publisher_.publish(snapshot.markers);
+  for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
+    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
+  }
+  last_published_step_ = world_.stepCount();
+}
+
+void SimNode::publishStaticLocked() {
+  const ros::Time stamp = stampOf(world_.time());
+  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stamp));
+  marker_publisher_.publish(snapshots_->restartMarkers(stamp));
+}
+
+void SimNode::stepLoop() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  publishStaticLocked();
+  publishLocked();
+  pacer_.restart(wallNow(), world_.stepCount());
+  const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
+  while (!stopping_ && ros::ok()) {
+    if (paused_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(50));
+      continue;
+    }
+    // Step up to what is due, one publishing interval at a time so that callbacks get the lock.
+    const std::int64_t next_publish = (world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_;
+    const std::int64_t target = std::min(pacer_.dueSteps(wallNow()), next_publish);
+    while (world_.stepCount() < target) {
+      stepOnceLocked();
+      if (duration_steps > 0 && world_.stepCount() >= duration_steps) {
+        ROS_INFO("simulated %.3f s: the requested duration; shutting down", world_.time());
+        ros::requestShutdown();
+        return;
+      }
+    }
+    if (pacer_.asFastAsPossible()) {
+      lock.unlock();
+      std::this_thread::yield();
+      lock.lock();
+      continue;
+    }
+    const double wake_at = pacer_.wallTimeOf(
+        (world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_);
+    const auto wait = std::chrono::duration<double>(wake_at - wallNow());
+    if (wait.count() > 0) wake_.wait_for(lock, wait);
+  }
+}
+
+void SimNode::run() {
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  stepper_ = std::thread([this] { stepLoop(); });
+  ros::waitForShutdown();
+  stopping_ = true;
+  wake_.notify_all();
+  stepper_.join();
+}
+
+}  // namespace rigid_body_sim
