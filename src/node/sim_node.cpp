@@ -53,13 +53,14 @@ NodeOptions loadOptions(XmlRpc::XmlRpcValue& params) {
   options.real_time_factor = numberOption(yaml, "real_time_factor", 1.0, {0.0, 1e6});
   options.publish_clock = boolOption(yaml, "publish_clock", false);
   options.duration = numberOption(yaml, "duration", 0.0, {0.0, 1e7});
+  options.start_delay = numberOption(yaml, "start_delay", 0.0, {0.0, 60.0});
   return options;
 }
 
 // The config keys of the private namespace, without the node's options and the reconfigure servers'
 // namespaces (one per body name).
 WorldConfig loadConfig(XmlRpc::XmlRpcValue& params) {
-  std::set<std::string> ignored = {"real_time_factor", "publish_clock", "duration"};
+  std::set<std::string> ignored = {"real_time_factor", "publish_clock", "duration", "start_delay"};
   if (params.getType() == XmlRpc::XmlRpcValue::TypeStruct && params.hasMember("bodies") &&
       params["bodies"].getType() == XmlRpc::XmlRpcValue::TypeStruct) {
     for (auto& body : params["bodies"]) ignored.insert(body.first);
@@ -265,6 +266,7 @@ void SimNode::publishStaticLocked() {
 
 void SimNode::stepLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
+  wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay), [this] { return stopping_.load(); });
   publishStaticLocked();
   publishLocked();
   pacer_.restart(wallNow(), world_.stepCount());
@@ -281,6 +283,9 @@ void SimNode::stepLoop() {
       stepOnceLocked();
       if (duration_steps > 0 && world_.stepCount() >= duration_steps) {
         ROS_INFO("simulated %.3f s: the requested duration; shutting down", world_.time());
+        // A moment for subscribers (a recorder) to receive the last messages before the launch ends.
+        lock.unlock();
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
         ros::requestShutdown();
         return;
       }

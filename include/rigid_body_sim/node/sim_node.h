@@ -31,6 +31,7 @@ struct NodeOptions {
   double real_time_factor = 1.0;  // 1 = wall-clock pace, 0 = as fast as possible
   bool publish_clock = false;     // publish /clock (simulated time) for use_sim_time users
   double duration = 0.0;          // simulated seconds before the node shuts down; 0 = run until stopped
+  double start_delay = 0.0;       // wall seconds before stepping starts (lets a recorder subscribe first)
 };
 
 class SimNode {
