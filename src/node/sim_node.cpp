@@ -73,6 +73,13 @@ Config& configOf(WorldConfig& world, std::size_t index) {
   return std::get<Config>(world.bodies[index].config);
 }
 
+// Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
+bool placementChanged(const RodConfig&, const RodConfig&) { return false; }
+bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
+  return a.params.incline_angle != b.params.incline_angle || a.params.incline_length != b.params.incline_length ||
+         a.params.shape != b.params.shape || a.params.radius != b.params.radius;
+}
+
 }  // namespace
 
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
@@ -126,48 +133,33 @@ void SimNode::startReconfigureServers() {
     if (std::holds_alternative<RodConfig>(config_.bodies[i].config)) {
       auto server = std::make_unique<RodServer>(body_node);
       server->updateConfig(toReconfigure(configOf<RodConfig>(config_, i)));
-      server->setCallback([this, i](RodReconfigureConfig& request, uint32_t) { onRodReconfigure(i, request); });
+      server->setCallback(
+          [this, i](RodReconfigureConfig& request, uint32_t) { reconfigure<Rod, RodConfig>(i, request); });
       rod_servers_.push_back(std::move(server));
     } else {
       auto server = std::make_unique<RollerServer>(body_node);
       server->updateConfig(toReconfigure(configOf<RollerConfig>(config_, i)));
       server->setCallback(
-          [this, i](RollerReconfigureConfig& request, uint32_t) { onRollerReconfigure(i, request); });
+          [this, i](RollerReconfigureConfig& request, uint32_t) { reconfigure<Roller, RollerConfig>(i, request); });
       roller_servers_.push_back(std::move(server));
     }
   }
 }
 
-void SimNode::onRodReconfigure(std::size_t index, RodReconfigureConfig& request) {
+// Applies a reconfigure request to one body if it validates; otherwise logs one line and changes
+// nothing. The request is rewritten to what runs, so that the server shows the truth.
+template <class Model, class Config, class Request>
+void SimNode::reconfigure(std::size_t index, Request& request) {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string& name = config_.bodies[index].name;
-  RodConfig& current = configOf<RodConfig>(config_, index);
+  Config& current = configOf<Config>(config_, index);
   try {
-    const RodConfig wanted = fromReconfigure(name, request, current);
+    const Config wanted = fromReconfigure(name, request, current);
     validate(name, wanted);
-    Rod& rod = std::get<Rod>(world_.bodies()[index].model);
-    rod.setParams(wanted.params);
-    if (initialChanged(wanted, current)) rod.setInitial(wanted.initial);
-    current = wanted;
-  } catch (const ConfigError& error) {
-    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
-  }
-  request = toReconfigure(current);  // what the server shows is what runs
-}
-
-void SimNode::onRollerReconfigure(std::size_t index, RollerReconfigureConfig& request) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const std::string& name = config_.bodies[index].name;
-  RollerConfig& current = configOf<RollerConfig>(config_, index);
-  try {
-    const RollerConfig wanted = fromReconfigure(name, request, current);
-    validate(name, wanted);
-    Roller& roller = std::get<Roller>(world_.bodies()[index].model);
-    roller.setParams(wanted.params);
-    if (initialChanged(wanted, current)) roller.setInitial(wanted.initial);
-    const bool moved = wanted.params.incline_angle != current.params.incline_angle ||
-                       wanted.params.incline_length != current.params.incline_length ||
-                       wanted.params.shape != current.params.shape;
+    Model& model = std::get<Model>(world_.bodies()[index].model);
+    model.setParams(wanted.params);
+    if (initialChanged(wanted, current)) model.setInitial(wanted.initial);
+    const bool moved = placementChanged(wanted, current);
     current = wanted;
     if (moved) {
       // The slope's place (and the body's look) changed: new static frames and markers.

@@ -49,8 +49,8 @@ class SimNode {
 
   void advertise();
   void startReconfigureServers();
-  void onRodReconfigure(std::size_t index, RodReconfigureConfig& request);
-  void onRollerReconfigure(std::size_t index, RollerReconfigureConfig& request);
+  template <class Model, class Config, class Request>
+  void reconfigure(std::size_t index, Request& request);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
