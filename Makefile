@@ -23,7 +23,7 @@ demo: build
 
 test: build
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
-	ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
+	env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
 
 lint: deps
 	catkin_lint -W2 .

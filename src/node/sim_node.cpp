@@ -15,6 +15,8 @@ namespace rigid_body_sim {
 namespace {
 
 const std::string kNode = "(node)";
+// Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
+constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 
 double numberOption(const YAML::Node& params, const std::string& key, double fallback, const Range& range) {
@@ -114,9 +116,9 @@ void SimNode::advertise() {
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
-      state_publishers_.push_back(private_node_.advertise<RodState>(body.name + "/state", 100));
+      state_publishers_.push_back(private_node_.advertise<RodState>(body.name + "/state", kStateQueue));
     } else {
-      state_publishers_.push_back(private_node_.advertise<RollerState>(body.name + "/state", 100));
+      state_publishers_.push_back(private_node_.advertise<RollerState>(body.name + "/state", kStateQueue));
     }
   }
   services_.push_back(private_node_.advertiseService("reset", &SimNode::onReset, this));
@@ -131,13 +133,13 @@ void SimNode::startReconfigureServers() {
   for (std::size_t i = 0; i < config_.bodies.size(); ++i) {
     const ros::NodeHandle body_node(private_node_, config_.bodies[i].name);
     if (std::holds_alternative<RodConfig>(config_.bodies[i].config)) {
-      auto server = std::make_unique<RodServer>(body_node);
+      auto server = std::make_unique<RodServer>(reconfigure_mutex_, body_node);
       server->updateConfig(toReconfigure(configOf<RodConfig>(config_, i)));
       server->setCallback(
           [this, i](RodReconfigureConfig& request, uint32_t) { reconfigure<Rod, RodConfig>(i, request); });
       rod_servers_.push_back(std::move(server));
     } else {
-      auto server = std::make_unique<RollerServer>(body_node);
+      auto server = std::make_unique<RollerServer>(reconfigure_mutex_, body_node);
       server->updateConfig(toReconfigure(configOf<RollerConfig>(config_, i)));
       server->setCallback(
           [this, i](RollerReconfigureConfig& request, uint32_t) { reconfigure<Roller, RollerConfig>(i, request); });

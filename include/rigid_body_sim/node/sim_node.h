@@ -86,6 +86,7 @@ class SimNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;
+  boost::recursive_mutex reconfigure_mutex_;  // the servers' own; updateConfig needs it to be ours
   std::vector<std::unique_ptr<RodServer>> rod_servers_;
   std::vector<std::unique_ptr<RollerServer>> roller_servers_;
 

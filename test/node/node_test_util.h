@@ -1,0 +1,204 @@
+// Helpers shared by the rostest gtest nodes that drive sim_node: a collector of state messages, service
+// calls, and exact comparison of a published state with the core World's prediction.
+#pragma once
+
+#include <cmath>
+#include <condition_variable>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include "rigid_body_sim/RodState.h"
+#include "rigid_body_sim/RollerState.h"
+#include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/adapters/ros_conversions.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+namespace test {
+
+// Every state message of every body of a world, in arrival order per body.
+class StateCollector {
+ public:
+  StateCollector(ros::NodeHandle& nh, const World& world, const std::string& ns = "/sim") {
+    for (const auto& body : world.bodies()) {
+      const std::string topic = ns + "/" + body.name + "/state";
+      const std::string name = body.name;
+      if (std::holds_alternative<Rod>(body.model)) {
+        subs_.push_back(nh.subscribe<RodState>(topic, 100000, [this, name](const RodState::ConstPtr& msg) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          rods_[name].push_back(*msg);
+          ++count_;
+          cv_.notify_all();
+        }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+      } else {
+        subs_.push_back(nh.subscribe<RollerState>(topic, 100000, [this, name](const RollerState::ConstPtr& msg) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          rollers_[name].push_back(*msg);
+          ++count_;
+          cv_.notify_all();
+        }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+      }
+    }
+  }
+
+  // The subscriptions end before the containers their callbacks fill.
+  ~StateCollector() {
+    for (auto& sub : subs_) sub.shutdown();
+  }
+
+  // Waits until every subscription has a publisher.
+  bool waitConnected(double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < end) {
+      bool all = true;
+      for (const auto& sub : subs_) all = all && sub.getNumPublishers() > 0;
+      if (all) return true;
+      ros::WallDuration(0.02).sleep();
+    }
+    return false;
+  }
+
+  // Waits until pred() holds (checked under the lock), at most timeout wall seconds.
+  bool waitFor(const std::function<bool()>& pred, double timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return cv_.wait_for(lock, std::chrono::duration<double>(timeout), pred);
+  }
+
+  // Waits until every body has a state with time exactly t.
+  bool waitAllAt(const World& world, double t, double timeout = 3.0) {
+    return waitFor([&] {
+      for (const auto& body : world.bodies()) {
+        bool found = false;
+        if (std::holds_alternative<Rod>(body.model)) {
+          for (const auto& m : rods_[body.name]) found = found || m.t == t;
+        } else {
+          for (const auto& m : rollers_[body.name]) found = found || m.t == t;
+        }
+        if (!found) return false;
+      }
+      return true;
+    }, timeout);
+  }
+
+  // Waits until every body has at least one state.
+  bool waitAllAny(const World& world, double timeout = 3.0) {
+    return waitFor([&] {
+      for (const auto& body : world.bodies()) {
+        if (std::holds_alternative<Rod>(body.model) ? rods_[body.name].empty() : rollers_[body.name].empty())
+          return false;
+      }
+      return true;
+    }, timeout);
+  }
+
+  std::vector<RodState> rod(const std::string& name) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return rods_[name];
+  }
+  std::vector<RollerState> roller(const std::string& name) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return rollers_[name];
+  }
+  std::size_t count() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return count_;
+  }
+  // Unlocked access for predicates passed to waitFor.
+  std::map<std::string, std::vector<RodState>>& rodsLocked() { return rods_; }
+  std::map<std::string, std::vector<RollerState>>& rollersLocked() { return rollers_; }
+  std::size_t countLocked() const { return count_; }
+
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    rods_.clear();
+    rollers_.clear();
+    count_ = 0;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::vector<ros::Subscriber> subs_;
+  std::map<std::string, std::vector<RodState>> rods_;
+  std::map<std::string, std::vector<RollerState>> rollers_;
+  std::size_t count_ = 0;
+};
+
+// Exact field-by-field comparison (header excluded).
+inline void expectSameState(const RodState& expected, const RodState& got, const std::string& what) {
+  EXPECT_EQ(expected.t, got.t) << what;
+  EXPECT_EQ(expected.x, got.x) << what;
+  EXPECT_EQ(expected.y, got.y) << what;
+  EXPECT_EQ(expected.theta, got.theta) << what;
+  EXPECT_EQ(expected.vx, got.vx) << what;
+  EXPECT_EQ(expected.vy, got.vy) << what;
+  EXPECT_EQ(expected.omega, got.omega) << what;
+  EXPECT_EQ(expected.energy, got.energy) << what;
+}
+
+inline void expectSameState(const RollerState& expected, const RollerState& got, const std::string& what) {
+  EXPECT_EQ(expected.t, got.t) << what;
+  EXPECT_EQ(expected.x, got.x) << what;
+  EXPECT_EQ(expected.v, got.v) << what;
+  EXPECT_EQ(expected.theta, got.theta) << what;
+  EXPECT_EQ(expected.omega, got.omega) << what;
+  EXPECT_EQ(expected.mode, got.mode) << what;
+  EXPECT_EQ(expected.friction, got.friction) << what;
+  EXPECT_EQ(expected.normal, got.normal) << what;
+  EXPECT_EQ(expected.energy, got.energy) << what;
+}
+
+inline RodState expectedRod(const World& world, const std::string& name) {
+  const Body* body = const_cast<World&>(world).find(name);
+  return toRodStateMsg(world.time(), std::get<Rod>(body->model));
+}
+inline RollerState expectedRoller(const World& world, const std::string& name) {
+  const Body* body = const_cast<World&>(world).find(name);
+  return toRollerStateMsg(world.time(), std::get<Roller>(body->model));
+}
+
+inline std::string configPath() {
+  std::string path;
+  ros::param::get("~config", path);
+  return path;
+}
+
+inline bool callEmpty(const std::string& service) {
+  std_srvs::Empty srv;
+  return ros::service::call(service, srv);
+}
+
+inline Step callStep(std::uint32_t steps, bool* called = nullptr) {
+  Step srv;
+  srv.request.steps = steps;
+  const bool ok = ros::service::call("/sim/step", srv);
+  if (called) *called = ok;
+  return srv;
+}
+
+inline std::int64_t stepIndex(double t, double rate) { return std::llround(t * rate); }
+
+// main() for a rostest gtest node: ros::init, an AsyncSpinner, then the tests.
+#define RBS_ROSTEST_MAIN(node_name)                                   \
+  int main(int argc, char** argv) {                                   \
+    testing::InitGoogleTest(&argc, argv);                             \
+    ros::init(argc, argv, node_name);                                 \
+    ros::NodeHandle nh;                                               \
+    ros::AsyncSpinner spinner(2);                                     \
+    spinner.start();                                                  \
+    const int result = RUN_ALL_TESTS();                               \
+    spinner.stop();                                                   \
+    ros::shutdown();                                                  \
+    return result;                                                    \
+  }
+
+}  // namespace test
+}  // namespace rigid_body_sim

@@ -1,0 +1,158 @@
+// sim_node's dynamic_reconfigure servers: accepted changes apply exactly as in the core World, refused
+// ones leave everything unchanged and the server shows the old values, new initial conditions restart.
+#include <dynamic_reconfigure/Reconfigure.h>
+
+#include "node_test_util.h"
+
+using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
+
+namespace {
+
+dynamic_reconfigure::Config setDouble(const std::string& body, const std::string& key, double value, bool* called) {
+  dynamic_reconfigure::Reconfigure srv;
+  dynamic_reconfigure::DoubleParameter p;
+  p.name = key;
+  p.value = value;
+  srv.request.config.doubles.push_back(p);
+  *called = ros::service::call("/sim/" + body + "/set_parameters", srv);
+  return srv.response.config;
+}
+
+double doubleOf(const dynamic_reconfigure::Config& config, const std::string& key) {
+  for (const auto& p : config.doubles)
+    if (p.name == key) return p.value;
+  ADD_FAILURE() << "no " << key << " in the returned config";
+  return NAN;
+}
+
+Rod& rodOf(World& w, const std::string& name) { return std::get<Rod>(w.find(name)->model); }
+Roller& rollerOf(World& w, const std::string& name) { return std::get<Roller>(w.find(name)->model); }
+
+// Steps the node by n and `world` along; every state the node publishes during the steps (each publishing
+// instant, and the end) must equal `world` at that step, exactly.
+void stepAndCompare(StateCollector& c, World& world, std::uint32_t n, const std::string& what) {
+  c.clear();
+  bool called = false;
+  Step s = callStep(n, &called);
+  ASSERT_TRUE(called) << what;
+  ASSERT_TRUE(s.response.success) << what << ": " << s.response.message;
+  std::map<double, std::map<std::string, RodState>> rods;
+  std::map<double, std::map<std::string, RollerState>> rollers;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    world.step();
+    for (const auto& body : world.bodies()) {
+      if (std::holds_alternative<Rod>(body.model)) {
+        rods[world.time()][body.name] = expectedRod(world, body.name);
+      } else {
+        rollers[world.time()][body.name] = expectedRoller(world, body.name);
+      }
+    }
+  }
+  ASSERT_EQ(world.time(), s.response.t) << what;
+  const double end = s.response.t;
+  ASSERT_TRUE(c.waitFor([&] {
+    for (const auto& [name, msgs] : c.rodsLocked())
+      if (msgs.empty() || msgs.back().t != end) return false;
+    for (const auto& [name, msgs] : c.rollersLocked())
+      if (msgs.empty() || msgs.back().t != end) return false;
+    return c.rodsLocked().size() + c.rollersLocked().size() == world.bodies().size();
+  }, 5.0)) << what << ": no state at t = " << end << " for some body";
+  std::size_t compared = 0;
+  for (const auto& body : world.bodies()) {
+    if (std::holds_alternative<Rod>(body.model)) {
+      for (const auto& msg : c.rod(body.name)) {
+        ASSERT_TRUE(rods.count(msg.t)) << what << " " << body.name << ": unexpected t " << msg.t;
+        expectSameState(rods[msg.t][body.name], msg, what + " " + body.name);
+        ++compared;
+      }
+    } else {
+      for (const auto& msg : c.roller(body.name)) {
+        ASSERT_TRUE(rollers.count(msg.t)) << what << " " << body.name << ": unexpected t " << msg.t;
+        expectSameState(rollers[msg.t][body.name], msg, what + " " + body.name);
+        ++compared;
+      }
+    }
+    if (::testing::Test::HasFailure()) return;
+  }
+  EXPECT_GE(compared, world.bodies().size());
+}
+
+}  // namespace
+
+TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
+  ros::NodeHandle nh;
+  const WorldConfig config = loadWorldConfigFile(configPath());
+  World world(config);
+
+  StateCollector c(nh, world);
+  ASSERT_TRUE(c.waitConnected(10.0));
+  ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
+  ASSERT_TRUE(ros::service::waitForService("/sim/rod/set_parameters", 10000));
+  ASSERT_TRUE(ros::service::waitForService("/sim/sphere/set_parameters", 10000));
+  ASSERT_TRUE(callEmpty("/sim/pause"));
+  ros::WallDuration(0.3).sleep();  // states published before the pause arrive before any comparison
+
+  // Bring the local World to the node's step count: step(1) tells the time.
+  bool called = false;
+  Step s = callStep(1, &called);
+  ASSERT_TRUE(called);
+  ASSERT_TRUE(s.response.success) << s.response.message;
+  const std::int64_t n0 = stepIndex(s.response.t, config.rate);
+  for (std::int64_t i = 0; i < n0; ++i) world.step();
+  ASSERT_TRUE(c.waitAllAt(world, s.response.t)) << "no state of every body after step(1)";
+  stepAndCompare(c, world, 1, "before any change");
+
+  // --- accepted: rod k = 2000, sphere mu_s = 0.16 (below what rolling on this slope needs)
+  const World unchanged_before = world;
+  auto rod_cfg = setDouble("rod", "k", 2000.0, &called);
+  ASSERT_TRUE(called);
+  EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
+  RodParams rod_params = rodOf(world, "rod").params();
+  rod_params.k = 2000.0;
+  rodOf(world, "rod").setParams(rod_params);
+
+  auto sphere_cfg = setDouble("sphere", "mu_s", 0.16, &called);
+  ASSERT_TRUE(called);
+  EXPECT_EQ(0.16, doubleOf(sphere_cfg, "mu_s"));
+  RollerParams sphere_params = rollerOf(world, "sphere").params();
+  sphere_params.mu_s = 0.16;
+  rollerOf(world, "sphere").setParams(sphere_params);
+
+  // 2 s of simulated time: the rod reaches the floor, the sphere slips.
+  stepAndCompare(c, world, 2000, "after k = 2000, mu_s = 0.16");
+  // The changes mattered (otherwise the comparison above would prove nothing).
+  {
+    World unchanged = unchanged_before;
+    for (int i = 0; i < 2000; ++i) unchanged.step();
+    EXPECT_NE(rodOf(unchanged, "rod").state().y, rodOf(world, "rod").state().y) << "k made no difference";
+    EXPECT_NE(rollerOf(unchanged, "sphere").state().omega, rollerOf(world, "sphere").state().omega)
+        << "mu_s made no difference";
+  }
+
+  // --- refused: k = 0 and mu_d > mu_s; the server shows the values in use, nothing changes
+  rod_cfg = setDouble("rod", "k", 0.0, &called);
+  ASSERT_TRUE(called) << "the node died on k = 0";
+  EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
+  sphere_cfg = setDouble("sphere", "mu_d", 0.9, &called);
+  ASSERT_TRUE(called) << "the node died on mu_d > mu_s";
+  EXPECT_EQ(config.bodies.size() > 0 ? 0.15 : 0.0, doubleOf(sphere_cfg, "mu_d"));
+  EXPECT_EQ(0.16, doubleOf(sphere_cfg, "mu_s"));
+  stepAndCompare(c, world, 500, "after refused k = 0, mu_d = 0.9");
+
+  // --- new initial condition: rod y0 = 3 restarts the rod from it
+  rod_cfg = setDouble("rod", "y0", 3.0, &called);
+  ASSERT_TRUE(called);
+  EXPECT_EQ(3.0, doubleOf(rod_cfg, "y0"));
+  EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
+  RodMotion initial = rodOf(world, "rod").initial();
+  initial.y = 3.0;
+  rodOf(world, "rod").setInitial(initial);
+  stepAndCompare(c, world, 1, "one step after y0 = 3");
+  const auto rods = c.rod("rod");
+  ASSERT_FALSE(rods.empty());
+  EXPECT_NEAR(3.0, rods.back().y, 1e-3);
+  stepAndCompare(c, world, 300, "300 steps after y0 = 3");
+}
+
+RBS_ROSTEST_MAIN("test_node_reconfigure")

@@ -1,0 +1,165 @@
+// sim_node at wall pace: ~pause, ~step, ~reset and ~unpause, checked against the core World.
+#include "node_test_util.h"
+
+using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
+
+namespace {
+
+double latestRodT(StateCollector& c) {
+  const auto msgs = c.rod("rod");
+  return msgs.empty() ? -1.0 : msgs.back().t;
+}
+
+// Waits for a state of `body` with exactly time t; returns whether it came.
+bool waitRodAt(StateCollector& c, double t, RodState* out, double timeout = 3.0) {
+  bool found = false;
+  c.waitFor([&] {
+    for (const auto& m : c.rodsLocked()["rod"]) {
+      if (m.t == t) {
+        *out = m;
+        found = true;
+      }
+    }
+    return found;
+  }, timeout);
+  return found;
+}
+
+bool waitRollerAt(StateCollector& c, const std::string& name, double t, RollerState* out, double timeout = 3.0) {
+  bool found = false;
+  c.waitFor([&] {
+    for (const auto& m : c.rollersLocked()[name]) {
+      if (m.t == t) {
+        *out = m;
+        found = true;
+      }
+    }
+    return found;
+  }, timeout);
+  return found;
+}
+
+}  // namespace
+
+TEST(SimNodeServices, PauseStepResetUnpause) {
+  ros::NodeHandle nh;
+  const WorldConfig config = loadWorldConfigFile(configPath());
+  const World initial_world(config);
+  const double dt = 1.0 / config.rate;
+
+  StateCollector c(nh, initial_world);
+  ASSERT_TRUE(c.waitConnected(10.0));
+  ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
+  ASSERT_TRUE(c.waitFor([&] { return c.rodsLocked()["rod"].size() >= 5; }, 5.0)) << "no rod states";
+
+  // --- pause: no more states, t stays put
+  ASSERT_TRUE(callEmpty("/sim/pause"));
+  ros::WallDuration(0.2).sleep();  // let what was in flight arrive
+  const std::size_t count_paused = c.count();
+  const double t_paused = latestRodT(c);
+  ros::WallDuration(0.6).sleep();
+  EXPECT_EQ(count_paused, c.count()) << "states kept coming while paused";
+  EXPECT_EQ(t_paused, latestRodT(c));
+
+  // --- step(1) gives the current time (the world may be between two publishing instants)
+  bool called = false;
+  Step s1 = callStep(1, &called);
+  ASSERT_TRUE(called);
+  ASSERT_TRUE(s1.response.success) << s1.response.message;
+  EXPECT_GE(s1.response.t, t_paused + dt - 1e-9);
+  RodState rod_msg;
+  EXPECT_TRUE(waitRodAt(c, s1.response.t, &rod_msg)) << "no state at t = " << s1.response.t << " after step(1)";
+
+  // --- step(10): t advances by exactly 10 dt and the state at that t is published for every body
+  Step s10 = callStep(10, &called);
+  ASSERT_TRUE(called);
+  ASSERT_TRUE(s10.response.success) << s10.response.message;
+  EXPECT_NEAR(s10.response.t, s1.response.t + 10 * dt, 1e-9);
+  EXPECT_TRUE(waitRodAt(c, s10.response.t, &rod_msg)) << "no rod state at t = " << s10.response.t;
+  for (const auto& body : initial_world.bodies()) {
+    if (std::holds_alternative<Roller>(body.model)) {
+      RollerState roller_msg;
+      EXPECT_TRUE(waitRollerAt(c, body.name, s10.response.t, &roller_msg)) << body.name;
+    }
+  }
+  // The state published by a step is the core World at that step count (nothing else happened yet).
+  {
+    World world(config);
+    const std::int64_t n = stepIndex(s10.response.t, config.rate);
+    for (std::int64_t i = 0; i < n; ++i) world.step();
+    expectSameState(expectedRod(world, "rod"), rod_msg, "rod after step(10)");
+  }
+
+  // --- out-of-range steps are refused, the time stays, the node still answers
+  Step s0 = callStep(0, &called);
+  ASSERT_TRUE(called);
+  EXPECT_FALSE(s0.response.success);
+  EXPECT_FALSE(s0.response.message.empty());
+  EXPECT_EQ(s10.response.t, s0.response.t) << "a refused step changed the time";
+  Step sbig = callStep(1000000000u, &called);
+  ASSERT_TRUE(called) << "node died on step(1e9)";
+  EXPECT_FALSE(sbig.response.success);
+  EXPECT_EQ(s10.response.t, sbig.response.t);
+  Step s_alive = callStep(1, &called);
+  ASSERT_TRUE(called) << "node no longer answers";
+  EXPECT_TRUE(s_alive.response.success) << s_alive.response.message;
+  EXPECT_NEAR(s_alive.response.t, s10.response.t + dt, 1e-9);
+  const double t_before_reset = s_alive.response.t;
+  // Everything published so far has arrived before the reset's states are looked at.
+  ASSERT_TRUE(c.waitAllAt(initial_world, t_before_reset)) << "no state of every body at t = " << t_before_reset;
+
+  // --- reset (paused): the states at the same t show the initial conditions; time does not go back
+  c.clear();
+  ASSERT_TRUE(callEmpty("/sim/reset"));
+  ASSERT_TRUE(c.waitAllAny(initial_world)) << "reset published no state for some body";
+  {
+    const auto rods = c.rod("rod");
+    ASSERT_FALSE(rods.empty());
+    EXPECT_GE(rods.back().t, t_before_reset) << "time went back on reset";
+    EXPECT_EQ(t_before_reset, rods.back().t);
+    const Rod& fresh = std::get<Rod>(const_cast<World&>(initial_world).find("rod")->model);
+    expectSameState(toRodStateMsg(rods.back().t, fresh), rods.back(), "rod after reset");
+    EXPECT_EQ(4.0, rods.back().y);
+    for (const auto& body : initial_world.bodies()) {
+      if (!std::holds_alternative<Roller>(body.model)) continue;
+      const auto rollers = c.roller(body.name);
+      ASSERT_FALSE(rollers.empty()) << body.name;
+      EXPECT_EQ(t_before_reset, rollers.back().t) << body.name;
+      expectSameState(toRollerStateMsg(rollers.back().t, std::get<Roller>(body.model)), rollers.back(),
+                      body.name + " after reset");
+      EXPECT_EQ(0.0, rollers.back().x) << body.name;
+    }
+  }
+  // After the reset, stepping continues from the initial conditions: step(5) == fresh World after 5 steps.
+  Step s5 = callStep(5, &called);
+  ASSERT_TRUE(called);
+  ASSERT_TRUE(s5.response.success);
+  EXPECT_NEAR(s5.response.t, t_before_reset + 5 * dt, 1e-9);
+  ASSERT_TRUE(waitRodAt(c, s5.response.t, &rod_msg));
+  {
+    World world(config);
+    for (int i = 0; i < 5; ++i) world.step();
+    const Rod& rod = std::get<Rod>(world.find("rod")->model);
+    expectSameState(toRodStateMsg(s5.response.t, rod), rod_msg, "rod 5 steps after reset");
+  }
+
+  // --- unpause: time advances again; ~step is refused while running
+  ASSERT_TRUE(callEmpty("/sim/unpause"));
+  Step running = callStep(1, &called);
+  ASSERT_TRUE(called);
+  EXPECT_FALSE(running.response.success) << "step accepted while running";
+  const double t_unpaused = s5.response.t;
+  EXPECT_TRUE(c.waitFor([&] {
+    const auto& rods = c.rodsLocked()["rod"];
+    return !rods.empty() && rods.back().t > t_unpaused + 0.1;
+  }, 3.0)) << "time does not advance after unpause";
+  // ... at wall pace: about 1 simulated second per wall second.
+  const double t_a = latestRodT(c);
+  ros::WallDuration(1.0).sleep();
+  const double advanced = latestRodT(c) - t_a;
+  EXPECT_GT(advanced, 0.7);
+  EXPECT_LT(advanced, 1.3);
+}
+
+RBS_ROSTEST_MAIN("test_node_services")

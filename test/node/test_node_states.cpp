@@ -1,0 +1,119 @@
+// sim_node as fast as possible (real_time_factor 0) for a fixed duration: every state message that arrives
+// must be the core World's state at that message's t, exactly, and the messages of each body must follow
+// one another at whole multiples of 1 / publish_rate with increasing stamps.
+#include "node_test_util.h"
+
+using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
+
+namespace {
+
+// At real_time_factor 0 the node publishes faster than a subscriber drains the publisher's queue
+// (100 messages), so runs of consecutive samples are separated by gaps: every difference in t must be a
+// whole, positive number of publishing periods; most must be exactly one.
+template <class Msg>
+void checkSequence(const std::vector<Msg>& msgs, double publish_rate, const std::string& name) {
+  const double period = 1.0 / publish_rate;
+  std::size_t consecutive = 0;
+  for (std::size_t j = 1; j < msgs.size(); ++j) {
+    EXPECT_GT(msgs[j].header.stamp, msgs[j - 1].header.stamp) << name << " message " << j;
+    EXPECT_GT(msgs[j].t, msgs[j - 1].t) << name << " message " << j;
+    const double periods = (msgs[j].t - msgs[j - 1].t) / period;
+    EXPECT_NEAR(periods, std::round(periods), 1e-6) << name << " message " << j << " t " << msgs[j].t;
+    EXPECT_GE(std::round(periods), 1.0) << name << " message " << j << " t " << msgs[j].t;
+    if (std::round(periods) == 1.0) ++consecutive;
+    // Stamps follow t: one period of t is one period of stamp.
+    EXPECT_NEAR((msgs[j].header.stamp - msgs[j - 1].header.stamp).toSec(), msgs[j].t - msgs[j - 1].t, 1e-6)
+        << name << " message " << j;
+  }
+  EXPECT_GT(consecutive, msgs.size() / 2) << name << ": too few consecutive samples";
+  ROS_INFO("%s: %zu messages, %zu consecutive pairs, t from %.2f to %.2f", name.c_str(), msgs.size(), consecutive,
+           msgs.front().t, msgs.back().t);
+}
+
+}  // namespace
+
+TEST(SimNodeStates, EveryStateIsTheCorePrediction) {
+  ros::NodeHandle nh;
+  const WorldConfig config = loadWorldConfigFile(configPath());
+  World world(config);
+  const double rate = config.rate;
+  const std::int64_t steps_per_publish = std::llround(config.rate / config.publish_rate);
+
+  StateCollector collector(nh, world);
+  ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
+  // Collect until the node has gone quiet (its duration is over) for a while.
+  std::size_t last = 0;
+  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(20.0);
+  ros::WallTime quiet_since = ros::WallTime::now();
+  while (ros::WallTime::now() < give_up) {
+    ros::WallDuration(0.1).sleep();
+    const std::size_t now = collector.count();
+    if (now != last) {
+      last = now;
+      quiet_since = ros::WallTime::now();
+    } else if (last > 0 && (ros::WallTime::now() - quiet_since).toSec() > 1.5) {
+      break;
+    }
+  }
+  ASSERT_GT(last, 0u) << "no state message at all";
+
+  // Index the messages by step count; check the per-body sequences.
+  std::map<std::string, std::map<std::int64_t, RodState>> rods;
+  std::map<std::string, std::map<std::int64_t, RollerState>> rollers;
+  std::int64_t max_step = 0;
+  for (const auto& body : world.bodies()) {
+    if (std::holds_alternative<Rod>(body.model)) {
+      const auto msgs = collector.rod(body.name);
+      ASSERT_GE(msgs.size(), 50u) << body.name;
+      checkSequence(msgs, config.publish_rate, body.name);
+      for (const auto& msg : msgs) {
+        const std::int64_t n = stepIndex(msg.t, rate);
+        EXPECT_EQ(0, n % steps_per_publish) << body.name << " t " << msg.t << " is not a publishing instant";
+        EXPECT_EQ(static_cast<double>(n) / rate, msg.t) << body.name;
+        rods[body.name][n] = msg;
+        max_step = std::max(max_step, n);
+      }
+    } else {
+      const auto msgs = collector.roller(body.name);
+      ASSERT_GE(msgs.size(), 50u) << body.name;
+      checkSequence(msgs, config.publish_rate, body.name);
+      for (const auto& msg : msgs) {
+        const std::int64_t n = stepIndex(msg.t, rate);
+        EXPECT_EQ(0, n % steps_per_publish) << body.name << " t " << msg.t << " is not a publishing instant";
+        EXPECT_EQ(static_cast<double>(n) / rate, msg.t) << body.name;
+        rollers[body.name][n] = msg;
+        max_step = std::max(max_step, n);
+      }
+    }
+  }
+  // No sample beyond the requested duration.
+  double duration = 0.0;
+  ASSERT_TRUE(ros::param::get("/sim/duration", duration));
+  EXPECT_LE(max_step, std::llround(duration * rate)) << "a sample after the requested duration";
+
+  // Step the core World along and compare every received message at its step.
+  std::size_t compared = 0;
+  for (std::int64_t n = 0; n <= max_step; ++n) {
+    if (n > 0) world.step();
+    if (n % steps_per_publish != 0) continue;
+    for (auto& [name, by_step] : rods) {
+      auto it = by_step.find(n);
+      if (it == by_step.end()) continue;
+      expectSameState(expectedRod(world, name), it->second, name + " at step " + std::to_string(n));
+      ++compared;
+    }
+    for (auto& [name, by_step] : rollers) {
+      auto it = by_step.find(n);
+      if (it == by_step.end()) continue;
+      expectSameState(expectedRoller(world, name), it->second, name + " at step " + std::to_string(n));
+      ++compared;
+    }
+    // Stop at the first mismatching instant rather than print thousands of lines.
+    if (::testing::Test::HasFailure()) break;
+  }
+  EXPECT_GT(compared, 0u);
+  ROS_INFO("compared %zu state messages up to step %lld", compared, static_cast<long long>(max_step));
+}
+
+RBS_ROSTEST_MAIN("test_node_states")
