@@ -62,29 +62,23 @@ TEST(SimNodeStates, EveryStateIsTheCorePrediction) {
   std::map<std::string, std::map<std::int64_t, RodState>> rods;
   std::map<std::string, std::map<std::int64_t, RollerState>> rollers;
   std::int64_t max_step = 0;
+  // Checks one body's sequence and indexes its messages by step count (rods and rollers alike).
+  auto index = [&](const std::string& name, const auto& msgs, auto& by_step) {
+    ASSERT_GE(msgs.size(), 50u) << name;
+    checkSequence(msgs, config.publish_rate, name);
+    for (const auto& msg : msgs) {
+      const std::int64_t n = stepIndex(msg.t, rate);
+      EXPECT_EQ(0, n % steps_per_publish) << name << " t " << msg.t << " is not a publishing instant";
+      EXPECT_EQ(static_cast<double>(n) / rate, msg.t) << name;
+      by_step[n] = msg;
+      max_step = std::max(max_step, n);
+    }
+  };
   for (const auto& body : world.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
-      const auto msgs = collector.rod(body.name);
-      ASSERT_GE(msgs.size(), 50u) << body.name;
-      checkSequence(msgs, config.publish_rate, body.name);
-      for (const auto& msg : msgs) {
-        const std::int64_t n = stepIndex(msg.t, rate);
-        EXPECT_EQ(0, n % steps_per_publish) << body.name << " t " << msg.t << " is not a publishing instant";
-        EXPECT_EQ(static_cast<double>(n) / rate, msg.t) << body.name;
-        rods[body.name][n] = msg;
-        max_step = std::max(max_step, n);
-      }
+      index(body.name, collector.rod(body.name), rods[body.name]);
     } else {
-      const auto msgs = collector.roller(body.name);
-      ASSERT_GE(msgs.size(), 50u) << body.name;
-      checkSequence(msgs, config.publish_rate, body.name);
-      for (const auto& msg : msgs) {
-        const std::int64_t n = stepIndex(msg.t, rate);
-        EXPECT_EQ(0, n % steps_per_publish) << body.name << " t " << msg.t << " is not a publishing instant";
-        EXPECT_EQ(static_cast<double>(n) / rate, msg.t) << body.name;
-        rollers[body.name][n] = msg;
-        max_step = std::max(max_step, n);
-      }
+      index(body.name, collector.roller(body.name), rollers[body.name]);
     }
   }
   // No sample beyond the requested duration.
