@@ -6,6 +6,10 @@ SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 BUILD ?= build
 JOBS ?= $(shell nproc)
+# Suites with a build of their own (sanitizers, fuzzing) that `make test` runs before ctest's main suite;
+# the files under mk/ add theirs, and their own targets (bench, screenshot, soak ...).
+EXTRA_TESTS :=
+include $(sort $(wildcard mk/*.mk))
 
 .PHONY: all deps build demo test lint clean
 
@@ -21,7 +25,7 @@ build: deps
 demo: build
 	bash scripts/demo $(BUILD)
 
-test: build
+test: build $(EXTRA_TESTS)
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
 	env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
 
@@ -29,4 +33,4 @@ lint: deps
 	catkin_lint -W2 .
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) build-*

@@ -1,0 +1,1 @@
+# pictures: filled in by its issue

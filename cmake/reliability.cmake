@@ -1,0 +1,1 @@
+# reliability: filled in by its issue
