@@ -96,6 +96,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
         return loadConfig(params);
       }()),
       world_(config_),
+      guard_(world_.bodies()),
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
       pacer_(config_.rate, options_.real_time_factor) {
   use_sim_time_ = ros::param::param("/use_sim_time", false);
@@ -161,6 +162,8 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
     Model& model = std::get<Model>(world_.bodies()[index].model);
     model.setParams(wanted.params);
     if (initialChanged(wanted, current)) model.setInitial(wanted.initial);
+    if (guard_.held(index)) ROS_INFO_STREAM("body '" << name << "' reconfigured: it runs again");
+    guard_.release(index, world_.bodies()[index]);
     const bool moved = placementChanged(wanted, current);
     current = wanted;
     if (moved) {
@@ -178,6 +181,7 @@ bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   std::lock_guard<std::mutex> lock(mutex_);
   world_.reset();
   world_.takeEvents();
+  guard_.releaseAll(world_.bodies());
   publishStaticLocked();  // DELETEALL, then the fixed markers again; trails start anew
   publishLocked();
   ROS_INFO("reset: every body back to its initial conditions at t = %.6f s", world_.time());
@@ -229,10 +233,21 @@ ros::Time SimNode::stampOf(double t) const {
 
 void SimNode::stepOnceLocked() {
   world_.step();
+  guardLocked();
   for (const auto& event : world_.takeEvents()) {
     ROS_DEBUG_STREAM(event.body << " " << toString(event.kind) << " at t = " << event.t << " s");
   }
   if (world_.stepCount() % steps_per_publish_ == 0) publishLocked();
+}
+
+void SimNode::guardLocked() {
+  for (const NonFinite& fault : guard_.afterStep(world_.bodies())) {
+    const Body held{world_.bodies()[fault.index].name, guard_.lastFinite(fault.index)};
+    ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field << " became non-finite in the step to t = "
+                     << formatNumber(world_.time()) << " s; the body is paused at its last finite state, the "
+                     << "others go on (a reconfigure of it or ~reset restarts it). It ran with: "
+                     << describeBody(held));
+  }
 }
 
 void SimNode::publishLocked() {

@@ -72,6 +72,25 @@ class StateCollector {
     return cv_.wait_for(lock, std::chrono::duration<double>(timeout), pred);
   }
 
+  // Waits until states have come and then stopped for `quiet` wall seconds (a run with a duration is
+  // over), at most `give_up` seconds; returns how many arrived.
+  std::size_t waitQuiet(double give_up, double quiet = 1.5) {
+    std::size_t last = 0;
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(give_up);
+    ros::WallTime quiet_since = ros::WallTime::now();
+    while (ros::WallTime::now() < end) {
+      ros::WallDuration(0.1).sleep();
+      const std::size_t now = count();
+      if (now != last) {
+        last = now;
+        quiet_since = ros::WallTime::now();
+      } else if (last > 0 && (ros::WallTime::now() - quiet_since).toSec() > quiet) {
+        break;
+      }
+    }
+    return last;
+  }
+
   // Waits until every body has a state with time exactly t.
   bool waitAllAt(const World& world, double t, double timeout = 3.0) {
     return waitFor([&] {

@@ -43,19 +43,7 @@ TEST(SimNodeStates, EveryStateIsTheCorePrediction) {
   StateCollector collector(nh, world);
   ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
   // Collect until the node has gone quiet (its duration is over) for a while.
-  std::size_t last = 0;
-  const ros::WallTime give_up = ros::WallTime::now() + ros::WallDuration(20.0);
-  ros::WallTime quiet_since = ros::WallTime::now();
-  while (ros::WallTime::now() < give_up) {
-    ros::WallDuration(0.1).sleep();
-    const std::size_t now = collector.count();
-    if (now != last) {
-      last = now;
-      quiet_since = ros::WallTime::now();
-    } else if (last > 0 && (ros::WallTime::now() - quiet_since).toSec() > 1.5) {
-      break;
-    }
-  }
+  const std::size_t last = collector.waitQuiet(20.0);
   ASSERT_GT(last, 0u) << "no state message at all";
 
   // Index the messages by step count; check the per-body sequences.

@@ -20,6 +20,7 @@
 #include "rigid_body_sim/RodReconfigureConfig.h"
 #include "rigid_body_sim/RollerReconfigureConfig.h"
 #include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/adapters/finite_guard.h"
 #include "rigid_body_sim/adapters/ros_conversions.h"
 #include "rigid_body_sim/adapters/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
@@ -59,6 +60,8 @@ class SimNode {
   void stepLoop();
   // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
   void stepOnceLocked();
+  // Holds a body that became non-finite at its last finite state and logs the one error about it.
+  void guardLocked();
   void publishLocked();
   void publishStaticLocked();
   ros::Time stampOf(double t) const;
@@ -71,6 +74,7 @@ class SimNode {
 
   std::mutex mutex_;    // guards everything below that the stepping thread touches
   World world_;
+  FiniteGuard guard_;
   std::int64_t steps_per_publish_;
   std::int64_t last_published_step_ = -1;
   bool paused_ = false;

@@ -1,0 +1,14 @@
+# Faults (issue 5, node side): the NaN guard, respawn, and recordings that survive Ctrl-C and kill -9.
+# The soak (make soak, mk/soak.mk) is not a test: it runs for a simulated hour.
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(test_finite_guard test/test_finite_guard.cpp)
+  target_link_libraries(test_finite_guard ${PROJECT_NAME}_adapters GTest::gtest_main)
+
+  # rostests: gtest nodes in test/node driving sim_node.
+  foreach(rbs_fault_test guard)
+    add_rostest_gtest(test_node_${rbs_fault_test} test/rostest/${rbs_fault_test}.test
+                      test/node/test_node_${rbs_fault_test}.cpp)
+    target_link_libraries(test_node_${rbs_fault_test} ${PROJECT_NAME}_adapters ${catkin_LIBRARIES} GTest::gtest)
+    add_dependencies(test_node_${rbs_fault_test} sim_node)
+  endforeach()
+endif()

@@ -1,0 +1,52 @@
+// The node's last line of defence against NaN: validation refuses every value known to produce a
+// non-finite state, but should a body's state still become non-finite, that body is held at its last
+// finite state (the others go on) and nothing non-finite reaches a message. No ROS header: pure logic.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+// The first non-finite quantity that a body's messages carry (its state, energy, and a roller's
+// friction and normal force), e.g. "theta"; nullopt when all are finite.
+std::optional<std::string> nonFiniteField(const Body& body);
+inline bool finiteState(const Body& body) { return !nonFiniteField(body).has_value(); }
+
+// "k=1000 mass=0.5 ... integrator=euler_cromer gravity=9.8 | state x=0 y=4 ...": what led to a state.
+std::string describeBody(const Body& body);
+
+// A body that has just become non-finite, and the first quantity that did.
+struct NonFinite {
+  std::size_t index;
+  std::string field;
+};
+
+// Holds every body whose state became non-finite at its last finite state.
+class FiniteGuard {
+ public:
+  explicit FiniteGuard(const std::vector<Body>& bodies);  // the current states are the last finite ones
+
+  // Call after every step. A body that became non-finite is put back to its last finite state and held
+  // there at every later call; returns the bodies that became non-finite at this call (each once).
+  std::vector<NonFinite> afterStep(std::vector<Body>& bodies);
+
+  bool held(std::size_t index) const { return held_[index]; }
+  // The last finite model of a body (what it is held at, once held).
+  const std::variant<Rod, Roller>& lastFinite(std::size_t index) const { return last_finite_[index]; }
+  // The body runs again from its current model (after a reconfigure of it, or a reset); a model that is
+  // not finite itself is held again at the next afterStep.
+  void release(std::size_t index, const Body& body);
+  void releaseAll(const std::vector<Body>& bodies);
+
+ private:
+  std::vector<std::variant<Rod, Roller>> last_finite_;
+  std::vector<bool> held_;
+};
+
+}  // namespace rigid_body_sim

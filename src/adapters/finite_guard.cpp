@@ -1,0 +1,108 @@
+#include "rigid_body_sim/adapters/finite_guard.h"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "rigid_body_sim/core/parameters.h"
+
+namespace rigid_body_sim {
+
+namespace {
+
+// What a state message carries beside t and the mode: seven numbers for either kind of body.
+using Quantities = std::array<std::pair<const char*, double>, 7>;
+
+Quantities quantitiesOf(const Rod& rod) {
+  const RodMotion& s = rod.state();
+  return {{{"x", s.x},
+           {"y", s.y},
+           {"theta", s.theta},
+           {"vx", s.vx},
+           {"vy", s.vy},
+           {"omega", s.omega},
+           {"energy", rod.energy()}}};
+}
+
+Quantities quantitiesOf(const Roller& roller) {
+  const RollerMotion& s = roller.state();
+  return {{{"x", s.x},
+           {"v", s.v},
+           {"theta", s.theta},
+           {"omega", s.omega},
+           {"friction", roller.frictionForce()},
+           {"normal", roller.normalForce()},
+           {"energy", roller.energy()}}};
+}
+
+// Every numeric key of the body's config table, as key=value.
+template <class Config>
+void describeKeys(std::ostream& out, Config config, const std::vector<NumericKey<Config>>& keys) {
+  for (const auto& key : keys) out << key.name << '=' << formatNumber(key.field(config)) << ' ';
+}
+
+void describeModel(std::ostream& out, const Rod& rod) {
+  describeKeys(out, RodConfig{rod.params(), rod.initial()}, rodNumericKeys());
+  out << "integrator=" << toString(rod.params().integrator) << " gravity=" << formatNumber(rod.params().gravity);
+}
+
+void describeModel(std::ostream& out, const Roller& roller) {
+  const RollerParams& p = roller.params();
+  const RollerInitial& i = roller.initial();
+  describeKeys(out, RollerConfig{p, i}, rollerNumericKeys());
+  out << "shape=" << toString(p.shape) << " gravity=" << formatNumber(p.gravity)
+      << " mode=" << toString(roller.mode());
+}
+
+}  // namespace
+
+std::optional<std::string> nonFiniteField(const Body& body) {
+  const Quantities quantities = std::visit([](const auto& model) { return quantitiesOf(model); }, body.model);
+  for (const auto& [name, value] : quantities) {
+    if (!std::isfinite(value)) return std::string(name);
+  }
+  return std::nullopt;
+}
+
+std::string describeBody(const Body& body) {
+  std::ostringstream out;
+  std::visit([&](const auto& model) {
+    describeModel(out, model);
+    out << " | state";
+    for (const auto& [name, value] : quantitiesOf(model)) out << ' ' << name << '=' << formatNumber(value);
+  }, body.model);
+  return out.str();
+}
+
+FiniteGuard::FiniteGuard(const std::vector<Body>& bodies) : held_(bodies.size(), false) {
+  for (const auto& body : bodies) last_finite_.push_back(body.model);
+}
+
+std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
+  std::vector<NonFinite> newly_held;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!held_[i]) {
+      const std::optional<std::string> field = nonFiniteField(bodies[i]);
+      if (!field) {
+        last_finite_[i] = bodies[i].model;
+        continue;
+      }
+      newly_held.push_back({i, *field});
+      held_[i] = true;
+    }
+    bodies[i].model = last_finite_[i];  // held: whatever the step did to it is undone
+  }
+  return newly_held;
+}
+
+void FiniteGuard::release(std::size_t index, const Body& body) {
+  held_[index] = false;
+  if (finiteState(body)) last_finite_[index] = body.model;
+}
+
+void FiniteGuard::releaseAll(const std::vector<Body>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) release(i, bodies[i]);
+}
+
+}  // namespace rigid_body_sim
