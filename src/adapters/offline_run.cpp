@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <sstream>
 
 #include "rigid_body_sim/adapters/bag_recorder.h"
 #include "rigid_body_sim/adapters/csv_writer.h"
+#include "rigid_body_sim/adapters/progress.h"
 
 namespace rigid_body_sim {
 
@@ -69,6 +71,82 @@ std::vector<bool> interruptedBodies(const std::vector<Body>& bodies, const std::
   return interrupted;
 }
 
+// Counts each rod's bounces: a bounce begins at the step where an end goes below the floor while
+// neither was below it at the step before. Checked every step, as a contact lasts only tens of steps.
+class BounceCounter {
+ public:
+  explicit BounceCounter(const std::vector<Body>& bodies) : touching_(bodies.size()), bounces_(bodies.size(), 0) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) touching_[i] = touchesFloor(bodies[i]);
+  }
+
+  void step(const std::vector<Body>& bodies) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const bool touching = touchesFloor(bodies[i]);
+      if (touching && !touching_[i]) ++bounces_[i];
+      touching_[i] = touching;
+    }
+  }
+
+  const std::vector<int>& bounces() const { return bounces_; }
+
+ private:
+  static bool touchesFloor(const Body& body) {
+    const auto* rod = std::get_if<Rod>(&body.model);
+    // An end reaches at most half a length below the centre: skip the sines while the rod is high.
+    if (!rod || rod->state().y >= 0.5 * rod->params().length) return false;
+    return rod->endHeightA() < 0.0 || rod->endHeightB() < 0.0;
+  }
+  std::vector<char> touching_;
+  std::vector<int> bounces_;
+};
+
+using SampleHook = std::function<void(const World&)>;
+
+// Steps a world from t = 0 and samples it at t = j / sample_rate up to the duration, calling
+// `on_sample` at every sample (t = 0 included); tracks energies, bounces and events on the way.
+OfflineSummary stepAndSample(const WorldConfig& config, const OfflineOptions& options,
+                             const SampleHook& on_sample, ProgressBar* progress) {
+  validate(options, config);
+  World world(config);
+  const double sample_rate = effectiveSampleRate(options, config);
+  const auto steps_per_sample = static_cast<std::int64_t>(std::llround(config.rate / sample_rate));
+  // The last sample is the last t = j / sample_rate not after the duration (rounding forgiven).
+  const auto last_sample = static_cast<std::int64_t>(std::floor(options.duration * sample_rate + 1e-9));
+
+  OfflineSummary summary;
+  EnergyTracker energy(world.bodies());
+  BounceCounter bounces(world.bodies());
+  for (std::int64_t j = 0;; ++j) {
+    on_sample(world);
+    if (progress) progress->update(j);
+    if (j == last_sample) break;
+    for (std::int64_t s = 0; s < steps_per_sample; ++s) {
+      world.step();
+      bounces.step(world.bodies());
+    }
+    std::vector<WorldEvent> events = world.takeEvents();
+    energy.sample(world.bodies(), interruptedBodies(world.bodies(), events));
+    summary.events.insert(summary.events.end(), events.begin(), events.end());
+  }
+
+  summary.end_time = world.time();
+  summary.steps = world.stepCount();
+  summary.samples = last_sample + 1;
+  for (const auto& body : world.bodies()) {
+    summary.bodies.push_back(body.name);
+    summary.final_rows.push_back(csvRow(world.time(), body));
+    summary.final_states.push_back(csvHeader(body) + " = " + summary.final_rows.back());
+  }
+  summary.energy = energy.records();
+  summary.bounces = bounces.bounces();
+  return summary;
+}
+
+// How many samples a run takes, for the progress bar.
+std::int64_t sampleCount(const WorldConfig& config, const OfflineOptions& options) {
+  return static_cast<std::int64_t>(std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
+}
+
 }  // namespace
 
 void validate(const OfflineOptions& options, const WorldConfig& config) {
@@ -85,45 +163,30 @@ void validate(const OfflineOptions& options, const WorldConfig& config) {
 
 OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options) {
   validate(options, config);
-  World world(config);
-  const double sample_rate = effectiveSampleRate(options, config);
-  const auto steps_per_sample = static_cast<std::int64_t>(std::llround(config.rate / sample_rate));
-  // The last sample is the last t = j / sample_rate not after the duration (rounding forgiven).
-  const auto last_sample = static_cast<std::int64_t>(std::floor(options.duration * sample_rate + 1e-9));
-
-  CsvWriter csv(options.out_dir, world.bodies());
+  const std::vector<Body> bodies = World(config).bodies();
+  CsvWriter csv(options.out_dir, bodies);
   std::unique_ptr<BagRecorder> bag;
-  SnapshotBuilder snapshots(config.world_frame, world.bodies());
+  SnapshotBuilder snapshots(config.world_frame, bodies);
   if (!options.bag.empty()) {
     bag = std::make_unique<BagRecorder>(options.bag);
     bag->writeStatic(snapshots.staticTransforms(simStamp(0.0)), snapshots.staticMarkers(simStamp(0.0)),
                      simStamp(0.0));
   }
-
-  OfflineSummary summary;
-  EnergyTracker energy(world.bodies());
-  for (std::int64_t j = 0;; ++j) {
+  ProgressBar progress(sampleCount(config, options), "samples");
+  const auto write = [&](const World& world) {
     const double t = world.time();
     csv.write(t, world.bodies());
     if (bag) bag->write(snapshots.build(t, simStamp(t), world.bodies()), world.bodies(), simStamp(t));
-    if (j == last_sample) break;
-    for (std::int64_t s = 0; s < steps_per_sample; ++s) world.step();
-    std::vector<WorldEvent> events = world.takeEvents();
-    energy.sample(world.bodies(), interruptedBodies(world.bodies(), events));
-    summary.events.insert(summary.events.end(), events.begin(), events.end());
-  }
+  };
+  OfflineSummary summary = stepAndSample(config, options, write, &progress);
+  progress.finish();
   csv.commit();
   if (bag) bag->close();
-
-  summary.end_time = world.time();
-  summary.steps = world.stepCount();
-  summary.samples = last_sample + 1;
-  for (const auto& body : world.bodies()) {
-    summary.bodies.push_back(body.name);
-    summary.final_states.push_back(csvHeader(body) + " = " + csvRow(world.time(), body));
-  }
-  summary.energy = energy.records();
   return summary;
+}
+
+OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options) {
+  return stepAndSample(config, options, [](const World&) {}, nullptr);
 }
 
 std::string formatSummary(const OfflineSummary& summary) {
@@ -136,6 +199,7 @@ std::string formatSummary(const OfflineSummary& summary) {
         << " J -> " << e.final << " J (min " << e.min << ", max " << e.max << ")";
     if (e.rolling_drift > 0.0) out << ", largest drift while rolling " << e.rolling_drift << " J";
     out << "\n";
+    if (summary.bounces[i] > 0) out << "  " << summary.bounces[i] << " bounces\n";
     for (const auto& event : summary.events) {
       if (event.body == summary.bodies[i]) out << "  t = " << event.t << " s: " << toString(event.kind) << "\n";
     }

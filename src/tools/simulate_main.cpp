@@ -1,29 +1,88 @@
 // simulate CONFIG.yaml [--duration S] [--sample-rate HZ] [--out-dir DIR] [--bag FILE]
-// Runs the node's physics without a ROS master and writes DIR/<body>.csv (and a bag on request).
+//                      [--sweep BODY.KEY=START:STOP:N ...] [--jobs J] [--shard i/n]
+// Runs the node's physics without a ROS master and writes DIR/<body>.csv (and a bag on request), or,
+// with --sweep, runs every variant on a thread pool and writes one summary row per variant.
+#include <chrono>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "rigid_body_sim/adapters/config_loader.h"
 #include "rigid_body_sim/adapters/offline_run.h"
+#include "rigid_body_sim/adapters/sweep.h"
+
+namespace {
+
+struct SweepArgs {
+  std::vector<std::string> specs;
+  std::string shard;
+  int jobs = 0;
+};
+
+// --jobs, --shard and --bag only make sense with (resp. without) --sweep: refuse rather than ignore.
+void checkModes(const SweepArgs& args, const rigid_body_sim::OfflineOptions& options) {
+  using rigid_body_sim::ConfigError;
+  const std::string where = "(command line)";
+  if (args.jobs < 0 || args.jobs > 4096) {
+    throw ConfigError(where, "--jobs", std::to_string(args.jobs), "0 (every core) to 4096 threads");
+  }
+  if (args.specs.empty() && args.jobs != 0) {
+    throw ConfigError(where, "--jobs", std::to_string(args.jobs), "only with --sweep");
+  }
+  if (args.specs.empty() && !args.shard.empty()) {
+    throw ConfigError(where, "--shard", "'" + args.shard + "'", "only with --sweep");
+  }
+  if (!args.specs.empty() && !options.bag.empty()) {
+    throw ConfigError(where, "--bag", "'" + options.bag + "'", "no bag with --sweep (run one variant for a bag)");
+  }
+}
+
+void sweep(const rigid_body_sim::WorldConfig& config, const SweepArgs& args,
+           const rigid_body_sim::OfflineOptions& options) {
+  rigid_body_sim::SweepOptions sweep;
+  for (const auto& spec : args.specs) sweep.axes.push_back(rigid_body_sim::parseSweepAxis(spec, config));
+  if (!args.shard.empty()) sweep.shard = rigid_body_sim::parseShard(args.shard);
+  sweep.jobs = static_cast<unsigned>(args.jobs);
+  const auto start = std::chrono::steady_clock::now();
+  const auto result = rigid_body_sim::runSweep(config, sweep, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto count = result.end - result.first;
+  std::cout << "swept " << count << " of " << result.total << " variants (" << result.first << " to "
+            << result.end - 1 << ") on " << result.jobs << " threads in " << seconds << " s ("
+            << static_cast<double>(count) / seconds << " variants/s) -> " << result.path << "\n";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Offline rigid_body_sim run: CSV per body, optional bag, no ROS master needed.", "simulate"};
   std::string config_path;
   rigid_body_sim::OfflineOptions options;
+  SweepArgs sweep_args;
   app.add_option("CONFIG", config_path, "YAML configuration (the node's parameters)")->required();
   app.add_option("--duration", options.duration, "simulated seconds")->capture_default_str();
   app.add_option("--sample-rate", options.sample_rate,
                  "samples per simulated second, a divisor of rate (default: publish_rate)");
-  app.add_option("--out-dir", options.out_dir, "folder for <body>.csv")->capture_default_str();
+  app.add_option("--out-dir", options.out_dir, "folder for <body>.csv (or sweep.csv)")->capture_default_str();
   app.add_option("--bag", options.bag, "also write what the node would publish into this bag");
+  app.add_option("--sweep", sweep_args.specs,
+                 "BODY.KEY=START:STOP:N: N values from START to STOP inclusive; repeat for a Cartesian product")
+      ->allow_extra_args(false);  // one value per --sweep, so that CONFIG may follow
+  app.add_option("--jobs", sweep_args.jobs, "threads for --sweep (default 0: every core)");
+  app.add_option("--shard", sweep_args.shard, "i/n: run only slice i of n of the sweep (1 <= i <= n)");
   CLI11_PARSE(app, argc, argv);
 
   try {
+    checkModes(sweep_args, options);
     const auto config = rigid_body_sim::loadWorldConfigFile(config_path);
-    const auto summary = rigid_body_sim::runOffline(config, options);
-    std::cout << rigid_body_sim::formatSummary(summary);
+    if (!sweep_args.specs.empty()) {
+      sweep(config, sweep_args, options);
+    } else {
+      std::cout << rigid_body_sim::formatSummary(rigid_body_sim::runOffline(config, options));
+    }
   } catch (const std::exception& error) {
     std::cerr << "simulate: " << error.what() << "\n";
     return 1;

@@ -33,7 +33,9 @@ struct OfflineSummary {
   std::int64_t samples = 0;              // per body
   std::vector<std::string> bodies;
   std::vector<std::string> final_states; // one CSV row per body, at end_time
+  std::vector<std::string> final_rows;   // the same rows without their header (csvRow)
   std::vector<EnergyRecord> energy;      // per body
+  std::vector<int> bounces;              // per body: contacts with the floor begun (rods; 0 for rollers)
   std::vector<WorldEvent> events;
 };
 
@@ -41,7 +43,11 @@ struct OfflineSummary {
 void validate(const OfflineOptions& options, const WorldConfig& config);
 
 // Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure.
+// Shows a progress bar on stderr when it is a terminal and the run lasts.
 OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options);
+
+// The same run and summary, writing nothing (out_dir and bag are ignored): one variant of a sweep.
+OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options);
 
 // A few human lines: final states, slip-to-roll times, energy drift.
 std::string formatSummary(const OfflineSummary& summary);
