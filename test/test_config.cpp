@@ -153,8 +153,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"nan length", "bodies: {rod: {type: rod, length: .nan}}", {"'length'", "nan"}},
         BadInput{"infinite k", "bodies: {rod: {type: rod, k: .inf}}", {"'k'", "inf", "finite"}},
         BadInput{"absurd mass", "bodies: {rod: {type: rod, mass: 1e300}}", {"'mass'", "1e+300", "1e+09]"}},
-        BadInput{"string for number", "bodies: {rod: {type: rod, y0: high}}", {"'rod'", "'y0'", "'high'", "a number"}},
-        BadInput{"list for number", "bodies: {rod: {type: rod, y0: [1, 2]}}", {"'y0'", "(a list)", "a number"}},
+        BadInput{"string for number", "bodies: {rod: {type: rod, y0: high}}", {"'rod'", "'y0'", "'high'", "a finite number in [-1e+06, 1e+06]"}},
+        BadInput{"list for number", "bodies: {rod: {type: rod, y0: [1, 2]}}", {"'y0'", "(a list)", "a finite number"}},
         BadInput{"unknown rod key", "bodies: {rod: {type: rod, stiffness: 5}}", {"'rod'", "'stiffness'", "no such key", "k"}},
         BadInput{"unknown roller key", "bodies: {b: {type: roller, mu: 0.5}}", {"'b'", "'mu'", "no such key", "mu_s"}},
         BadInput{"unknown world key", "rates: 10\nbodies: {rod: {type: rod}}", {"(world)", "'rates'", "no such key"}},
@@ -212,4 +212,59 @@ TEST(ConfigFileErrors, MissingFileAndSyntaxError) {
 TEST(ConfigDuplicates, DuplicateBodyNamesAreRefused) {
   // yaml-cpp keeps both entries of a duplicated key; the loader must not silently pick one.
   EXPECT_NE(refusal("bodies:\n  rod: {type: rod}\n  rod: {type: rod, k: 5}\n").find("'rod'"), std::string::npos);
+}
+
+// Found by the fuzzer / the bad-input tables: a key that is a list or a map made yaml-cpp throw its own
+// exception instead of a ConfigError; a newline in a name broke the one-line message.
+TEST(ConfigOddYaml, KeysThatAreListsOrMapsAreRefusedAsUnknownKeys) {
+  for (const char* yaml : {"bodies: {rod: {type: rod, [k]: 1}}", "{[rate]: 1, bodies: {rod: {type: rod}}}",
+                           "bodies: {{a: 1}: {type: rod}}"}) {
+    SCOPED_TRACE(yaml);
+    try {
+      parse(yaml);
+      ADD_FAILURE() << "accepted";
+    } catch (const ConfigError& error) {
+      EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos);
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << "not a ConfigError: " << error.what();
+    }
+  }
+}
+
+TEST(ConfigOddYaml, ControlCharactersAreEscapedAndLongValuesCut) {
+  EXPECT_EQ(refusal("bodies: {\"a\\nb\": {type: rod}}"),
+            "body '(world)', key 'bodies': value 'a\\nb' is not allowed (allowed: body names of letters, digits "
+            "and _ starting with a letter)");
+  EXPECT_NE(refusal("bodies: {rod: {type: rod, \"k\\tx\": 1}}").find("key 'k\\x09x'"), std::string::npos);
+  const std::string message = refusal("bodies: {rod: {type: rod, y0: " + std::string(5000, 'x') + "}}");
+  EXPECT_LT(message.size(), 300u) << message;
+  EXPECT_NE(message.find("'" + std::string(79, 'x') + "..."), std::string::npos) << message;
+}
+
+TEST(ConfigNames, FramesAndReservedNamesAreRefused) {
+  // Every TF frame is distinct: a body may not be named like another body's fixed frame.
+  EXPECT_NE(refusal("bodies: {rod: {type: rod}, rod_floor: {type: rod}}").find("'rod_floor'"), std::string::npos);
+  EXPECT_NE(refusal("world_frame: ball_slope\nbodies: {ball: {type: roller}}").find("'ball'"), std::string::npos);
+  for (const auto& name : reservedBodyNames()) {
+    EXPECT_NE(refusal("bodies: {" + name + ": {type: rod}}").find("node's own"), std::string::npos) << name;
+  }
+  // Names that merely resemble them are fine.
+  EXPECT_NO_THROW(parse("bodies: {rod: {type: rod}, rod_slope: {type: rod}, steps: {type: roller}}"));
+}
+
+TEST(ConfigNumbers, OutOfDoubleRangeNamesTheKeysRange) {
+  EXPECT_NE(refusal("bodies: {rod: {type: rod, k: 1e400}}").find("'1e400' is not allowed (allowed: a finite number in (0, 1e+12])"),
+            std::string::npos);
+}
+
+TEST(ConfigFileErrors, DirectoryAndEmptyFile) {
+  EXPECT_THROW(loadWorldConfigFile(::testing::TempDir()), ConfigError);
+  const std::string path = ::testing::TempDir() + "/empty.yaml";
+  std::fclose(std::fopen(path.c_str(), "w"));
+  try {
+    loadWorldConfigFile(path);
+    FAIL() << "accepted an empty file";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("(nothing)"), std::string::npos) << error.what();
+  }
 }

@@ -1,6 +1,9 @@
 #include "rigid_body_sim/adapters/config_loader.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <set>
 
@@ -17,12 +20,18 @@ std::string describe(const YAML::Node& node) {
   return "(nothing)";
 }
 
-double asNumber(const std::string& body, const std::string& key, const YAML::Node& node) {
+// A map key as text; a key that is itself a map or a list (YAML allows it) has no name to look up.
+std::string keyName(const YAML::Node& key) { return key.IsScalar() ? key.Scalar() : describe(key); }
+
+// `allowed` says what the key takes, for the message when the text is no number at all (or one out of
+// a double's range, such as 1e400).
+double asNumber(const std::string& body, const std::string& key, const YAML::Node& node,
+                const std::string& allowed = "a number") {
   try {
     if (node.IsScalar()) return node.as<double>();
   } catch (const YAML::Exception&) {
   }
-  throw ConfigError(body, key, describe(node), "a number");
+  throw ConfigError(body, key, describe(node), allowed);
 }
 
 std::string asString(const std::string& body, const std::string& key, const YAML::Node& node,
@@ -40,7 +49,7 @@ std::string joined(const std::set<std::string>& names) {
 // Refuses any key of `map` not in `known`, so that a typo cannot fall back to a default silently.
 void refuseUnknownKeys(const std::string& body, const YAML::Node& map, const std::set<std::string>& known) {
   for (const auto& entry : map) {
-    const std::string key = entry.first.as<std::string>();
+    const std::string key = keyName(entry.first);
     if (!known.count(key)) {
       throw ConfigError(body, key, describe(entry.second), "no such key; known keys: " + joined(known));
     }
@@ -57,7 +66,7 @@ template <class Config>
 void readNumericKeys(const std::string& body, const YAML::Node& map, Config& config,
                      const std::vector<NumericKey<Config>>& keys) {
   for (const auto& key : keys) {
-    if (map[key.name]) key.field(config) = asNumber(body, key.name, map[key.name]);
+    if (map[key.name]) key.field(config) = asNumber(body, key.name, map[key.name], key.range.describe());
   }
 }
 
@@ -124,7 +133,7 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
   if (!bodies.IsMap()) throw ConfigError(kWorld, "bodies", describe(bodies), "a map of bodies by name");
   std::vector<BodyConfig> parsed;
   for (const auto& entry : bodies) {
-    parsed.push_back(parseBody(entry.first.as<std::string>(), entry.second));
+    parsed.push_back(parseBody(keyName(entry.first), entry.second));
   }
   return parsed;
 }
@@ -144,9 +153,11 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
   }
   refuseUnknownKeys(kWorld, root, {"rate", "publish_rate", "gravity", "world_frame", "bodies"});
   WorldConfig config;
-  if (root["rate"]) config.rate = asNumber(kWorld, "rate", root["rate"]);
-  if (root["publish_rate"]) config.publish_rate = asNumber(kWorld, "publish_rate", root["publish_rate"]);
-  if (root["gravity"]) config.gravity = asNumber(kWorld, "gravity", root["gravity"]);
+  if (root["rate"]) config.rate = asNumber(kWorld, "rate", root["rate"], rateRange().describe());
+  if (root["publish_rate"]) {
+    config.publish_rate = asNumber(kWorld, "publish_rate", root["publish_rate"], "a divisor of rate");
+  }
+  if (root["gravity"]) config.gravity = asNumber(kWorld, "gravity", root["gravity"], gravityRange().describe());
   if (root["world_frame"]) {
     config.world_frame = asString(kWorld, "world_frame", root["world_frame"], "a frame name");
   }
@@ -158,16 +169,25 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
   return config;
 }
 
-WorldConfig loadWorldConfigFile(const std::string& path) {
+WorldConfig parseWorldConfigText(const std::string& text, const std::string& source) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError("cannot read config file '" + path + "'");
+    root = YAML::Load(text);
   } catch (const YAML::Exception& error) {
-    throw ConfigError("config file '" + path + "' is not valid YAML: " + error.what());
+    throw ConfigError("config file '" + source + "' is not valid YAML: " + error.what());
   }
   return parseWorldConfig(root);
+}
+
+WorldConfig loadWorldConfigFile(const std::string& path) {
+  std::error_code ignored;
+  std::ifstream file(path);
+  if (!file || std::filesystem::is_directory(path, ignored)) {
+    throw ConfigError("cannot read config file '" + path + "'");
+  }
+  const std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  if (file.bad()) throw ConfigError("cannot read config file '" + path + "'");
+  return parseWorldConfigText(text, path);
 }
 
 }  // namespace rigid_body_sim

@@ -1,5 +1,6 @@
 #include "rigid_body_sim/core/parameters.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -19,6 +20,36 @@ constexpr double kMaxAngle = 1e6;
 constexpr double kMaxStiffness = 1e12;
 constexpr double kMaxFriction = 100.0;
 constexpr double kMaxInertiaFactor = 100.0;
+// sqrt(4 k / mass) at most 1e8 rad/s: sub-stepping then needs at most 1e9 sub-steps per simulated second
+// (and per step at rate 1), about a minute of CPU; far beyond that a run never ends, and the sub-step count
+// of a step would overflow.
+constexpr double kMaxContactFrequency = 1e8;
+// What a message shows of a value or name: the rest of an overlong one is cut.
+constexpr std::size_t kMaxShownLength = 80;
+
+// Escapes control characters, so that a message stays one line, and cuts what is longer than max_length.
+std::string printable(const std::string& text, std::size_t max_length = std::string::npos) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (out.size() >= max_length) return out + "...";
+    const auto ch = static_cast<unsigned char>(text[i]);
+    if (ch == '\n') {
+      out += "\\n";
+    } else if (ch < 0x20 || ch == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      out += std::string("\\x") + hex[ch >> 4] + hex[ch & 15];
+    } else {
+      out += static_cast<char>(ch);
+    }
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
 
 Range positive(double max) { return {0.0, max, true, false}; }
 Range closed(double min, double max) { return {min, max, false, false}; }
@@ -39,10 +70,11 @@ void checkRanges(const std::string& body, const Config& config,
 
 ConfigError::ConfigError(const std::string& body, const std::string& key, const std::string& value,
                          const std::string& allowed)
-    : std::runtime_error("body '" + body + "', key '" + key + "': value " + value +
-                         " is not allowed (allowed: " + allowed + ")") {}
+    : std::runtime_error("body '" + printable(body, kMaxShownLength) + "', key '" +
+                         printable(key, kMaxShownLength) + "': value " + printable(value, kMaxShownLength) +
+                         " is not allowed (allowed: " + printable(allowed) + ")") {}
 
-ConfigError::ConfigError(const std::string& message) : std::runtime_error(message) {}
+ConfigError::ConfigError(const std::string& message) : std::runtime_error(printable(message)) {}
 
 bool Range::contains(double value) const {
   if (!std::isfinite(value)) return false;
@@ -105,10 +137,20 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
 
 void validate(const std::string& body, const RodConfig& config) {
   checkRanges(body, config, rodNumericKeys());
-  if (!gravityRange().contains(config.params.gravity)) {
-    throw ConfigError(body, "gravity", formatNumber(config.params.gravity), gravityRange().describe());
+  const RodParams& p = config.params;
+  if (!gravityRange().contains(p.gravity)) {
+    throw ConfigError(body, "gravity", formatNumber(p.gravity), gravityRange().describe());
+  }
+  // sqrt(4 k / M) <= w  <=>  k <= w^2 M / 4
+  const double max_k = kMaxContactFrequency * kMaxContactFrequency * p.mass / 4.0;
+  if (p.k > max_k) {
+    throw ConfigError(body, "k", formatNumber(p.k),
+                      "a finite number in (0, " + formatNumber(max_k) + "] for mass = " + formatNumber(p.mass) +
+                          ": sqrt(4 k / mass) at most " + formatNumber(kMaxContactFrequency) + " rad/s");
   }
 }
+
+double maxContactFrequency() { return kMaxContactFrequency; }
 
 void validate(const std::string& body, const RollerConfig& config) {
   checkRanges(body, config, rollerNumericKeys());
@@ -151,6 +193,18 @@ bool dividesRate(double rate, double divisor) {
   return ratio >= 1.0 - 1e-9 && std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
 }
 
+std::string fixedFrameOf(const BodyConfig& body) {
+  return body.name + (std::holds_alternative<RodConfig>(body.config) ? "_floor" : "_slope");
+}
+
+const std::vector<std::string>& reservedBodyNames() {
+  static const std::vector<std::string> names = {
+      "rate", "publish_rate", "gravity", "world_frame", "bodies",                 // world keys
+      "real_time_factor", "publish_clock", "duration", "start_delay",            // node options
+      "markers", "reset", "pause", "unpause", "step"};                           // topics, services
+  return names;
+}
+
 void validate(const WorldConfig& config) {
   const std::string world = "(world)";
   if (!rateRange().contains(config.rate)) {
@@ -171,18 +225,42 @@ void validate(const WorldConfig& config) {
   if (config.bodies.empty()) {
     throw ConfigError(world, "bodies", "(none)", "a map of at least one body");
   }
-  std::set<std::string> names{config.world_frame};
+  std::set<std::string> frames{config.world_frame};
+  const auto& reserved = reservedBodyNames();
   for (const auto& body : config.bodies) {
     if (!isValidName(body.name)) {
       throw ConfigError(world, "bodies", "'" + body.name + "'",
                         "body names of letters, digits and _ starting with a letter");
     }
-    if (!names.insert(body.name).second) {
+    if (std::find(reserved.begin(), reserved.end(), body.name) != reserved.end()) {
       throw ConfigError(world, "bodies", "'" + body.name + "'",
-                        "names that differ from each other and from world_frame");
+                        "a name other than the node's own keys, topics and services (" + joined(reserved) + ")");
+    }
+    // Each body brings two TF frames: its own and its fixed frame (<name>_floor or <name>_slope).
+    if (!frames.insert(body.name).second || !frames.insert(fixedFrameOf(body)).second) {
+      throw ConfigError(world, "bodies", "'" + body.name + "'",
+                        "names whose TF frames (<name>, <name>_floor or <name>_slope) differ from each "
+                        "other and from world_frame");
     }
     std::visit([&](const auto& body_config) { validate(body.name, body_config); }, body.config);
   }
+}
+
+std::vector<std::string> slowRunWarnings(const WorldConfig& config) {
+  std::vector<std::string> warnings;
+  for (const auto& body : config.bodies) {
+    const auto* rod = std::get_if<RodConfig>(&body.config);
+    if (!rod) continue;  // a roller's step is closed-form: never sub-stepped
+    const int per_step = Rod(rod->params, rod->initial).substepsFor(1.0 / config.rate);
+    const double per_second = per_step * config.rate;
+    if (per_second > kSlowSubstepsPerSecond) {
+      warnings.push_back("body '" + body.name + "': k = " + formatNumber(rod->params.k) + " with mass = " +
+                         formatNumber(rod->params.mass) + " needs " + std::to_string(per_step) +
+                         " sub-steps per step at rate " + formatNumber(config.rate) + " (" +
+                         formatNumber(per_second) + " per simulated second): the run will be slow");
+    }
+  }
+  return warnings;
 }
 
 }  // namespace rigid_body_sim

@@ -13,6 +13,9 @@ namespace rigid_body_sim {
 // Parses and validates; throws ConfigError with one line naming the body, key, value and range.
 WorldConfig parseWorldConfig(const YAML::Node& root);
 
+// Parses YAML text (`source` names it in messages); a YAML syntax error is a ConfigError too.
+WorldConfig parseWorldConfigText(const std::string& text, const std::string& source);
+
 // Reads a file; a missing file or a YAML syntax error is a ConfigError too.
 WorldConfig loadWorldConfigFile(const std::string& path);
 

@@ -12,7 +12,8 @@
 
 namespace rigid_body_sim {
 
-// A refused value. what() is one line naming the body, the key, the value and what is allowed.
+// A refused value. what() is one line naming the body, the key, the value and what is allowed: control
+// characters (a newline in a key, say) are escaped and an overlong value is cut, so that it stays one line.
 class ConfigError : public std::runtime_error {
  public:
   ConfigError(const std::string& body, const std::string& key, const std::string& value,
@@ -53,8 +54,11 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys();
 
 // Throw ConfigError on the first refused value (ranges, then relations between keys such as
 // mu_d <= mu_s, x0 on the slope, inertia_factor matching the shape).
+// A rod also needs its contact frequency sqrt(4 k / mass) <= maxContactFrequency(): its sub-stepping
+// costs about 10 sub-steps per rad/s and simulated second, and the step count per step must stay an int.
 void validate(const std::string& body, const RodConfig& config);
 void validate(const std::string& body, const RollerConfig& config);
+double maxContactFrequency();  // rad/s
 
 struct BodyConfig {
   std::string name;  // also the TF frame and the topic namespace
@@ -77,8 +81,23 @@ Range gravityRange();
 // True for a name usable as a ROS graph name component and as a TF frame: [A-Za-z][A-Za-z0-9_]*.
 bool isValidName(const std::string& name);
 
-// Checks the world keys, every body, name validity and uniqueness, and that publish_rate divides rate.
+// The fixed frame in which a body's coordinates are measured: <name>_floor (rod) or <name>_slope (roller).
+std::string fixedFrameOf(const BodyConfig& body);
+
+// Names a body cannot have: the world keys and the node's own parameters, topics and services share the
+// node's private namespace with the bodies (a body named `rate` would shadow the world's rate).
+const std::vector<std::string>& reservedBodyNames();
+
+// Checks the world keys, every body, name validity, that every TF frame (world_frame, each body and its
+// fixed frame) is distinct, and that publish_rate divides rate.
 void validate(const WorldConfig& config);
+
+// Sub-steps per simulated second above which a valid config is reported as slow.
+constexpr double kSlowSubstepsPerSecond = 1e7;
+
+// One human line per body of a validated config that makes the run slow (a stiff rod needing many
+// sub-steps per step); empty when nothing is slow. Pure: the caller decides where to print.
+std::vector<std::string> slowRunWarnings(const WorldConfig& config);
 
 // True when `divisor` divides `rate` to rounding: rate / divisor is a whole number >= 1.
 bool dividesRate(double rate, double divisor);

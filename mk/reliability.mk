@@ -1,0 +1,39 @@
+# Reliability (issue 5): the config loader fuzzed with libFuzzer, and the core/adapters unit tests under
+# AddressSanitizer + UndefinedBehaviorSanitizer, each in a build folder of its own. `make test` runs both
+# before ctest's main suite; `make fuzz` / `make asan` run one.
+FUZZ_BUILD ?= build-fuzz
+ASAN_BUILD ?= build-asan
+# A fixed number of runs (the same inputs for a given libFuzzer and seed); max_total_time caps a slow machine.
+FUZZ_RUNS ?= 30000
+FUZZ_SECONDS ?= 60
+FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/adapters/config_loader.cpp src/core/parameters.cpp \
+                src/core/rod.cpp src/core/rod_dynamics.cpp src/core/roller.cpp
+# The unit tests that need no master (rostests stay in the main build).
+ASAN_TESTS := test_roller test_rod test_world test_config test_simulate test_extremes test_bad_input_simulate
+SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+export ASAN_OPTIONS := halt_on_error=1:detect_leaks=1:abort_on_error=0
+export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
+
+EXTRA_TESTS += fuzz asan
+
+.PHONY: fuzz asan
+
+$(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h)
+	mkdir -p $(FUZZ_BUILD)
+	clang++ -std=c++17 -g -O1 -fsanitize=fuzzer $(SANITIZE) -Iinclude $(FUZZ_SOURCES) -lyaml-cpp -o $@
+
+# New inputs go to a scratch corpus in the build folder; the committed seed corpus stays as it is.
+fuzz: deps $(FUZZ_BUILD)/fuzz_config_loader
+	rm -rf $(FUZZ_BUILD)/corpus && mkdir -p $(FUZZ_BUILD)/corpus $(FUZZ_BUILD)/artifacts
+	$(FUZZ_BUILD)/fuzz_config_loader -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -seed=1 \
+	  -max_len=4096 -dict=test/fuzz/config.dict -print_final_stats=1 \
+	  -artifact_prefix=$(FUZZ_BUILD)/artifacts/ $(FUZZ_BUILD)/corpus test/fuzz/corpus
+
+# gcc's ASan and UBSan; only the unit-test targets (and simulate, which test_simulate runs) are built.
+asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=Debug \
+	  -DCMAKE_CXX_FLAGS="-O1 $(SANITIZE)" -DCMAKE_EXE_LINKER_FLAGS="$(SANITIZE)" \
+	  -DCMAKE_SHARED_LINKER_FLAGS="$(SANITIZE)" >/dev/null
+	cmake --build $(ASAN_BUILD) -j$(JOBS) --target simulate $(ASAN_TESTS) -- --no-print-directory
+	set -e; for t in $(ASAN_TESTS); do echo "== $$t (ASan + UBSan)"; \
+	  $(ASAN_BUILD)/devel/lib/rigid_body_sim/$$t --gtest_brief=1; done

@@ -1,0 +1,110 @@
+// `simulate` on every row of test/bad_input/configs.yaml: exit code 1, exactly one line on stderr that
+// names what was refused (for a config error: the loader's own message, word for word), nothing on the
+// way to the out dir (not even a half-written or temporary file).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/adapters/config_loader.h"
+
+namespace fs = std::filesystem;
+using namespace rigid_body_sim;
+
+namespace {
+
+struct Row {
+  std::string what;
+  std::string config;  // YAML text; unused when file is set
+  std::string file;    // "", "missing" or "directory"
+  std::string args;
+  std::vector<std::string> expect;
+};
+
+std::vector<Row> table() {
+  std::vector<Row> rows;
+  for (const auto& entry : YAML::LoadFile(std::string(RBS_BAD_INPUT_DIR) + "/configs.yaml")) {
+    Row row{entry["what"].as<std::string>(), entry["config"].as<std::string>(""),
+            entry["file"].as<std::string>(""), entry["args"].as<std::string>(""),
+            entry["expect"].as<std::vector<std::string>>()};
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> result;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) result.push_back(line);
+  return result;
+}
+
+// What the loader says about the same text (the line simulate must print after "simulate: "), or ""
+// when the loader accepts it (a command-line error).
+std::string loaderMessage(const std::string& text, const std::string& source) {
+  try {
+    parseWorldConfigText(text, source);
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(BadInputSimulate, TableHasEnoughDistinctRows) {
+  const auto rows = table();
+  std::set<std::string> names;
+  for (const auto& row : rows) names.insert(row.what);
+  EXPECT_EQ(names.size(), rows.size()) << "duplicate row names";
+  EXPECT_GE(rows.size(), 30u);
+}
+
+TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
+  const fs::path root = fs::path(::testing::TempDir()) / "bad_input_simulate";
+  fs::remove_all(root);
+  int index = 0;
+  for (const Row& row : table()) {
+    SCOPED_TRACE(row.what);
+    const fs::path dir = root / std::to_string(index++);
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    fs::path config = dir / "config.yaml";
+    if (row.file == "missing") {
+      config = dir / "no_such_config.yaml";
+    } else if (row.file == "directory") {
+      config = dir;
+    } else {
+      std::ofstream(config) << row.config;
+    }
+    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + config.string() + " " + row.args +
+                                " --out-dir " + out.string() + " --bag " + (out / "run.bag").string() + " >" +
+                                (dir / "stdout").string() + " 2>" + (dir / "stderr").string();
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << "simulate did not exit normally (a crash?)";
+    EXPECT_NE(WEXITSTATUS(status), 0);
+    const auto err = lines(slurp(dir / "stderr"));
+    ASSERT_EQ(err.size(), 1u) << "stderr:\n" << slurp(dir / "stderr");
+    for (const auto& fragment : row.expect) {
+      EXPECT_NE(err[0].find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << err[0];
+    }
+    if (row.file.empty()) {
+      const std::string message = loaderMessage(row.config, config.string());
+      if (!message.empty()) EXPECT_EQ(err[0], "simulate: " + message);
+    }
+    EXPECT_TRUE(fs::is_empty(out)) << "something was written to the out dir";
+  }
+}
