@@ -108,3 +108,22 @@ TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
     EXPECT_TRUE(fs::is_empty(out)) << "something was written to the out dir";
   }
 }
+
+// A valid but slow config runs, with the core's warning on stderr (--duration 0: no step is taken).
+TEST(BadInputSimulate, SlowConfigRunsWithOneWarning) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "bad_input_simulate_slow";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string yaml = "bodies: {rod: {type: rod, k: 1e9, mass: 1e-6}}";
+  std::ofstream(dir / "stiff.yaml") << yaml;
+  const std::string command = std::string(RBS_SIMULATE_EXE) + " " + (dir / "stiff.yaml").string() +
+                              " --duration 0 --out-dir " + dir.string() + " >/dev/null 2>" +
+                              (dir / "stderr").string();
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const auto warnings = slowRunWarnings(parseWorldConfigText(yaml, "stiff"));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(lines(slurp(dir / "stderr")), std::vector<std::string>{"simulate: warning: " + warnings[0]});
+  EXPECT_TRUE(fs::exists(dir / "rod.csv"));
+}

@@ -73,11 +73,13 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);  // one value per --sweep, so that CONFIG may follow
   app.add_option("--jobs", sweep_args.jobs, "threads for --sweep (default 0: every core)");
   app.add_option("--shard", sweep_args.shard, "i/n: run only slice i of n of the sweep (1 <= i <= n)");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "simulate: " + std::string(e.what()) + "\n"; });
   CLI11_PARSE(app, argc, argv);
 
   try {
     checkModes(sweep_args, options);
     const auto config = rigid_body_sim::loadWorldConfigFile(config_path);
+    for (const auto& warning : rigid_body_sim::slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
     if (!sweep_args.specs.empty()) {
       sweep(config, sweep_args, options);
     } else {
