@@ -1,0 +1,10 @@
+# The soak (issue 5; not part of `make test`): sim_node as fast as possible for a simulated hour, every body
+# reconfigured at random every simulated second, recorded to a bag; see README, "Long runs (soak)".
+#   make soak [SOAK_SEED=1] [SOAK_DURATION=3600]     (report and bag in out/soak/)
+SOAK_SEED ?= 1
+SOAK_DURATION ?= 3600
+
+.PHONY: soak
+
+soak: build
+	bash scripts/soak --build $(BUILD) --seed $(SOAK_SEED) --duration $(SOAK_DURATION)

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Drives the soak: holds sim_node paused and advances it one simulated second at a time with ~step,
+reconfiguring k (rods), mu (rollers) and the initial conditions of every body at random (seeded) at each
+whole second, so that a seed replays the same run step for step. Measures the energy drift of each body
+between reconfigures, message counts and the node's resident memory; prints a report."""
+import argparse
+import math
+import random
+import sys
+import threading
+import time
+
+import rosgraph
+import rospy
+import yaml
+from dynamic_reconfigure.client import Client
+from rigid_body_sim.msg import RodState, RollerState
+from rigid_body_sim.srv import Step
+from std_srvs.srv import Empty
+from xmlrpc.client import ServerProxy
+
+
+def rss_kib(pid):
+    with open(f"/proc/{pid}/status") as status:
+        for line in status:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    return -1
+
+
+def node_pid(name):
+    return ServerProxy(rosgraph.Master("/soak").lookupNode(name)).getPid("/soak")[2]
+
+
+class Body:
+    """The received states of one body and its energy drift inside each segment: between two reconfigures,
+    and for a roller also between two laps (it restarts where it leaves the slope). A rod's energy swings
+    inside a contact (Euler-Cromer); a roller's is conserved while it rolls and only falls while it slips."""
+
+    def __init__(self, name, spec, dt):
+        self.name, self.spec, self.dt = name, spec, dt
+        self.rod = spec["type"] == "rod"
+        self.count = 0
+        self.last_t = -1.0
+        self.prev = None
+        self.ref = None           # energy at the first sample of the segment
+        self.roll_ref = None      # rollers: energy at the first sample of the current rolling stretch
+        self.max_drift = 0.0      # J, over all segments
+        self.max_rel = 0.0        # rods: drift / energy at the segment's start
+        self.max_gain = -math.inf  # rollers: the largest energy increase over a segment
+        self.max_roll = 0.0       # rollers: the largest |drift| while rolling
+        self.nonfinite = 0
+
+    def new_segment(self):
+        self.ref = self.roll_ref = self.prev = None
+
+    def restarted(self, msg):
+        """A lap: x moved otherwise than the mean velocity allows between two samples."""
+        if self.rod or self.prev is None:
+            return False
+        return abs(msg.x - self.prev.x - 0.5 * (msg.v + self.prev.v) * self.dt) > 0.01
+
+    def on_state(self, msg):
+        self.count += 1
+        self.last_t = msg.t
+        values = [msg.x, msg.theta, msg.omega, msg.energy] + ([msg.y, msg.vx, msg.vy] if self.rod else [msg.v])
+        if not all(math.isfinite(v) for v in values):
+            self.nonfinite += 1
+            return
+        if self.restarted(msg):
+            self.ref = self.roll_ref = None
+        self.prev = msg
+        if self.ref is None:
+            self.ref = msg.energy
+        drift = msg.energy - self.ref
+        self.max_drift = max(self.max_drift, abs(drift))
+        if self.rod:
+            if self.ref > 0:
+                self.max_rel = max(self.max_rel, abs(drift) / self.ref)
+            return
+        self.max_gain = max(self.max_gain, drift)
+        if msg.mode != "rolling":
+            self.roll_ref = None
+            return
+        if self.roll_ref is None:
+            self.roll_ref = msg.energy
+        self.max_roll = max(self.max_roll, abs(msg.energy - self.roll_ref))
+
+
+def random_change(rng, body):
+    """A random, valid reconfigure of one body: k or mu, and new initial conditions."""
+    if body.rod:
+        return {"k": 10 ** rng.uniform(2, 5), "x0": rng.uniform(-1, 1), "y0": rng.uniform(0.5, 5),
+                "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
+                "omega0": rng.uniform(-10, 10)}
+    mu_s = rng.uniform(0, 1)
+    length = float(body.spec.get("incline_length", 5.0))
+    return {"mu_s": mu_s, "mu_d": rng.uniform(0, mu_s), "x0": rng.uniform(0, length / 2),
+            "v0": rng.uniform(-2, 4), "theta0": 0.0, "omega0": rng.uniform(-30, 30)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("config")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--duration", type=int, default=3600, help="simulated seconds")
+    args = parser.parse_args(rospy.myargv()[1:])
+    with open(args.config) as f:
+        config = yaml.safe_load(f)
+    rate, publish_rate = float(config.get("rate", 1000)), float(config.get("publish_rate", 50))
+    bodies = [Body(name, spec, 1.0 / publish_rate) for name, spec in config["bodies"].items()]
+    rng = random.Random(args.seed)
+
+    rospy.init_node("soak", disable_signals=True)
+    lock = threading.Lock()
+    subs = []
+    for body in bodies:
+        def callback(msg, body=body):
+            with lock:
+                body.on_state(msg)
+        subs.append(rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, callback,
+                                     queue_size=None, tcp_nodelay=True))
+    rospy.wait_for_service("/sim/pause", timeout=60)
+    rospy.ServiceProxy("/sim/pause", Empty)()
+    step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
+    clients = {b.name: Client(f"/sim/{b.name}", timeout=30) for b in bodies}
+    # The node publishes t = 0 once its start_delay is over; the run starts from there.
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        with lock:
+            if all(b.last_t == 0.0 for b in bodies):
+                break
+        time.sleep(0.1)
+    else:
+        sys.exit("soak: no state at t = 0 (the driver subscribed too late, or the node did not start)")
+
+    sim_pid, rec_pid = node_pid("/sim"), node_pid("/record")
+    steps = int(round(rate))
+    samples = int(round(publish_rate))
+    wall0 = time.time()
+    rss = []  # (t, sim_node kB, recorder kB)
+    for second in range(args.duration):
+        with lock:
+            for body in bodies:
+                body.new_segment()
+        for body in bodies:
+            clients[body.name].update_configuration(random_change(rng, body))
+        reply = step(steps)
+        if not reply.success:
+            sys.exit(f"soak: ~step refused at second {second}: {reply.message}")
+        if reply.t != second + 1:
+            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
+                     "paused it (raise start_delay in scripts/soak.launch)")
+        # Wait for this second's samples, so that the segment's drift is measured before the next change.
+        end = time.time() + 60
+        while time.time() < end:
+            with lock:
+                if all(b.last_t >= reply.t for b in bodies):
+                    break
+            time.sleep(0.001)
+        else:
+            sys.exit(f"soak: the states of t = {reply.t} did not arrive")
+        if second == 0 or (second + 1) % 300 == 0 or second + 1 == args.duration:
+            rss.append((second + 1, rss_kib(sim_pid), rss_kib(rec_pid)))
+            print(f"t = {second + 1:5d} s  wall {time.time() - wall0:7.1f} s  RSS sim_node {rss[-1][1]} kB, "
+                  f"recorder {rss[-1][2]} kB", flush=True)
+    wall = time.time() - wall0
+
+    expected = 1 + args.duration * samples
+    print(f"\nsoak: seed {args.seed}, {args.duration} simulated s, {len(bodies)} bodies, reconfigured every "
+          f"simulated second; {wall:.1f} s wall ({args.duration / wall:.1f} x real time)")
+    print(f"RSS sim_node: {rss[0][1]} kB at t = {rss[0][0]} s, {rss[-1][1]} kB at t = {rss[-1][0]} s "
+          f"(change {rss[-1][1] - rss[0][1]:+d} kB); recorder {rss[0][2]} -> {rss[-1][2]} kB")
+    print("body      type    states received/expected  non-finite  max |dE| in a segment   notes")
+    for b in bodies:
+        note = (f"max |dE|/E0 = {b.max_rel:.3g}" if b.rod else
+                f"largest gain {b.max_gain:.3g} J; max |dE| while rolling {b.max_roll:.3g} J")
+        print(f"{b.name:9s} {'rod' if b.rod else 'roller':7s} {b.count:8d}/{expected:<8d}          {b.nonfinite:4d}"
+              f"        {b.max_drift:12.6g} J    {note}")
+    bad = [b.name for b in bodies if b.count != expected or b.nonfinite]
+    if bad:
+        sys.exit(f"soak: FAILED for {', '.join(bad)}")
+
+
+if __name__ == "__main__":
+    main()
