@@ -1,0 +1,174 @@
+"""Checks an rviz screenshot against the scene that was published: where rviz/sim.rviz's orbit camera
+puts each marker, and whether pixels of that marker's colour are there.
+
+Pure functions (numpy only), so that they can be tried on any PNG: the projection follows rviz's
+OrbitViewController (camera at focal + distance (cos yaw cos pitch, sin yaw cos pitch, sin pitch),
+z up, vertical field of view), and colours are told apart by hue and saturation, which rviz's
+lighting (a white light scaling each colour) leaves unchanged."""
+from dataclasses import dataclass
+
+import numpy as np
+
+# Colour classes: (hue range in degrees, saturation range, minimum value). The marker colours are those
+# of src/adapters/ros_conversions.cpp: rod (0.1, 0.3, 0.9), sphere (0.9, 0.1, 0.1), cylinder
+# (0.1, 0.8, 0.1), ring (1, 0.6, 0), shell (0.7, 0.1, 0.9), slope (0.55, 0.4, 0.25), floor grey 0.75.
+COLOUR_CLASSES = {
+    "blue": ((212, 236), (0.6, 1.0), 0.25),      # rod, hue 225 (TF's z axis is 240: outside)
+    "red": ((346, 14), (0.6, 1.0), 0.25),        # sphere (a range through 0)
+    "green": ((105, 135), (0.6, 1.0), 0.25),     # cylinder
+    "orange": ((28, 46), (0.8, 1.0), 0.35),      # ring, hue 36, saturated
+    "purple": ((270, 300), (0.6, 1.0), 0.25),    # spherical shell
+    "brown": ((20, 42), (0.4, 0.72), 0.15),      # slopes, hue 30, half saturated
+    "grey": ((0, 360), (0.0, 0.12), 0.33),      # floor (and the grid's lines); background is 0.19
+}
+SHAPE_CLASS = {"sphere": "red", "cylinder": "green", "ring": "orange", "spherical_shell": "purple"}
+
+
+def hsv(image):
+    """Hue in degrees [0, 360), saturation and value in [0, 1] of an RGB(A) float image."""
+    rgb = image[..., :3].astype(float)
+    if rgb.max() > 1.0:
+        rgb = rgb / 255.0
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    top = rgb.max(axis=-1)
+    span = top - rgb.min(axis=-1)
+    safe = np.where(span > 0, span, 1.0)
+    hue = np.where(top == r, ((g - b) / safe) % 6, np.where(top == g, (b - r) / safe + 2, (r - g) / safe + 4))
+    hue = 60.0 * hue
+    saturation = np.where(top > 0, span / np.where(top > 0, top, 1.0), 0.0)
+    return hue, saturation, top
+
+
+def colour_mask(image, name):
+    (h0, h1), (s0, s1), v0 = COLOUR_CLASSES[name]
+    hue, sat, val = hsv(image)
+    in_hue = (hue >= h0) & (hue <= h1) if h0 <= h1 else (hue >= h0) | (hue <= h1)
+    return in_hue & (sat >= s0) & (sat <= s1) & (val >= v0)
+
+
+@dataclass
+class Camera:
+    """rviz's Orbit view, rendered into a window of width x height pixels at (left, top) on screen."""
+    focal: np.ndarray
+    distance: float
+    pitch: float
+    yaw: float
+    fov: float
+    left: int
+    top: int
+    width: int
+    height: int
+
+    @classmethod
+    def from_rviz(cls, view, window):
+        focal = np.array([view["Focal Point"][k] for k in "XYZ"], dtype=float)
+        return cls(focal, float(view["Distance"]), float(view["Pitch"]), float(view["Yaw"]),
+                   float(view.get("Field of View", 0.785398)), *window)
+
+    def basis(self):
+        cp = np.cos(self.pitch)
+        eye = self.focal + self.distance * np.array(
+            [np.cos(self.yaw) * cp, np.sin(self.yaw) * cp, np.sin(self.pitch)])
+        forward = (self.focal - eye) / np.linalg.norm(self.focal - eye)
+        right = np.cross(forward, [0.0, 0.0, 1.0])
+        right /= np.linalg.norm(right)
+        return eye, forward, right, np.cross(right, forward)
+
+    def pixels_per_metre_at(self, depth):
+        return 0.5 * self.height / np.tan(0.5 * self.fov) / depth
+
+    def project(self, points):
+        """Screen pixels (column, row) and depth of world points, shape (n, 3)."""
+        eye, forward, right, up = self.basis()
+        rel = np.atleast_2d(points) - eye
+        depth = rel @ forward
+        f = self.pixels_per_metre_at(1.0)
+        col = self.left + 0.5 * self.width + f * (rel @ right) / depth
+        row = self.top + 0.5 * self.height - f * (rel @ up) / depth
+        return np.stack([col, row], axis=1), depth
+
+
+def quaternion_matrix(q):
+    x, y, z, w = q
+    return np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def box_corners(rotation, centre, scale):
+    """The 8 corners of a box of size `scale` centred at `centre`, axes `rotation` (world)."""
+    signs = np.array([[sx, sy, sz] for sx in (-.5, .5) for sy in (-.5, .5) for sz in (-.5, .5)])
+    return centre + (signs * scale) @ rotation.T
+
+
+def polygon_mask(shape, polygon):
+    """Pixels inside a convex polygon (vertices in order, (col, row))."""
+    rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
+    inside = np.ones(shape, dtype=bool)
+    n = len(polygon)
+    area = sum(polygon[i][0] * polygon[(i + 1) % n][1] - polygon[(i + 1) % n][0] * polygon[i][1] for i in range(n))
+    for i in range(n):
+        (x0, y0), (x1, y1) = polygon[i], polygon[(i + 1) % n]
+        cross = (x1 - x0) * (rows - y0) - (y1 - y0) * (cols - x0)
+        inside &= cross * np.sign(area) >= 0
+    return inside
+
+
+def convex_hull(points):
+    """Andrew's monotone chain; points (n, 2)."""
+    pts = sorted(map(tuple, np.asarray(points)))
+
+    def half(seq):
+        out = []
+        for p in seq:
+            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (p[1] - out[-2][1]) -
+                                     (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])) <= 0:
+                out.pop()
+            out.append(p)
+        return out[:-1]
+    return half(pts) + half(reversed(pts))
+
+
+def disc_mask(shape, centre, radius):
+    rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
+    return (cols - centre[0]) ** 2 + (rows - centre[1]) ** 2 <= radius ** 2
+
+
+def segment_mask(shape, a, b, half_width):
+    rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
+    d = np.asarray(b, float) - a
+    t = np.clip(((cols - a[0]) * d[0] + (rows - a[1]) * d[1]) / max(d @ d, 1e-9), 0, 1)
+    return (cols - a[0] - t * d[0]) ** 2 + (rows - a[1] - t * d[1]) ** 2 <= half_width ** 2
+
+
+def quadrants_with(image, region, centre, colour):
+    """How many of the four quadrants about `centre` hold pixels of `colour` inside `region`."""
+    rows, cols = np.mgrid[0:image.shape[0], 0:image.shape[1]]
+    found = colour_mask(image, colour) & region
+    right, below = cols >= centre[0], rows >= centre[1]
+    return sum(int((found & (right == r) & (below == b)).any()) for r in (False, True) for b in (False, True))
+
+
+@dataclass
+class Finding:
+    what: str
+    colour: str
+    region_px: int
+    colour_px: int
+    needed_px: int
+
+    @property
+    def ok(self):
+        return self.region_px > 0 and self.colour_px >= self.needed_px
+
+    def line(self):
+        share = self.colour_px / self.region_px if self.region_px else 0.0
+        return (f"{'ok  ' if self.ok else 'FAIL'} {self.what:28s} {self.colour:7s} {self.colour_px:6d} of "
+                f"{self.region_px:6d} px ({100 * share:5.1f} %), needed {self.needed_px}")
+
+
+def count(image, region, colour, what, share):
+    """A finding: pixels of `colour` in `region`, at least `share` of the region needed."""
+    n = int(region.sum())
+    return Finding(what, colour, n, int((colour_mask(image, colour) & region).sum()), max(1, int(np.ceil(share * n))))

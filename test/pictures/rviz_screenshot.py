@@ -1,0 +1,345 @@
+#!/usr/bin/env python3
+"""rviz, for real: starts sim_node (launch/sim.launch) and rviz with rviz/sim.rviz on this X display,
+lets the simulation run a few simulated seconds, pauses it, takes a screenshot (ImageMagick's import)
+and checks the picture against what the node published: the floor, every slope, every roller and the
+rod must show their colours where rviz's camera puts them, and rviz must report no error.
+
+Run under Xvfb (test/pictures/rviz_screenshot.sh does). Exit 0 when every check passes, 1 otherwise.
+Writes OUT (the screenshot), OUT's stem + "_regions.png" (the regions checked, outlined) and
+OUT's stem + ".txt" (the findings)."""
+import argparse
+import os
+import re
+import socket
+import subprocess
+import sys
+import time
+import xmlrpc.client
+
+import numpy as np
+import yaml
+
+import picture_check as pc
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PACKAGE = os.path.dirname(os.path.dirname(HERE))
+STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_for(what, predicate, timeout, period=0.25):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if predicate():
+            return
+        time.sleep(period)
+    raise TimeoutError(f"timed out after {timeout:g} s waiting for {what}")
+
+
+class Scene:
+    """What the node published: world poses of every frame, markers by (ns, id), latest states."""
+
+    def __init__(self, rospy, config):
+        from rigid_body_sim.msg import RodState, RollerState
+        from tf2_msgs.msg import TFMessage
+        from visualization_msgs.msg import MarkerArray
+        self.frames, self.markers, self.t = {}, {}, None
+        name, body = next(iter(config["bodies"].items()))  # its state gives the simulated time
+        self.subscribers = [
+            rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=100),
+            rospy.Subscriber("/tf_static", TFMessage, self.on_tf, queue_size=100),
+            rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, queue_size=100),
+            rospy.Subscriber(f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
+                             lambda msg: setattr(self, "t", msg.t), queue_size=100)]
+
+    def on_tf(self, msg):
+        for t in msg.transforms:
+            r, q = t.transform.translation, t.transform.rotation
+            self.frames[t.child_frame_id] = (pc.quaternion_matrix([q.x, q.y, q.z, q.w]), np.array([r.x, r.y, r.z]))
+
+    def on_markers(self, msg):
+        for m in msg.markers:
+            if m.action == m.DELETEALL:
+                self.markers.clear()
+            elif m.action == m.DELETE:
+                self.markers.pop((m.ns, m.id), None)
+            else:
+                self.markers[(m.ns, m.id)] = m
+
+    def world_pose(self, frame_id, pose):
+        """Rotation and position in the world of a marker's pose in `frame_id` (a child of the world)."""
+        rotation, origin = self.frames.get(frame_id, (np.eye(3), np.zeros(3)))
+        q, p = pose.orientation, pose.position
+        return rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w]), origin + rotation @ [p.x, p.y, p.z]
+
+
+def rviz_status_pixels(image, render):
+    """Pixels in the text of rviz's display tree (left of the render view) drawn in the colour of a
+    warning or an error: rviz paints a display's name so when its status is not Ok."""
+    left, top, _, height = render
+    panel = image[top:top + height, 42:max(43, left - 20), :3].astype(int)
+    return {name: int((np.abs(panel - colour).max(axis=-1) <= 24).sum()) for name, colour in STATUS_COLOURS.items()}
+
+
+def render_window():
+    """(left, top, width, height) of rviz's 3-D view: the largest unnamed X window (Ogre's)."""
+    tree = subprocess.run(["xwininfo", "-root", "-tree"], capture_output=True, text=True, check=True).stdout
+    best = None
+    for m in re.finditer(r"\(has no name\): \(\)\s+(\d+)x(\d+)\+-?\d+\+-?\d+\s+\+(-?\d+)\+(-?\d+)", tree):
+        w, h, x, y = map(int, m.groups())
+        if best is None or w * h > best[2] * best[3]:
+            best = (x, y, w, h)
+    if best is None or best[2] * best[3] < 10000:
+        raise RuntimeError("rviz's render window not found in xwininfo -root -tree")
+    return best
+
+
+def check_picture(image, scene, camera, config):
+    """Every finding: floor, slopes, rollers, rods; each region clipped to the render view."""
+    shape = image.shape[:2]
+    view = np.zeros(shape, dtype=bool)
+    view[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = True
+    findings, outlines = [], []
+
+    def hull_of(corners):
+        pixels, depth = camera.project(corners)
+        return pc.convex_hull(pixels) if (depth > 0).all() else None
+
+    def in_view(what, region):
+        inside = int((region & view).sum())
+        if inside < 0.9 * max(1, int(region.sum())):
+            findings.append(pc.Finding(what + " inside the view", "-", int(region.sum()), inside,
+                                       int(np.ceil(0.9 * region.sum()))))
+        return region & view
+
+    bodies = config["bodies"]
+    slopes, tops, discs, radii, centres = {}, {}, {}, {}, {}
+    for (ns, _), m in scene.markers.items():
+        if ns == "slope":
+            name = m.header.frame_id[:-len("_slope")]
+            rotation, centre = scene.world_pose(m.header.frame_id, m.pose)
+            size = np.array([m.scale.x, m.scale.y, m.scale.z])
+            slopes[name] = pc.polygon_mask(shape, hull_of(pc.box_corners(rotation, centre, size)))
+            # The lit face is the top one (the slope frame's +y): the sides are in the shade.
+            top = pc.box_corners(rotation, centre + 0.5 * size[1] * rotation[:, 1], size * [1, 0, 1])
+            tops[name] = pc.polygon_mask(shape, hull_of(top))
+            outlines.append(("brown", hull_of(top)))
+    for name, body in bodies.items():
+        if body["type"] != "roller" or name not in scene.frames:
+            continue
+        _, centre = scene.frames[name]
+        (pixel,), (depth,) = camera.project(centre)
+        radii[name], centres[name] = body.get("radius", 0.1) * camera.pixels_per_metre_at(depth), pixel
+        radius = radii[name] + 1.0
+        discs[name] = pc.disc_mask(shape, pixel, radius)
+        outlines.append(("circle", (pixel, radius)))
+
+    floor = next((m for (ns, _), m in scene.markers.items() if ns == "floor"), None)
+    if floor is None:
+        findings.append(pc.Finding("floor marker received", "-", 0, 0, 1))
+    else:
+        rotation, centre = scene.world_pose(floor.header.frame_id, floor.pose)
+        hull = hull_of(pc.box_corners(rotation, centre, [floor.scale.x, floor.scale.y, floor.scale.z]))
+        outlines.append(("grey", hull))
+        region = pc.polygon_mask(shape, hull) & view  # the floor runs out of the view: that is fine
+        for other in list(slopes.values()) + list(discs.values()):
+            region &= ~other
+        findings.append(pc.count(image, region, "grey", "floor", 0.6))
+
+    for name, body in bodies.items():
+        if body["type"] == "rod":
+            findings += check_rod(image, scene, camera, name, body, in_view, outlines)
+            continue
+        if name not in slopes:
+            findings.append(pc.Finding(f"{name}'s slope marker received", "-", 0, 0, 1))
+        else:
+            own = in_view(f"{name}'s slope", tops[name])
+            for other_name, other in slopes.items():
+                if other_name != name:
+                    own &= ~other
+            for disc in discs.values():
+                own &= ~disc
+            findings.append(pc.count(image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
+        if name not in discs:
+            findings.append(pc.Finding(f"{name}'s pose received", "-", 0, 0, 1))
+            continue
+        shape_name = body.get("shape", "sphere")
+        found = pc.count(image, in_view(name, discs[name]), pc.SHAPE_CLASS[shape_name], f"{name} ({shape_name})", 0.35)
+        if shape_name == "ring":  # a line 0.15 R wide: most of its circumference, not a share of the disc
+            found.needed_px = int(0.4 * 2 * np.pi * radii[name])
+        findings.append(found)
+        # A body, not a trail or a TF axis through its centre: its colour all round the centre.
+        quarters = pc.quadrants_with(image, discs[name], centres[name], pc.SHAPE_CLASS[shape_name])
+        findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
+    return findings, outlines
+
+
+def check_rod(image, scene, camera, name, body, in_view, outlines):
+    """The rod: blue along its whole length (each quarter), not only somewhere near its centre."""
+    if name not in scene.frames:
+        return [pc.Finding(f"{name}'s pose received", "-", 0, 0, 1)]
+    rotation, centre = scene.frames[name]
+    half = 0.5 * body.get("length", 1.0) * rotation[:, 0]
+    (a, b), depth = camera.project(np.array([centre - half, centre + half]))
+    outlines.append(("segment", (a, b)))
+    found = []
+    for k in range(4):
+        p, q = a + (b - a) * k / 4, a + (b - a) * (k + 1) / 4
+        region = in_view(f"{name} quarter {k + 1}", pc.segment_mask(image.shape[:2], p, q, 3.0))
+        found.append(pc.count(image, region, "blue", f"{name} (rod), quarter {k + 1}", 0.25))
+    return found
+
+
+def save_outlined(image, outlines, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle, Polygon
+    h, w = image.shape[:2]
+    fig = plt.figure(figsize=(w / 100, h / 100), dpi=100)
+    ax = fig.add_axes([0, 0, 1, 1])
+    ax.imshow(image)
+    ax.set_axis_off()
+    ax.set_autoscale_on(False)
+    for kind, shape in outlines:
+        if kind == "circle":
+            ax.add_patch(Circle(shape[0], shape[1], fill=False, color="cyan", lw=0.8))
+        elif kind == "segment":
+            ax.plot(*np.transpose(shape), color="cyan", lw=0.8)
+        elif shape is not None:
+            ax.add_patch(Polygon(shape, closed=True, fill=False, color="cyan" if kind == "brown" else "yellow", lw=0.8))
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--config", default=os.path.join(PACKAGE, "config", "demo.yaml"))
+    parser.add_argument("--out", required=True, help="the screenshot (PNG)")
+    parser.add_argument("--settle", type=float, default=3.0, help="simulated seconds before the picture")
+    parser.add_argument("--timeout", type=float, default=150.0, help="wall seconds for everything")
+    args = parser.parse_args()
+    start = time.monotonic()
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    stem = os.path.splitext(args.out)[0]
+
+    port = free_port()
+    os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+    log = open(stem + "_roslaunch.log", "w")
+    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", "sim.launch",
+                               f"config:={args.config}", "rviz:=true"], stdout=log, stderr=subprocess.STDOUT)
+    try:
+        return run(args, start, stem, launch)
+    finally:
+        launch.send_signal(2)  # SIGINT: roslaunch stops its nodes
+        try:
+            launch.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            launch.kill()
+        log.close()
+
+
+def run(args, start, stem, launch):
+    import rosgraph
+    import rospy
+    from rosgraph_msgs.msg import Log
+    from std_srvs.srv import Empty
+
+    def left():
+        return max(1.0, args.timeout - (time.monotonic() - start))
+
+    with open(args.config) as f:
+        config = yaml.safe_load(f)
+    master = rosgraph.Master("/rviz_screenshot")
+    wait_for("the ROS master", master.is_online, left())
+    rospy.init_node("rviz_screenshot", disable_signals=True)
+    scene = Scene(rospy, config)
+    rviz_errors = []
+    rospy.Subscriber("/rosout_agg", Log, lambda m: rviz_errors.append(m.msg)
+                     if m.name == "/rviz" and m.level >= Log.ERROR else None, queue_size=100)
+
+    def rviz_connected():
+        # The node's own view of its connections: rviz has subscribed to the markers and TF.
+        try:
+            info = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")[2]
+        except Exception:
+            return False
+        return {(c[1], c[4]) for c in info if c[2] == "o"} >= {("/rviz", "/sim/markers"), ("/rviz", "/tf")}
+    wait_for("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), 0.5)
+    wait_for("the render window", lambda: try_render_window() is not None, left(), 0.5)
+
+    # The node publishes the floor and slopes once, when it starts, without latching: an rviz that
+    # subscribes later never sees them. ~reset publishes them again (bodies restart, time goes on).
+    rospy.wait_for_service("/sim/reset", timeout=left())
+    rospy.ServiceProxy("/sim/reset", Empty)()
+    scene.t = None
+    wait_for("a state after the reset", lambda: scene.t is not None, left())
+    t_reset = scene.t
+    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_reset + args.settle, left())
+    rospy.ServiceProxy("/sim/pause", Empty)()
+    time.sleep(1.0)  # the last messages reach rviz and this node
+
+    with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
+        view = yaml.safe_load(f)["Visualization Manager"]["Views"]["Current"]
+    camera = pc.Camera.from_rviz(view, render_window())
+    # rviz renders in its own time (software OpenGL on a loaded machine): look again until it is there.
+    look_until = time.monotonic() + min(30.0, left())
+    while True:
+        subprocess.run(["import", "-window", "root", args.out], check=True)
+        image = read_png(args.out)
+        findings, outlines = check_picture(image, scene, camera, config)
+        status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height))
+        findings += [flag(f"rviz display tree free of {k} colour ({v} px)", v == 0) for k, v in status.items()]
+        if all(f.ok for f in findings) or time.monotonic() > look_until:
+            break
+        time.sleep(2.0)
+    rviz_log = rviz_error_lines()
+    findings.append(flag(f"rviz: {len(rviz_errors)} ERROR messages on /rosout", not rviz_errors))
+    findings.append(flag(f"rviz: {len(rviz_log)} ERROR lines in its log", not rviz_log))
+    findings += [flag(f"  {m[:100]}", False) for m in rviz_errors + rviz_log]
+    report = [f"t = {t_reset:.3f} s at reset, {scene.t:.3f} s at the picture; "
+              f"render view {camera.width}x{camera.height}+{camera.left}+{camera.top}; "
+              f"{time.monotonic() - start:.1f} s wall"] + [f.line() for f in findings]
+    with open(stem + ".txt", "w") as f:
+        f.write("\n".join(report) + "\n")
+    print("\n".join(report))
+    save_outlined(image, outlines, stem + "_regions.png")
+    return 0 if all(f.ok for f in findings) else 1
+
+
+def try_render_window():
+    try:
+        return render_window()
+    except (RuntimeError, subprocess.CalledProcessError):
+        return None
+
+
+def flag(what, ok):
+    """A yes/no finding."""
+    return pc.Finding(what, "-", 1, int(ok), 1)
+
+
+def rviz_error_lines():
+    """ERROR lines of rviz's own output (roslaunch keeps it under $ROS_HOME/log/latest)."""
+    folder = os.path.join(os.environ.get("ROS_HOME", os.path.expanduser("~/.ros")), "log", "latest")
+    lines = []
+    for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+        if name.startswith("rviz"):
+            with open(os.path.join(folder, name), errors="replace") as f:
+                lines += [line.strip() for line in f if re.search(r"\bERROR\b", line)]
+    return lines
+
+
+def read_png(path):
+    import matplotlib.image
+    image = matplotlib.image.imread(path)
+    return (image[..., :3] * 255).round().astype(np.uint8) if image.dtype != np.uint8 else image[..., :3]
+
+
+if __name__ == "__main__":
+    sys.exit(main())
