@@ -5,10 +5,12 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(test_finite_guard ${PROJECT_NAME}_adapters GTest::gtest_main)
 
   # rostests: gtest nodes in test/node driving sim_node.
-  foreach(rbs_fault_test guard)
+  foreach(rbs_fault_test guard respawn)
     add_rostest_gtest(test_node_${rbs_fault_test} test/rostest/${rbs_fault_test}.test
                       test/node/test_node_${rbs_fault_test}.cpp)
     target_link_libraries(test_node_${rbs_fault_test} ${PROJECT_NAME}_adapters ${catkin_LIBRARIES} GTest::gtest)
     add_dependencies(test_node_${rbs_fault_test} sim_node)
   endforeach()
+  # The same gtest node with use_sim_time (time goes back at the respawn).
+  add_rostest(test/rostest/respawn_sim_time.test DEPENDENCIES test_node_respawn)
 endif()
