@@ -14,3 +14,14 @@ if(CATKIN_ENABLE_TESTING)
   # The same gtest node with use_sim_time (time goes back at the respawn).
   add_rostest(test/rostest/respawn_sim_time.test DEPENDENCIES test_node_respawn)
 endif()
+
+# Recording through sim.launch when a run ends badly: Ctrl-C (the bag closed, every sample in it) and
+# kill -9 of the recorder (rosbag reindex recovers all but the last chunk). Scripts, about 20 s each.
+if(CATKIN_ENABLE_TESTING)
+  foreach(rbs_record_fault sigint kill9)
+    add_test(NAME record_${rbs_record_fault}
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/faults/record_faults.sh ${rbs_record_fault}
+                     ${CATKIN_DEVEL_PREFIX})
+    set_tests_properties(record_${rbs_record_fault} PROPERTIES TIMEOUT 180)
+  endforeach()
+endif()
