@@ -26,7 +26,12 @@ BagRecorder::~BagRecorder() {
 void BagRecorder::writeStatic(const std::vector<geometry_msgs::TransformStamped>& transforms,
                               const visualization_msgs::MarkerArray& markers, const ros::Time& stamp) {
   // /tf_static is latched: a player hands it to late subscribers as a live node would.
+  // rosbag stores a given connection header as it is: without type, md5sum and definition, Python's
+  // rosbag (rosbag info, scripts) cannot read the bag.
   auto latched = boost::make_shared<ros::M_string>();
+  (*latched)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
+  (*latched)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
+  (*latched)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
   (*latched)["latching"] = "1";
   (*latched)["callerid"] = node_namespace_;
   tf2_msgs::TFMessage message;
