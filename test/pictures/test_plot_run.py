@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""scripts/plot_run.py on a short simulate run of config/demo.yaml, read from the CSV files and from the
+bag of the same run: it writes every figure, and the numbers it marks agree with the closed forms of
+docs/DESIGN.md and with the CSV's own modes. Needs RBS_SIMULATE (the simulate executable)."""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import yaml
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PACKAGE = os.path.dirname(os.path.dirname(HERE))
+PLOT = os.path.join(PACKAGE, "scripts", "plot_run.py")
+CONFIG = os.path.join(PACKAGE, "config", "demo.yaml")
+FIGURES = ("rod.png", "rollers.png", "race.png", "energy.png")
+G = 9.8
+C = {"sphere": 0.4, "cylinder": 0.5, "ring": 1.0}
+
+
+def closed_form_slip_to_roll(b):
+    """Launched sliding with backspin: u = v + omega R falls at g sin(phi) - mu_d g cos(phi) (1 + c)/c."""
+    c, phi = C[b["shape"]], b["incline_angle"]
+    u0 = b["v0"] + b["omega0"] * b["radius"]
+    return u0 / -(G * math.sin(phi) - b["mu_d"] * G * math.cos(phi) * (1 + c) / c)
+
+
+def closed_form_down(b):
+    """From rest: rolling, a = g sin(phi)/(1 + c); slipping, a = g (sin(phi) - mu_d cos(phi))."""
+    c, phi = C[b["shape"]], b["incline_angle"]
+    rolls = math.tan(phi) <= b["mu_s"] * (1 + c) / c
+    a = G * math.sin(phi) / (1 + c) if rolls else G * (math.sin(phi) - b["mu_d"] * math.cos(phi))
+    return math.sqrt(2 * b["incline_length"] / a)
+
+
+class PlotRunTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.run_dir = os.path.join(cls.tmp.name, "run")
+        bag = os.path.join(cls.tmp.name, "run.bag")
+        subprocess.run([os.environ["RBS_SIMULATE"], CONFIG, "--duration", "6", "--out-dir", cls.run_dir,
+                        "--bag", bag], check=True, stdout=subprocess.DEVNULL)
+        cls.summaries = {}
+        for source, path in (("csv", cls.run_dir), ("bag", bag)):
+            out = os.path.join(cls.tmp.name, source)
+            subprocess.run([sys.executable, PLOT, CONFIG, path, "--out-dir", out], check=True,
+                           stdout=subprocess.DEVNULL)
+            with open(os.path.join(out, "summary.json")) as f:
+                cls.summaries[source] = json.load(f)
+        with open(CONFIG) as f:
+            cls.bodies = yaml.safe_load(f)["bodies"]
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def csv_rows(self, name):
+        with open(os.path.join(self.run_dir, name + ".csv")) as f:
+            return list(csv.DictReader(f))
+
+    def test_every_figure_is_a_png_of_some_substance(self):
+        for source in ("csv", "bag"):
+            for figure in FIGURES:
+                path = os.path.join(self.tmp.name, source, figure)
+                with open(path, "rb") as f:
+                    self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", path)
+                self.assertGreater(os.path.getsize(path), 10000, path)
+
+    def test_slip_to_roll_instant_is_the_closed_form(self):
+        bowler = self.bodies["bowler"]
+        events = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"]
+        self.assertGreaterEqual(len(events), 1)
+        self.assertTrue(events[0]["exact"])
+        self.assertAlmostEqual(events[0]["t"], closed_form_slip_to_roll(bowler), delta=1e-9)
+
+    def test_slip_to_roll_instant_lies_at_the_csv_mode_change(self):
+        rows = self.csv_rows("bowler")
+        change = next(i for i in range(1, len(rows)) if rows[i - 1]["mode"] == "slipping" and rows[i]["mode"] == "rolling")
+        marked = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"][0]["t"]
+        self.assertLess(float(rows[change - 1]["t"]), marked)
+        self.assertLessEqual(marked, float(rows[change]["t"]))
+
+    def test_race_times_are_the_closed_forms(self):
+        for name in ("sphere", "cylinder", "ring"):
+            finish = self.summaries["csv"]["rollers"][name]["finish_times"]
+            self.assertGreaterEqual(len(finish), 1, name)
+            self.assertAlmostEqual(finish[0], closed_form_down(self.bodies[name]), delta=1e-9, msg=name)
+
+    def test_critical_angle_verdict_matches_the_run(self):
+        # The verdict comes from tan(phi_c) = mu_s (1 + c)/c; the modes from the simulation itself.
+        for name in ("sphere", "cylinder", "ring"):
+            rolls = self.summaries["csv"]["rollers"][name]["critical_angle"]["rolls"]
+            modes = {row["mode"] for row in self.csv_rows(name)}
+            self.assertEqual(modes, {"rolling"} if rolls else {"slipping"}, name)
+
+    def test_rod_energy_starts_at_its_closed_form_and_swings_in_contact(self):
+        rod = self.bodies["rod"]
+        summary = self.summaries["csv"]["rods"]["rod"]
+        expected = rod["mass"] * G * rod["y0"] + 0.5 * rod["mass"] * rod["vx0"] ** 2
+        self.assertAlmostEqual(summary["energy_first"], expected, delta=1e-9)
+        self.assertGreater(summary["contacts"], 0)
+        self.assertGreater(summary["largest_swing"]["swing"], 0.0)
+        self.assertLess(summary["largest_swing"]["swing"], 0.2)  # Euler-Cromer at omega_c dt = 0.089
+
+    def test_bag_and_csv_give_the_same_numbers(self):
+        self.assertEqual(json.dumps(self.summaries["bag"], sort_keys=True),
+                         json.dumps(self.summaries["csv"], sort_keys=True))
+
+    def test_a_folder_without_states_is_refused_in_one_line(self):
+        with tempfile.TemporaryDirectory() as empty:
+            result = subprocess.run([sys.executable, PLOT, CONFIG, empty, "--out-dir", empty],
+                                    capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
