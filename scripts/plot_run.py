@@ -256,17 +256,18 @@ def plot_race(run, config, path, summary):
     fig, axes = plt.subplots(2, len(groups), figsize=(9, 6), sharex="col", squeeze=False)
     for col, names in enumerate(groups):
         top, bottom = axes[0, col], axes[1, col]
-        for name in names:
+        for rank, name in enumerate(names):
             d, p = run[name], body_params(config, name)
             start, end = laps(d["t"], d["x"], d["v"])[0]
+            width = 1.0 + 1.5 * (len(names) - 1 - rank)  # wider first: equal curves (two slipping shapes) both show
             colour = COLOURS.get(p.shape, "tab:gray")
             finish = summary["rollers"][name]["finish_times"]
             crit = summary["rollers"][name]["critical_angle"]
             label = (f"{name}: c = {p.c:.3g}, φc = {crit['phi_c_deg']:.1f}°, "
                      f"{'rolls' if crit['rolls'] else 'slips'}" + (f", down at {finish[0]:.3f} s" if finish else ""))
-            top.plot(d["t"][start:end], d["x"][start:end], color=colour, label=label)
-            bottom.plot(d["t"][start:end], d["v"][start:end], color=colour, label=f"{name}: v")
-            bottom.plot(d["t"][start:end], -d["omega"][start:end] * p.radius, color=colour, ls="--",
+            top.plot(d["t"][start:end], d["x"][start:end], color=colour, lw=width, label=label)
+            bottom.plot(d["t"][start:end], d["v"][start:end], color=colour, lw=width, label=f"{name}: v")
+            bottom.plot(d["t"][start:end], -d["omega"][start:end] * p.radius, color=colour, ls="--", lw=width,
                         label=f"{name}: -ωR")
             if finish:
                 top.plot(finish[0], p.slope, "o", color=colour)
