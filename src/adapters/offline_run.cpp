@@ -94,7 +94,10 @@ class BounceCounter {
     const auto* rod = std::get_if<Rod>(&body.model);
     // An end reaches at most half a length below the centre: skip the sines while the rod is high.
     if (!rod || rod->state().y >= 0.5 * rod->params().length) return false;
-    return rod->endHeightA() < 0.0 || rod->endHeightB() < 0.0;
+    // Rod::endHeightA / endHeightB's expressions, with one sine for both ends.
+    const double y = rod->state().y;
+    const double half = (0.5 * rod->params().length) * std::sin(rod->state().theta);
+    return y + half < 0.0 || y - half < 0.0;
   }
   std::vector<char> touching_;
   std::vector<int> bounces_;

@@ -48,12 +48,17 @@ bool Roller::canRoll(const RollerParams& params) {
 }
 
 Roller::Roller(const RollerParams& params, const RollerInitial& initial)
-    : params_(params), initial_(initial) {
+    : params_(params),
+      sin_angle_(std::sin(params.incline_angle)),
+      cos_angle_(std::cos(params.incline_angle)),
+      initial_(initial) {
   reset();
 }
 
 void Roller::setParams(const RollerParams& params) {
   params_ = params;
+  sin_angle_ = std::sin(params_.incline_angle);
+  cos_angle_ = std::cos(params_.incline_angle);
   // A slipping body keeps slipping until u reaches 0; only a rolling one can lose its grip here.
   if (mode_ == RollMode::Rolling && !canRoll(params_)) {
     mode_ = RollMode::Slipping;
@@ -91,13 +96,13 @@ int Roller::slipDirection() const { return slip_sign_; }
 double Roller::slipSpeed() const { return state_.v + state_.omega * params_.radius; }
 
 double Roller::normalForce() const {
-  return params_.mass * params_.gravity * std::cos(params_.incline_angle);
+  return params_.mass * params_.gravity * cos_angle_;
 }
 
 double Roller::frictionForce() const {
   const double c = params_.inertia_factor;
   if (mode_ == RollMode::Rolling) {
-    return -params_.mass * params_.gravity * std::sin(params_.incline_angle) * c / (1.0 + c);
+    return -params_.mass * params_.gravity * sin_angle_ * c / (1.0 + c);
   }
   // Kinetic friction opposes the sliding of the contact point.
   return -slipDirection() * params_.mu_d * normalForce();
@@ -105,7 +110,7 @@ double Roller::frictionForce() const {
 
 double Roller::acceleration() const {
   const double c = params_.inertia_factor;
-  const double g_along = params_.gravity * std::sin(params_.incline_angle);
+  const double g_along = params_.gravity * sin_angle_;
   if (mode_ == RollMode::Rolling) return g_along / (1.0 + c);
   return g_along + frictionForce() / params_.mass;
 }
@@ -121,15 +126,13 @@ double Roller::angularAcceleration() const {
 double Roller::energy() const {
   const double m = params_.mass;
   const double inertia = params_.inertia_factor * m * params_.radius * params_.radius;
-  const double height_drop = state_.x * std::sin(params_.incline_angle);
+  const double height_drop = state_.x * sin_angle_;
   return 0.5 * m * state_.v * state_.v + 0.5 * inertia * state_.omega * state_.omega -
          m * params_.gravity * height_drop;
 }
 
-void Roller::advance(double h) {
+void Roller::advance(double h, double a, double alpha) {
   // Constant accelerations between events, so these updates are exact (up to rounding).
-  const double a = acceleration();
-  const double alpha = angularAcceleration();
   state_.x += state_.v * h + 0.5 * a * h * h;
   state_.v += a * h;
   state_.theta += state_.omega * h + 0.5 * alpha * h * h;
@@ -152,16 +155,19 @@ RollerStepEvents Roller::step(double dt) {
   for (int pass = 0; pass < kMaxPasses; ++pass) {
     const double remaining = dt - elapsed;
     double to_zero = kNever;
+    // Computed once a pass: the mode, and so the accelerations, change only after advance(to_zero).
+    const double a = acceleration();
+    const double alpha = angularAcceleration();
     if (mode_ == RollMode::Slipping && pass + 1 < kMaxPasses) {
-      const double dudt = acceleration() + angularAcceleration() * params_.radius;
+      const double dudt = a + alpha * params_.radius;
       // u approaches 0 only when it changes against its own sign; clamp rounding-sized negative times.
       if (slipDirection() * dudt < 0.0) to_zero = std::max(0.0, -slipSpeed() / dudt);
     }
     if (!(to_zero <= remaining)) {
-      advance(remaining);
+      advance(remaining, a, alpha);
       break;
     }
-    advance(to_zero);
+    advance(to_zero, a, alpha);
     elapsed += to_zero;
     state_.omega = -state_.v / params_.radius;  // land exactly on u = 0
     if (canRoll(params_)) {

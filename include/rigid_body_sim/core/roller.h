@@ -94,9 +94,14 @@ class Roller {
   // +1 when the contact point slides downhill (u > 0), -1 for topspin (u < 0); unused while rolling.
   int slipDirection() const;
   void enterModeFromState();
-  void advance(double h);
+  // Advances by h at the constant accelerations a and alpha of the current mode.
+  void advance(double h, double a, double alpha);
 
   RollerParams params_;
+  // sin and cos of params_.incline_angle, computed when the parameters change rather than several
+  // times a step (the same values, so results are unchanged; see bench/bench_core.cpp).
+  double sin_angle_ = 0.0;
+  double cos_angle_ = 1.0;
   RollerInitial initial_;
   RollerMotion state_;
   RollMode mode_ = RollMode::Rolling;
