@@ -177,6 +177,17 @@ def rod_energy_swing(data, length):
 
 
 # --- figures ---------------------------------------------------------------------------------------
+def save(fig, path):
+    """A small PNG: 80 dpi, 128 colours (plots have few), so that the README's copies stay light."""
+    import io
+    from PIL import Image
+    buffer = io.BytesIO()
+    fig.savefig(buffer, dpi=80, format="png")
+    plt.close(fig)
+    buffer.seek(0)
+    Image.open(buffer).convert("RGB").quantize(colors=128).save(path, optimize=True)
+
+
 def plot_rods(run, config, path):
     rods = [n for n in run if body_params(config, n).kind == "rod"]
     fig, axes = plt.subplots(len(rods), 1, figsize=(10, 3.2 * len(rods)), squeeze=False)
@@ -197,8 +208,7 @@ def plot_rods(run, config, path):
         ax.set_title(f"{name}: centre path, the rod every {ROD_EVERY:g} s (red: an end in the floor), "
                      f"L = {p.length:g} m, k = {p.k:g} N/m, t = 0..{d['t'][-1]:g} s", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save(fig, path)
 
 
 def broken_at_restarts(d, key):
@@ -237,8 +247,7 @@ def plot_rollers(run, config, path, summary):
         ax.legend(handles=handles, loc="upper left", fontsize=7, ncol=3)
     axes[-1, 0].set_xlabel("t (s)")
     fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save(fig, path)
 
 
 def slope_groups(run, config):
@@ -281,8 +290,7 @@ def plot_race(run, config, path, summary):
         bottom.set_xlabel("t (s)")
         bottom.legend(fontsize=7, loc="upper left", ncol=2)
     fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save(fig, path)
 
 
 def zoom_on_contact(ax, d, swing, colour):
@@ -324,8 +332,7 @@ def plot_energy(run, config, path):
             zoom_on_contact(ax, d, rod_energy_swing(d, p.length)["largest_swing"], colour)
     axes[-1, 0].set_xlabel("t (s)")
     fig.tight_layout()
-    fig.savefig(path, dpi=80)
-    plt.close(fig)
+    save(fig, path)
 
 
 # --- main ------------------------------------------------------------------------------------------
