@@ -1,10 +1,11 @@
 # The soak (issue 5; not part of `make test`): sim_node as fast as possible for a simulated hour, every body
 # reconfigured at random every simulated second, recorded to a bag; see README, "Long runs (soak)".
-#   make soak [SOAK_SEED=1] [SOAK_DURATION=3600]     (report and bag in out/soak/)
+#   make soak [SOAK_SEED=1] [SOAK_DURATION=3600] [SOAK_MAX_SPEED=5]     (report and bag in out/soak/)
 SOAK_SEED ?= 1
 SOAK_DURATION ?= 3600
+SOAK_MAX_SPEED ?= 5
 
 .PHONY: soak
 
 soak: build
-	bash scripts/soak --build $(BUILD) --seed $(SOAK_SEED) --duration $(SOAK_DURATION)
+	bash scripts/soak --build $(BUILD) --seed $(SOAK_SEED) --duration $(SOAK_DURATION) --max-speed $(SOAK_MAX_SPEED)

@@ -104,6 +104,8 @@ def main():
     parser.add_argument("config")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--duration", type=int, default=3600, help="simulated seconds")
+    parser.add_argument("--max-speed", type=float, default=0.0,
+                        help="at most this many simulated seconds per wall second (0: as fast as possible)")
     args = parser.parse_args(rospy.myargv()[1:])
     with open(args.config) as f:
         config = yaml.safe_load(f)
@@ -164,6 +166,8 @@ def main():
             if not reply.success:
                 sys.exit(f"soak: ~step refused at t = {second}: {reply.message}")
             wait_for_samples(reply.t)
+            if args.max_speed > 0:
+                time.sleep(max(0.0, wall0 + reply.t / args.max_speed - time.time()))
         if reply.t != second + 1:
             sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
                      "paused it (raise start_delay in scripts/soak.launch)")
