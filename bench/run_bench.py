@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """`make bench`: runs every measurement of issue 4 and prints one table (median, min, max of repeated
-runs or windows) with short notes. Needs a Release build with -DRBS_BENCHMARKS=ON whose devel/setup.bash
+runs or windows) with short notes. Needs a Release build with -Drigid_body_sim_BENCHMARKS=ON whose devel/setup.bash
 is sourced (rospy and the package's messages), hyperfine, and numpy.
 
   run_bench.py BUILD_DIR [--quick]     (--quick: shorter node runs, for trying the script out)

@@ -1,5 +1,5 @@
 # benchmarks (issue 4): parameter sweeps in the adapters library and their test; `make bench` builds the
-# Google Benchmark suite with -DRBS_BENCHMARKS=ON (Release) in a build folder of its own.
+# Google Benchmark suite with -Drigid_body_sim_BENCHMARKS=ON (Release) in a build folder of its own.
 
 # Sweeps: a thread pool in the adapters library, driven by `simulate --sweep`.
 find_package(Threads REQUIRED)
@@ -15,10 +15,11 @@ if(CATKIN_ENABLE_TESTING)
     RBS_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
 endif()
 
-option(RBS_BENCHMARKS "build the Google Benchmark suite of the core (make bench)" OFF)
-if(RBS_BENCHMARKS)
+option(${PROJECT_NAME}_BENCHMARKS "build the Google Benchmark suite of the core (make bench)" OFF)
+if(${PROJECT_NAME}_BENCHMARKS)
   find_package(benchmark REQUIRED)
   add_executable(bench_core bench/bench_core.cpp)
   target_link_libraries(bench_core ${PROJECT_NAME}_core benchmark::benchmark)
   target_compile_options(bench_core PRIVATE ${RBS_WARNINGS})
+  install(TARGETS bench_core RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()

@@ -9,6 +9,6 @@ BENCH_JOBS ?= 2
 
 bench:
 	bash scripts/install-deps bench
-	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DRBS_BENCHMARKS=ON -DCATKIN_ENABLE_TESTING=OFF >/dev/null
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -Drigid_body_sim_BENCHMARKS=ON -DCATKIN_ENABLE_TESTING=OFF >/dev/null
 	cmake --build $(BENCH_BUILD) -j$(BENCH_JOBS) -- --no-print-directory
 	source $(BENCH_BUILD)/devel/setup.bash && python3 bench/run_bench.py $(BENCH_BUILD) $(BENCH_ARGS)

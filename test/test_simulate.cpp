@@ -140,3 +140,21 @@ TEST_F(SimulateTest, BadOptionsAreRefused) {
   EXPECT_NE(run.err.find("--sample-rate"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir_ / "rod.csv"));
 }
+
+TEST_F(SimulateTest, SummaryCountsTheRodsBouncesAsTheCoreDoes) {
+  const ToolRun run = simulate(config("rod.yaml") + " --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Contacts begun, counted straight from the core's end heights at every step of the 10 s.
+  World world(loadWorldConfigFile(config("rod.yaml")));
+  const Rod& rod = std::get<Rod>(world.bodies().at(0).model);
+  int bounces = 0;
+  bool touching = false;
+  for (int s = 0; s < 10000; ++s) {
+    world.step();
+    const bool now = rod.endHeightA() < 0.0 || rod.endHeightB() < 0.0;
+    bounces += now && !touching;
+    touching = now;
+  }
+  ASSERT_GT(bounces, 1);
+  EXPECT_NE(run.out.find("  " + std::to_string(bounces) + " bounces\n"), std::string::npos) << run.out;
+}
