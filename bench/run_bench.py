@@ -45,13 +45,16 @@ def percentile(values, p):
     return ordered[min(len(ordered) - 1, max(0, int(round(p / 100.0 * (len(ordered) - 1)))))]
 
 
-def hyperfine(commands, runs, out, warmup=2):
-    """Times whole processes; returns each command's list of wall times (s)."""
+def hyperfine(commands, runs, out, warmup=2, cpu=False):
+    """Times whole processes; returns each command's list of wall times (s), or CPU times with cpu=True."""
     path = os.path.join(out, "hyperfine.json")
     subprocess.run(["hyperfine", "-N", "--style", "none", "--warmup", str(warmup), "--runs", str(runs),
                     "--export-json", path] + commands, check=True, stdout=subprocess.DEVNULL)
     with open(path) as f:
-        return [result["times"] for result in json.load(f)["results"]]
+        results = json.load(f)["results"]
+    if cpu:
+        return [[u + s for u, s in zip(r["user"], r["system"])] for r in results]
+    return [result["times"] for result in results]
 
 
 # --- 1. core ------------------------------------------------------------------------------------
@@ -73,6 +76,19 @@ def core(build, out):
         if name.startswith("worldStep/"):
             label = "world of %s bodies, per body-step" % name.split("/")[1]
         row("1 core", label, values, "ns/step (CPU)", targets.get(name, ""))
+    note("core figures are CPU time per step (Google Benchmark's cpu_time): the machine is shared, and wall time "
+         "per step ran 2-3x higher at the load averages seen. Debian's libbenchmark is built as DEBUG (its own "
+         "warning); that slows its loop bookkeeping, not the code measured")
+    note("where the rod's time goes (perf record on bench_core, Euler-Cromer): 43 % in glibc's sincos (one call a "
+         "step, kept: the text's program uses libm's sin and cos, and test_rod checks the trajectory bit for bit), "
+         "28 % in the force model, most of it the three divisions by M and I kept in the text's order for the same "
+         "reason, 25 % in Rod::step/eulerCromerStep storing a state that waits on those divisions. One rod is a "
+         "single dependent chain (sincos -> forces -> divisions -> state), so the step is latency-bound. Rod::step "
+         "also recomputes its sub-step count (a sqrt and a division) every step: caching it in src/core/rod.cpp "
+         "would save a few ns, not the 20 ns to the target")
+    note("roller: the sine and cosine of the incline are computed when the parameters change and the "
+         "accelerations once a step (before: 2 libm calls a rolling step, 6 a slipping one; 27 -> 10 ns rolling, "
+         "67 -> 20 ns slipping, results bit-identical). A slipping step still has three IEEE divisions")
     return times
 
 
@@ -263,6 +279,11 @@ def recording(ros, out, config_1khz, seconds):
             row("4 record", "%s messages in the bag (published: %d)" % (topic, published), [info[topic].message_count],
                 "msgs", str(published))
     row("4 record", "bag size per simulated second", [os.path.getsize(bag) / seconds / 1e6], "MB/s")
+    markers = info.get("/sim/markers")
+    if markers and markers.message_count < published:
+        note("rosbag record kept %d of %d /sim/markers messages (MarkerArrays with trails, most of the bag's %.0f MB "
+             "per simulated second at 1 kHz): the recorder's queue overflows on them, not on the states"
+             % (markers.message_count, published, os.path.getsize(bag) / seconds / 1e6))
 
 
 def faster_than_real_time(ros, build, out, seconds):
@@ -296,11 +317,18 @@ def sweeps(build, out):
     simulate = os.path.join(build, "devel/lib/rigid_body_sim/simulate")
     command = "%s %s --sweep rod.theta0=0:6.283:%%d --jobs %%d --out-dir %s" % (
         simulate, os.path.join(ROOT, "config/rod.yaml"), os.path.join(out, "sweep"))
-    one, two = hyperfine([command % (1000, 1), command % (1000, 2)], runs=5, out=out, warmup=1)
+    commands = [command % (1000, 1), command % (1000, 2)]
+    one, two = hyperfine(commands, runs=5, out=out, warmup=1)
+    cpu_one, cpu_two = hyperfine(commands, runs=1, out=out, warmup=0, cpu=True)
     row("6 sweep", "1,000 rods x 10 s on 1 thread", [1000 / t for t in one], "variants/s")
     row("6 sweep", "1,000 rods x 10 s on 2 threads", [1000 / t for t in two], "variants/s")
     row("6 sweep", "speed-up on 2 threads (run pairs, sorted)", [a / b for a, b in zip(sorted(one), sorted(two))],
         "x", ">= 1.8")
+    row("6 sweep", "CPU time per variant on 1 thread (user + sys)", [t / 1000 * 1e3 for t in cpu_one], "ms")
+    row("6 sweep", "CPU time per variant on 2 threads (user + sys)", [t / 1000 * 1e3 for t in cpu_two], "ms")
+    note("sweeps ran at load average %s on %d cores: the speed-up on 2 threads needs 2 idle cores; "
+         "equal CPU time per variant on 1 and 2 threads means the threads do not slow each other"
+         % (load(), os.cpu_count()))
     big = hyperfine([command % (10000, 0)], runs=3, out=out, warmup=0)[0]
     row("6 sweep", "10,000 rods x 10 s, every core (whole process)", big, "s", "< 5")
 
@@ -326,6 +354,11 @@ def table():
     return "\n".join(lines)
 
 
+def load():
+    with open("/proc/loadavg") as f:
+        return " ".join(f.read().split()[:3])
+
+
 def machine():
     cpu = ""
     with open("/proc/cpuinfo") as f:
@@ -333,8 +366,7 @@ def machine():
             if line.startswith("model name"):
                 cpu = line.split(":", 1)[1].strip()
                 break
-    load = open("/proc/loadavg").read().split()[:3]
-    return "%s, %d cores, load average %s at the end" % (cpu, os.cpu_count(), " ".join(load))
+    return "%s, %d cores, load average %s at the end" % (cpu, os.cpu_count(), load())
 
 
 def main():
