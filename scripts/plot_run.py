@@ -339,6 +339,10 @@ def plot_energy(run, config, path):
 def summarise(run, config):
     summary = {"rods": {}, "rollers": {}}
     for name, d in run.items():
+        steps = np.diff(d["t"])
+        gaps = int((steps > 1.5 * np.median(steps)).sum()) if len(steps) else 0
+        if gaps:  # e.g. rosbag record dropping messages of a node run as fast as possible
+            print(f"plot_run: warning: {name}: {gaps} gaps in the samples", file=sys.stderr)
         p = body_params(config, name)
         if p.kind == "rod":
             summary["rods"][name] = rod_energy_swing(d, p.length)
