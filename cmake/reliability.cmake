@@ -11,3 +11,17 @@ if(CATKIN_ENABLE_TESTING)
     RBS_SIMULATE_EXE="$<TARGET_FILE:simulate>"
     RBS_BAD_INPUT_DIR="${CMAKE_CURRENT_SOURCE_DIR}/test/bad_input")
 endif()
+
+# --- sim_node on bad input: at start-up (the node started per row by the test) and at run time ---
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  foreach(rbs_bad_input startup runtime)
+    add_rostest_gtest(test_node_bad_input_${rbs_bad_input} test/rostest/bad_input_${rbs_bad_input}.test
+                      test/node/test_node_bad_input_${rbs_bad_input}.cpp)
+    target_link_libraries(test_node_bad_input_${rbs_bad_input} ${PROJECT_NAME}_adapters ${catkin_LIBRARIES} GTest::gtest)
+    add_dependencies(test_node_bad_input_${rbs_bad_input} sim_node)
+    target_compile_definitions(test_node_bad_input_${rbs_bad_input} PRIVATE
+      RBS_SIM_NODE_EXE="$<TARGET_FILE:sim_node>"
+      RBS_BAD_INPUT_DIR="${CMAKE_CURRENT_SOURCE_DIR}/test/bad_input")
+  endforeach()
+endif()

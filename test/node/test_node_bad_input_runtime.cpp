@@ -1,0 +1,212 @@
+// sim_node at run time on bad input: a table of reconfigure requests that the .cfg ranges let through
+// (values a range cannot express: 0 where > 0 is needed, NaN, relations between keys, names outside an
+// enum), `rosparam set` + `dynparam set_from_parameters`, and ~step with absurd counts. Each one must be
+// refused with exactly one error line on /rosout, the server must keep showing the values in use, the node
+// must stay alive, and afterwards the states must equal the core World's, as if nothing had been asked.
+#include <cstdlib>
+
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <rosgraph_msgs/Log.h>
+
+#include "node_test_util.h"
+
+using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
+
+namespace {
+
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+
+struct BadRequest {
+  std::string what;
+  std::string body;
+  std::vector<std::pair<std::string, double>> doubles;
+  std::vector<std::pair<std::string, std::string>> strings;
+};
+
+const std::vector<BadRequest>& badRequests() {
+  static const std::vector<BadRequest> rows = {
+      {"rod k = 0", "rod", {{"k", 0.0}}, {}},
+      {"rod mass = 0", "rod", {{"mass", 0.0}}, {}},
+      {"rod length = 0", "rod", {{"length", 0.0}}, {}},
+      {"rod k = NaN", "rod", {{"k", kNan}}, {}},
+      {"rod y0 = NaN", "rod", {{"y0", kNan}}, {}},
+      {"rod stiff k for a light rod", "rod", {{"k", 1e12}, {"mass", 1e-9}}, {}},
+      {"rod integrator leapfrog", "rod", {}, {{"integrator", "leapfrog"}}},
+      {"sphere mu_d > mu_s", "sphere", {{"mu_d", 0.9}}, {}},
+      {"sphere mu_s below mu_d", "sphere", {{"mu_s", 0.1}}, {}},
+      {"sphere x0 beyond incline_length", "sphere", {{"x0", 6.0}}, {}},
+      {"bowler incline_length below x0", "bowler", {{"x0", 10.0}, {"incline_length", 8.0}}, {}},
+      {"sphere vertical slope", "sphere", {{"incline_angle", 1.5707963267948966}}, {}},
+      {"sphere incline_angle NaN", "sphere", {{"incline_angle", kNan}}, {}},
+      {"sphere radius = 0", "sphere", {{"radius", 0.0}}, {}},
+      {"sphere mass = 0", "sphere", {{"mass", 0.0}}, {}},
+      {"sphere factor contradicting shape", "sphere", {{"inertia_factor", 0.3}}, {}},
+      {"sphere shape cube", "sphere", {}, {{"shape", "cube"}}},
+      {"sphere custom with factor 0", "sphere", {{"inertia_factor", 0.0}}, {{"shape", "custom"}}},
+      {"bowler x0 beyond the slope", "bowler", {{"x0", 20.0}}, {}},
+  };
+  return rows;
+}
+
+// Error lines the node sends to /rosout.
+class ErrorLog {
+ public:
+  explicit ErrorLog(ros::NodeHandle& nh)
+      : sub_(nh.subscribe<rosgraph_msgs::Log>("/rosout", 1000, [this](const rosgraph_msgs::Log::ConstPtr& msg) {
+          if (msg->name != "/sim" || msg->level < rosgraph_msgs::Log::ERROR) return;
+          std::lock_guard<std::mutex> lock(mutex_);
+          lines_.push_back(msg->msg);
+        })) {}
+  bool waitConnected(double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (sub_.getNumPublishers() == 0 && ros::WallTime::now() < end) ros::WallDuration(0.02).sleep();
+    return sub_.getNumPublishers() > 0;
+  }
+  // The lines that arrived since the last call, waiting `settle` seconds for stragglers.
+  std::vector<std::string> take(double settle = 0.5) {
+    ros::WallDuration(settle).sleep();
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::string> taken;
+    taken.swap(lines_);
+    return taken;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> lines_;
+  ros::Subscriber sub_;
+};
+
+dynamic_reconfigure::Config reconfigure(const BadRequest& row, bool* called) {
+  dynamic_reconfigure::Reconfigure srv;
+  for (const auto& [key, value] : row.doubles) {
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = key;
+    p.value = value;
+    srv.request.config.doubles.push_back(p);
+  }
+  for (const auto& [key, value] : row.strings) {
+    dynamic_reconfigure::StrParameter p;
+    p.name = key;
+    p.value = value;
+    srv.request.config.strs.push_back(p);
+  }
+  *called = ros::service::call("/sim/" + row.body + "/set_parameters", srv);
+  return srv.response.config;
+}
+
+// The values a server shows, exactly (NaN never equals, so a NaN shown fails too).
+void expectSameConfig(const dynamic_reconfigure::Config& expected, const dynamic_reconfigure::Config& got) {
+  ASSERT_EQ(expected.doubles.size(), got.doubles.size());
+  for (std::size_t i = 0; i < expected.doubles.size(); ++i) {
+    EXPECT_EQ(expected.doubles[i].name, got.doubles[i].name);
+    EXPECT_EQ(expected.doubles[i].value, got.doubles[i].value) << got.doubles[i].name;
+  }
+  ASSERT_EQ(expected.strs.size(), got.strs.size());
+  for (std::size_t i = 0; i < expected.strs.size(); ++i) {
+    EXPECT_EQ(expected.strs[i].value, got.strs[i].value) << got.strs[i].name;
+  }
+}
+
+void expectOneLineNaming(const std::vector<std::string>& lines, const std::string& body) {
+  ASSERT_EQ(lines.size(), 1u) << "error lines: " << ::testing::PrintToString(lines);
+  EXPECT_NE(lines[0].find("body '" + body + "'"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find("is not allowed (allowed: "), std::string::npos) << lines[0];
+}
+
+}  // namespace
+
+TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
+  ros::NodeHandle nh;
+  const WorldConfig config = loadWorldConfigFile(configPath());
+  World world(config);
+  StateCollector c(nh, world);
+  ErrorLog errors(nh);
+  ASSERT_TRUE(c.waitConnected(10.0));
+  ASSERT_TRUE(errors.waitConnected(10.0));
+  ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
+  for (const char* body : {"rod", "sphere", "bowler"}) {
+    ASSERT_TRUE(ros::service::waitForService(std::string("/sim/") + body + "/set_parameters", 10000));
+  }
+  ASSERT_TRUE(callEmpty("/sim/pause"));
+  ros::WallDuration(0.3).sleep();
+  bool called = false;
+  const Step sync = callStep(1, &called);
+  ASSERT_TRUE(called && sync.response.success) << sync.response.message;
+  for (std::int64_t i = stepIndex(sync.response.t, config.rate); i > 0; --i) world.step();
+  errors.take();
+
+  // The values each server shows before anything is asked (an empty request changes nothing).
+  std::map<std::string, dynamic_reconfigure::Config> shown;
+  for (const char* body : {"rod", "sphere", "bowler"}) {
+    shown[body] = reconfigure({"", body, {}, {}}, &called);
+    ASSERT_TRUE(called);
+  }
+  ASSERT_TRUE(errors.take().empty()) << "an empty request was refused";
+
+  // --- dynamic_reconfigure requests the .cfg ranges let through
+  for (const BadRequest& row : badRequests()) {
+    SCOPED_TRACE(row.what);
+    const auto returned = reconfigure(row, &called);
+    ASSERT_TRUE(called) << "the node no longer answers";
+    expectSameConfig(shown[row.body], returned);
+    expectOneLineNaming(errors.take(), row.body);
+  }
+
+  // --- parameter-server values pushed with `dynparam set_from_parameters NODE _key:=value` (its way of
+  // copying parameters into a running server)
+  for (const auto& [body, assignment] : {std::pair<std::string, std::string>{"sphere", "_mu_d:=0.9"},
+                                         std::pair<std::string, std::string>{"rod", "_mass:=0.0"}}) {
+    SCOPED_TRACE(body + " " + assignment);
+    const std::string command = "rosrun dynamic_reconfigure dynparam set_from_parameters /sim/" + body + " " +
+                                assignment + " __name:=bad_input_dynparam_" + body + " >/dev/null";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    expectOneLineNaming(errors.take(1.0), body);
+    const auto returned = reconfigure({"", body, {}, {}}, &called);
+    ASSERT_TRUE(called);
+    expectSameConfig(shown[body], returned);
+  }
+  // `rosparam set` on a server's parameter changes nothing by itself; the next reconfigure writes back
+  // the values in use.
+  {
+    ros::param::set("/sim/sphere/mu_d", 0.9);
+    const auto returned = reconfigure({"", "sphere", {{"mu_s", 0.2}}, {}}, &called);
+    ASSERT_TRUE(called);
+    expectSameConfig(shown["sphere"], returned);
+    double mu_d = 0.0;
+    ASSERT_TRUE(ros::param::get("/sim/sphere/mu_d", mu_d));
+    EXPECT_EQ(mu_d, 0.15);
+    EXPECT_TRUE(errors.take().empty());
+  }
+
+  // --- ~step with absurd counts, and while running
+  for (const std::uint32_t steps : {0u, 600001u, 4294967295u}) {
+    SCOPED_TRACE("step " + std::to_string(steps));
+    const Step s = callStep(steps, &called);
+    ASSERT_TRUE(called) << "the node no longer answers";
+    EXPECT_FALSE(s.response.success);
+    EXPECT_EQ(s.response.t, world.time()) << "a refused step moved the time";
+    const auto lines = errors.take();
+    ASSERT_EQ(lines.size(), 1u) << ::testing::PrintToString(lines);
+    EXPECT_NE(lines[0].find(std::to_string(steps)), std::string::npos) << lines[0];
+  }
+
+  // --- nothing changed: 500 steps later every body is where the core World, never reconfigured, is
+  c.clear();
+  const Step s = callStep(500, &called);
+  ASSERT_TRUE(called && s.response.success) << s.response.message;
+  for (int i = 0; i < 500; ++i) world.step();
+  ASSERT_EQ(s.response.t, world.time());
+  ASSERT_TRUE(c.waitAllAt(world, world.time(), 5.0)) << "no state of every body at t = " << world.time();
+  for (const auto& body : world.bodies()) {
+    if (std::holds_alternative<Rod>(body.model)) {
+      expectSameState(expectedRod(world, body.name), c.rod(body.name).back(), body.name);
+    } else {
+      expectSameState(expectedRoller(world, body.name), c.roller(body.name).back(), body.name);
+    }
+  }
+  EXPECT_TRUE(errors.take().empty());
+}
+
+RBS_ROSTEST_MAIN("test_node_bad_input_runtime")
