@@ -52,8 +52,8 @@ def hyperfine(commands, runs, out, warmup=2, cpu=False):
                     "--export-json", path] + commands, check=True, stdout=subprocess.DEVNULL)
     with open(path) as f:
         results = json.load(f)["results"]
-    if cpu:
-        return [[u + s for u, s in zip(r["user"], r["system"])] for r in results]
+    if cpu:  # hyperfine keeps only the mean CPU time of the runs
+        return [[r["user"] + r["system"]] for r in results]
     return [result["times"] for result in results]
 
 
@@ -319,13 +319,13 @@ def sweeps(build, out):
         simulate, os.path.join(ROOT, "config/rod.yaml"), os.path.join(out, "sweep"))
     commands = [command % (1000, 1), command % (1000, 2)]
     one, two = hyperfine(commands, runs=5, out=out, warmup=1)
-    cpu_one, cpu_two = hyperfine(commands, runs=1, out=out, warmup=0, cpu=True)
+    cpu_one, cpu_two = hyperfine(commands, runs=3, out=out, warmup=0, cpu=True)
     row("6 sweep", "1,000 rods x 10 s on 1 thread", [1000 / t for t in one], "variants/s")
     row("6 sweep", "1,000 rods x 10 s on 2 threads", [1000 / t for t in two], "variants/s")
     row("6 sweep", "speed-up on 2 threads (run pairs, sorted)", [a / b for a, b in zip(sorted(one), sorted(two))],
         "x", ">= 1.8")
-    row("6 sweep", "CPU time per variant on 1 thread (user + sys)", [t / 1000 * 1e3 for t in cpu_one], "ms")
-    row("6 sweep", "CPU time per variant on 2 threads (user + sys)", [t / 1000 * 1e3 for t in cpu_two], "ms")
+    row("6 sweep", "CPU time per variant on 1 thread (user + sys, mean of 3 runs)", [t / 1000 * 1e3 for t in cpu_one], "ms")
+    row("6 sweep", "CPU time per variant on 2 threads (user + sys, mean of 3 runs)", [t / 1000 * 1e3 for t in cpu_two], "ms")
     note("sweeps ran at load average %s on %d cores: the speed-up on 2 threads needs 2 idle cores; "
          "equal CPU time per variant on 1 and 2 threads means the threads do not slow each other"
          % (load(), os.cpu_count()))
