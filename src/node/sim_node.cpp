@@ -114,7 +114,7 @@ SimNode::~SimNode() {
 
 void SimNode::advertise() {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 10);
-  if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
       state_publishers_.push_back(private_node_.advertise<RodState>(body.name + "/state", kStateQueue));
@@ -250,16 +250,27 @@ void SimNode::guardLocked() {
   }
 }
 
+// Only forward: /clock never repeats a time (a reset or a ~step publishes the current time once more).
+void SimNode::publishClockLocked() {
+  const ros::Time now = simStamp(world_.time());
+  if (!options_.publish_clock || now <= last_clock_) return;
+  rosgraph_msgs::Clock clock;
+  clock.clock = now;
+  clock_publisher_.publish(clock);
+  last_clock_ = now;
+}
+
 void SimNode::publishLocked() {
   const double t = world_.time();
   const ros::Time stamp = stampOf(t);
-  if (options_.publish_clock) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = simStamp(t);
-    clock_publisher_.publish(clock);
-  }
+  publishClockLocked();
   const Snapshot snapshot = snapshots_->build(t, stamp, world_.bodies());
-  tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+  // A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset
+  // at a publishing instant the bodies' frames move with the next publication.
+  if (stamp > last_tf_stamp_) {
+    tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+    last_tf_stamp_ = stamp;
+  }
   marker_publisher_.publish(snapshot.markers);
   for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
     std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
@@ -275,6 +286,9 @@ void SimNode::publishStaticLocked() {
 
 void SimNode::stepLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
+  // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
+  // it subscribes to anything, and so would miss the start of a run on simulated time.
+  publishClockLocked();
   wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay), [this] { return stopping_.load(); });
   publishStaticLocked();
   publishLocked();

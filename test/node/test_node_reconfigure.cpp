@@ -90,6 +90,7 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
   ASSERT_TRUE(ros::service::waitForService("/sim/rod/set_parameters", 10000));
   ASSERT_TRUE(ros::service::waitForService("/sim/sphere/set_parameters", 10000));
+  ASSERT_TRUE(ros::service::waitForService("/sim/cylinder/set_parameters", 10000));
   ASSERT_TRUE(callEmpty("/sim/pause"));
   ros::WallDuration(0.3).sleep();  // states published before the pause arrive before any comparison
 
@@ -119,8 +120,17 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   sphere_params.mu_s = 0.16;
   rollerOf(world, "sphere").setParams(sphere_params);
 
-  // 2 s of simulated time: the rod reaches the floor, the sphere slips.
-  stepAndCompare(c, world, 2000, "after k = 2000, mu_s = 0.16");
+  // The cylinder slips on its slope; at 0.3 rad its slip decays and it rolls (tan 0.3 < mu_s (1 + c) / c).
+  auto cylinder_cfg = setDouble("cylinder", "incline_angle", 0.3, &called);
+  ASSERT_TRUE(called);
+  EXPECT_EQ(0.3, doubleOf(cylinder_cfg, "incline_angle"));
+  RollerParams cylinder_params = rollerOf(world, "cylinder").params();
+  cylinder_params.incline_angle = 0.3;
+  rollerOf(world, "cylinder").setParams(cylinder_params);
+
+  // 2 s of simulated time: the rod reaches the floor, the sphere slips, the cylinder comes to roll.
+  stepAndCompare(c, world, 2000, "after k = 2000, mu_s = 0.16, incline_angle = 0.3");
+  EXPECT_EQ(RollMode::Rolling, rollerOf(world, "cylinder").mode());
   // The changes mattered (otherwise the comparison above would prove nothing).
   {
     World unchanged = unchanged_before;
@@ -128,6 +138,8 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
     EXPECT_NE(rodOf(unchanged, "rod").state().y, rodOf(world, "rod").state().y) << "k made no difference";
     EXPECT_NE(rollerOf(unchanged, "sphere").state().omega, rollerOf(world, "sphere").state().omega)
         << "mu_s made no difference";
+    EXPECT_NE(rollerOf(unchanged, "cylinder").state().v, rollerOf(world, "cylinder").state().v)
+        << "incline_angle made no difference";
   }
 
   // --- refused: k = 0 and mu_d > mu_s; the server shows the values in use, nothing changes
@@ -136,7 +148,7 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
   sphere_cfg = setDouble("sphere", "mu_d", 0.9, &called);
   ASSERT_TRUE(called) << "the node died on mu_d > mu_s";
-  EXPECT_EQ(config.bodies.size() > 0 ? 0.15 : 0.0, doubleOf(sphere_cfg, "mu_d"));
+  EXPECT_EQ(rollerOf(world, "sphere").params().mu_d, doubleOf(sphere_cfg, "mu_d"));
   EXPECT_EQ(0.16, doubleOf(sphere_cfg, "mu_s"));
   stepAndCompare(c, world, 500, "after refused k = 0, mu_d = 0.9");
 

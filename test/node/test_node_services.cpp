@@ -1,4 +1,6 @@
 // sim_node at wall pace: ~pause, ~step, ~reset and ~unpause, checked against the core World.
+#include <tf2_msgs/TFMessage.h>
+
 #include "node_test_util.h"
 
 using namespace rigid_body_sim;
@@ -49,6 +51,13 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   const double dt = 1.0 / config.rate;
 
   StateCollector c(nh, initial_world);
+  // Every transform on /tf: per frame, stamps strictly increasing through pause, step, reset and unpause.
+  std::mutex tf_mutex;
+  std::map<std::string, std::vector<ros::Time>> tf_stamps;
+  ros::Subscriber tf_sub = nh.subscribe<tf2_msgs::TFMessage>("/tf", 10000, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(tf_mutex);
+    for (const auto& tf : m->transforms) tf_stamps[tf.child_frame_id].push_back(tf.header.stamp);
+  });
   ASSERT_TRUE(c.waitConnected(10.0));
   ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
   ASSERT_TRUE(c.waitFor([&] { return c.rodsLocked()["rod"].size() >= 5; }, 5.0)) << "no rod states";
@@ -160,6 +169,15 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   const double advanced = latestRodT(c) - t_a;
   EXPECT_GT(advanced, 0.7);
   EXPECT_LT(advanced, 1.3);
+
+  tf_sub.shutdown();
+  std::lock_guard<std::mutex> lock(tf_mutex);
+  EXPECT_EQ(initial_world.bodies().size(), tf_stamps.size()) << "a body without transforms on /tf";
+  for (const auto& [frame, stamps] : tf_stamps) {
+    for (std::size_t j = 1; j < stamps.size(); ++j) {
+      ASSERT_GT(stamps[j], stamps[j - 1]) << frame << ": transform " << j << " repeats or goes back (TF_REPEATED_DATA)";
+    }
+  }
 }
 
 RBS_ROSTEST_MAIN("test_node_services")

@@ -63,6 +63,7 @@ class SimNode {
   // Holds a body that became non-finite at its last finite state and logs the one error about it.
   void guardLocked();
   void publishLocked();
+  void publishClockLocked();
   void publishStaticLocked();
   ros::Time stampOf(double t) const;
   double wallNow() const;
@@ -77,6 +78,8 @@ class SimNode {
   FiniteGuard guard_;
   std::int64_t steps_per_publish_;
   std::int64_t last_published_step_ = -1;
+  ros::Time last_clock_;     // the last /clock published (zero: none yet)
+  ros::Time last_tf_stamp_;  // the stamp of the last transforms on /tf
   bool paused_ = false;
   StepPacer pacer_;
   std::condition_variable wake_;

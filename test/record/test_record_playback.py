@@ -1,0 +1,199 @@
+#!/usr/bin/env python3
+"""sim_node's output checked against the offline tool, live, in a recording and in its playback.
+
+- As fast as possible (real_time_factor 0) for 60 s of simulated time, a listener receives every state
+  exactly once: 60 * publish_rate + 1 per body, at t = j / publish_rate, the last at 60 s (60 * rate steps),
+  each equal to `simulate`'s CSV row at that t, bit for bit; /clock never 0, strictly increasing, to 60 s.
+- Through sim.launch record:=true use_sim_time:=true: the bag is closed, has every topic, each body's states
+  at every publishing instant exactly once, stamped in simulated time (t + 1 ns), equal to the CSV.
+- playback.launch (rosbag play --clock) delivers the recorded states to a listener, in order.
+
+Usage: test_record_playback.py SIMULATE_EXE SIM_NODE_EXE CONFIG.yaml   (with the package's devel space sourced)
+"""
+import csv
+import math
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rosbag
+import rosgraph
+import rospy
+import yaml
+from rosgraph_msgs.msg import Clock
+from rigid_body_sim.msg import RodState, RollerState
+
+SIMULATE, SIM_NODE, CONFIG = None, None, None
+ROD_FIELDS = ["t", "x", "y", "theta", "vx", "vy", "omega", "energy"]
+ROLLER_FIELDS = ["t", "x", "v", "theta", "omega", "mode", "friction", "normal", "energy"]
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def fields_of(msg):
+    return ROD_FIELDS if msg._type == "rigid_body_sim/RodState" else ROLLER_FIELDS
+
+
+def as_row(msg):
+    """A state message as the values of simulate's CSV row (numbers as floats, mode as text)."""
+    return [getattr(msg, f) for f in fields_of(msg)]
+
+
+def sim_stamp(t):
+    """The node's stamp for simulated time t: 1 ns + ros::Duration(t) (which rounds to the nearest ns)."""
+    sec = math.floor(t)
+    return rospy.Time(0, 1) + rospy.Duration(int(sec), int(math.floor((t - sec) * 1e9 + 0.5)))
+
+
+class Master:
+    """A roscore of its own on a free port, and this process as a rospy node on it."""
+
+    def __init__(self):
+        self.port = free_port()
+        self.env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{self.port}")
+        self.process = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        os.environ["ROS_MASTER_URI"] = self.env["ROS_MASTER_URI"]
+        deadline = time.time() + 30
+        while not rosgraph.Master("/listener").is_online():
+            if time.time() > deadline:
+                raise RuntimeError("roscore did not come up")
+            time.sleep(0.2)
+        if not rospy.core.is_initialized():
+            rospy.init_node("listener", anonymous=True, disable_signals=True)
+
+    def run(self, args, timeout=120):
+        return subprocess.run(args, env=self.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              timeout=timeout)
+
+    def stop(self):
+        self.process.terminate()
+        self.process.wait(timeout=20)
+
+
+class Listener:
+    """Every state message of every body, in arrival order (unbounded queues: nothing dropped here)."""
+
+    def __init__(self, config):
+        self.states = {name: [] for name in config["bodies"]}
+        self.subs = [rospy.Subscriber(f"/sim/{name}/state",
+                                      RodState if body["type"] == "rod" else RollerState,
+                                      lambda msg, name=name: self.states[name].append(msg), queue_size=None)
+                     for name, body in config["bodies"].items()]
+
+    def wait_connected(self, timeout=20):
+        deadline = time.time() + timeout
+        while any(sub.get_num_connections() == 0 for sub in self.subs):
+            if time.time() > deadline:
+                raise RuntimeError("no publisher of the state topics")
+            time.sleep(0.05)
+
+    def close(self):
+        time.sleep(1.0)  # the last messages in flight
+        for sub in self.subs:
+            sub.unregister()
+
+
+class NodeOutput(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        with open(CONFIG) as f:
+            cls.config = yaml.safe_load(f)
+        cls.publish_rate = float(cls.config.get("publish_rate", 50.0))
+        cls.tmp = tempfile.mkdtemp(prefix="rbs_record_")
+        out = os.path.join(cls.tmp, "csv")
+        subprocess.run([SIMULATE, CONFIG, "--duration", "60", "--out-dir", out], check=True,
+                       stdout=subprocess.DEVNULL)
+        cls.csv = {}
+        for name in cls.config["bodies"]:
+            with open(os.path.join(out, f"{name}.csv")) as f:
+                reader = csv.reader(f)
+                header = next(reader)
+                cls.csv[name] = (header, [[cell if key == "mode" else float(cell) for key, cell in zip(header, row)]
+                                          for row in reader])
+        cls.master = Master()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.master.stop()
+
+    def expect_every_sample(self, states, duration, what):
+        """Each body's states: every publishing instant up to duration exactly once, each equal to the CSV."""
+        samples = int(round(duration * self.publish_rate))
+        for name, msgs in states.items():
+            ts = [m.t for m in msgs]
+            self.assertEqual(len(ts), samples + 1, f"{what}: {name} has {len(ts)} states for {duration:g} s")
+            self.assertEqual(ts, [j / self.publish_rate for j in range(samples + 1)], f"{what}: {name}")
+            header, rows = self.csv[name]
+            for row, msg in zip(rows, msgs):
+                self.assertEqual(header, fields_of(msg), name)
+                self.assertEqual(row, as_row(msg), f"{what}: {name} at t = {msg.t}")
+
+    def test_as_fast_as_possible_every_state_once(self):
+        listener = Listener(self.config)
+        clocks = []
+        clock_sub = rospy.Subscriber("/clock", Clock, lambda msg: clocks.append(msg.clock), queue_size=None)
+        self.master.run(["rosparam", "load", CONFIG, "/sim"])
+        node = subprocess.Popen([SIM_NODE, "__name:=sim", "_real_time_factor:=0", "_duration:=60", "_start_delay:=2",
+                                 "_publish_clock:=true"],
+                                env=self.master.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            listener.wait_connected()
+        except RuntimeError:
+            node.kill()
+            raise AssertionError("no state publisher; the node said:\n" + node.communicate()[0])
+        log, _ = node.communicate(timeout=120)
+        listener.close()
+        clock_sub.unregister()
+        self.assertEqual(node.returncode, 0, log)
+        self.assertIn("simulated 60.000 s", log)
+        self.expect_every_sample(listener.states, 60.0, "live, real_time_factor 0")
+        self.assertGreater(clocks[0], rospy.Time(0))
+        self.assertTrue(all(b > a for a, b in zip(clocks, clocks[1:])), "/clock not strictly increasing")
+        self.assertEqual(clocks[-1], sim_stamp(60.0))
+
+    def test_recording_and_playback(self):
+        duration = 15.0
+        bag_path = os.path.join(self.tmp, "run.bag")
+        launch = self.master.run(
+            ["roslaunch", "rigid_body_sim", "sim.launch", f"config:={CONFIG}", "record:=true", f"bag:={bag_path}",
+             "use_sim_time:=true", "real_time_factor:=5", f"duration:={duration:g}"])
+        self.assertTrue(os.path.exists(bag_path), "no bag; roslaunch said:\n" + launch.stdout[-3000:])
+        self.assertFalse(os.path.exists(bag_path + ".active"), "the recorder did not close the bag")
+        recorded = {}
+        with rosbag.Bag(bag_path) as bag:
+            for topic, msg, _ in bag.read_messages():
+                recorded.setdefault(topic, []).append(msg)
+        topics = {"/tf", "/tf_static", "/sim/markers"} | {f"/sim/{name}/state" for name in self.config["bodies"]}
+        self.assertEqual(set(recorded), topics)
+
+        states = {name: recorded[f"/sim/{name}/state"] for name in self.config["bodies"]}
+        self.expect_every_sample(states, duration, "recorded")
+        for name, msgs in states.items():
+            for a, b in zip(msgs, msgs[1:]):
+                self.assertGreater(b.header.stamp, a.header.stamp, f"{name} at t = {b.t}")
+            for m in msgs:
+                self.assertEqual(m.header.stamp, sim_stamp(m.t), f"{name} at t = {m.t}")
+
+        listener = Listener(self.config)
+        play = self.master.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={bag_path}",
+                                "rviz:=false", "rate:=5", "delay:=1"])
+        listener.close()
+        for name in self.config["bodies"]:
+            self.assertEqual([as_row(m) for m in listener.states[name]], [as_row(m) for m in states[name]],
+                             f"{name} played back; rosbag play said:\n" + play.stdout[-2000:])
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 4:
+        sys.exit(__doc__)
+    SIMULATE, SIM_NODE, CONFIG = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
+    unittest.main(argv=sys.argv[:1] + sys.argv[4:], verbosity=2, warnings="ignore")
