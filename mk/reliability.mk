@@ -4,12 +4,13 @@
 FUZZ_BUILD ?= build-fuzz
 ASAN_BUILD ?= build-asan
 # A fixed number of runs (the same inputs for a given libFuzzer and seed); max_total_time caps a slow machine.
-FUZZ_RUNS ?= 30000
+FUZZ_RUNS ?= 50000
 FUZZ_SECONDS ?= 60
 FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/adapters/config_loader.cpp src/core/parameters.cpp \
                 src/core/rod.cpp src/core/rod_dynamics.cpp src/core/roller.cpp
 # The unit tests that need no master (rostests stay in the main build).
-ASAN_TESTS := test_roller test_rod test_world test_config test_simulate test_extremes test_bad_input_simulate
+ASAN_TESTS := test_roller test_rod test_world test_config test_simulate test_sweep test_finite_guard test_extremes \
+              test_bad_input_simulate
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 export ASAN_OPTIONS := halt_on_error=1:detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
@@ -25,9 +26,12 @@ $(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_
 # New inputs go to a scratch corpus in the build folder; the committed seed corpus stays as it is.
 fuzz: deps $(FUZZ_BUILD)/fuzz_config_loader
 	rm -rf $(FUZZ_BUILD)/corpus && mkdir -p $(FUZZ_BUILD)/corpus $(FUZZ_BUILD)/artifacts
-	$(FUZZ_BUILD)/fuzz_config_loader -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -seed=1 \
+	@echo "fuzz: $(FUZZ_RUNS) runs of the config loader (at most $(FUZZ_SECONDS) s), log in $(FUZZ_BUILD)/fuzz.log"
+	@$(FUZZ_BUILD)/fuzz_config_loader -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -seed=1 \
 	  -max_len=4096 -dict=test/fuzz/config.dict -print_final_stats=1 \
-	  -artifact_prefix=$(FUZZ_BUILD)/artifacts/ $(FUZZ_BUILD)/corpus test/fuzz/corpus
+	  -artifact_prefix=$(FUZZ_BUILD)/artifacts/ $(FUZZ_BUILD)/corpus test/fuzz/corpus >$(FUZZ_BUILD)/fuzz.log 2>&1 \
+	  || { tail -60 $(FUZZ_BUILD)/fuzz.log; echo "fuzz: FAILED, the input is in $(FUZZ_BUILD)/artifacts/"; exit 1; }
+	@grep -E "^Done|number_of_executed_units|average_exec_per_sec|new_units_added" $(FUZZ_BUILD)/fuzz.log
 
 # gcc's ASan and UBSan; only the unit-test targets (and simulate, which test_simulate runs) are built.
 asan: deps
