@@ -13,8 +13,8 @@ if(CATKIN_ENABLE_TESTING)
 endif()
 
 # --- sim_node on bad input: at start-up (the node started per row by the test) and at run time ---
+# (rostest is found by CMakeLists.txt, in the same if)
 if(CATKIN_ENABLE_TESTING)
-  find_package(rostest REQUIRED)
   foreach(rbs_bad_input startup runtime)
     add_rostest_gtest(test_node_bad_input_${rbs_bad_input} test/rostest/bad_input_${rbs_bad_input}.test
                       test/node/test_node_bad_input_${rbs_bad_input}.cpp)

@@ -20,7 +20,7 @@ EXTRA_TESTS += fuzz asan
 .PHONY: fuzz asan
 
 $(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h)
-	mkdir -p $(FUZZ_BUILD)
+	mkdir -p $(FUZZ_BUILD) && touch $(FUZZ_BUILD)/CATKIN_IGNORE  # keeps catkin_lint out of it
 	clang++ -std=c++17 -g -O1 -fsanitize=fuzzer $(SANITIZE) -Iinclude $(FUZZ_SOURCES) -lyaml-cpp -o $@
 
 # New inputs go to a scratch corpus in the build folder; the committed seed corpus stays as it is.
