@@ -285,8 +285,9 @@ def run(args, start, stem, launch):
     time.sleep(1.0)  # the last messages reach rviz and this node
 
     with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
-        view = yaml.safe_load(f)["Visualization Manager"]["Views"]["Current"]
-    camera = pc.Camera.from_rviz(view, render_window())
+        manager = yaml.safe_load(f)["Visualization Manager"]
+    camera = pc.Camera.from_rviz(manager["Views"]["Current"], render_window())
+    background = [int(v) for v in manager["Global Options"]["Background Color"].split(";")]
     # rviz renders in its own time (software OpenGL on a loaded machine): look again until it is there.
     look_until = time.monotonic() + min(30.0, left())
     while True:
@@ -298,6 +299,7 @@ def run(args, start, stem, launch):
         if all(f.ok for f in findings) or time.monotonic() > look_until:
             break
         time.sleep(2.0)
+    findings.append(control(image, scene, camera, config, background))
     rviz_log = rviz_error_lines()
     findings.append(flag(f"rviz: {len(rviz_errors)} ERROR messages on /rosout", not rviz_errors))
     findings.append(flag(f"rviz: {len(rviz_log)} ERROR lines in its log", not rviz_log))
@@ -310,6 +312,16 @@ def run(args, start, stem, launch):
     print("\n".join(report))
     save_outlined(image, outlines, stem + "_regions.png")
     return 0 if all(f.ok for f in findings) else 1
+
+
+def control(image, scene, camera, config, background):
+    """The checks must be able to fail: on this picture with its 3-D view emptied (rviz's background
+    colour everywhere), every check of a marker fails."""
+    empty = image.copy()
+    empty[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = background
+    passed = [f.what for f in check_picture(empty, scene, camera, config)[0] if f.ok and f.colour != "-"]
+    return flag("control: an empty view fails every marker check" + (f" (passed: {', '.join(passed)})" if passed else ""),
+                not passed)
 
 
 def try_render_window():
