@@ -4,7 +4,7 @@
 FUZZ_BUILD ?= build-fuzz
 ASAN_BUILD ?= build-asan
 # A fixed number of runs (the same inputs for a given libFuzzer and seed); max_total_time caps a slow machine.
-FUZZ_RUNS ?= 50000
+FUZZ_RUNS ?= 100000
 FUZZ_SECONDS ?= 60
 FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/adapters/config_loader.cpp src/core/parameters.cpp \
                 src/core/rod.cpp src/core/rod_dynamics.cpp src/core/roller.cpp
