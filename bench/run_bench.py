@@ -45,11 +45,12 @@ def percentile(values, p):
     return ordered[min(len(ordered) - 1, max(0, int(round(p / 100.0 * (len(ordered) - 1)))))]
 
 
-def hyperfine(commands, runs, out, warmup=2, cpu=False):
+def hyperfine(commands, runs, out, warmup=2, cpu=False, failing=False):
     """Times whole processes; returns each command's list of wall times (s), or CPU times with cpu=True."""
     path = os.path.join(out, "hyperfine.json")
     subprocess.run(["hyperfine", "-N", "--style", "none", "--warmup", str(warmup), "--runs", str(runs),
-                    "--export-json", path] + commands, check=True, stdout=subprocess.DEVNULL)
+                    "--export-json", path] + (["-i"] if failing else []) + commands, check=True,
+                   stdout=subprocess.DEVNULL)
     with open(path) as f:
         results = json.load(f)["results"]
     if cpu:  # hyperfine keeps only the mean CPU time of the runs
@@ -74,7 +75,7 @@ def core(build, out):
     for name, values in times.items():
         label = name.replace("rodStep/", "rod, ").replace("rollerStep/", "roller, ")
         if name.startswith("worldStep/"):
-            label = "world of %s bodies, per body-step" % name.split("/")[1]
+            label = "world of n = %s bodies (half rods, half rollers), per body-step" % name.split("/")[1]
         row("1 core", label, values, "ns/step (CPU)", targets.get(name, ""))
     note("core figures are CPU time per step (Google Benchmark's cpu_time): the machine is shared, and wall time "
          "per step ran 2-3x higher at the load averages seen. Debian's libbenchmark is built as DEBUG (its own "
@@ -102,6 +103,9 @@ def text_program(build, out, core_times):
                             runs=10, out=out)
     row("2 text", "text's program, 10 s, whole process (python3 + numpy)", [t * 1e3 for t in python], "ms")
     row("2 text", "simulate config/rod.yaml, 10 s, whole process", [t * 1e3 for t in cpp], "ms")
+    startup = hyperfine([simulate + " /nonexistent.yaml"], runs=10, out=out, failing=True)[0]
+    row("2 text", "  of which simulate's start-up (a missing config: loads its libraries, refuses, exits)",
+        [t * 1e3 for t in startup], "ms")
     row("2 text", "ratio, whole process (per run pairs, sorted)",
         [p / c for p, c in zip(sorted(python), sorted(cpp))], "x", ">= 50")
     result = subprocess.run(["/usr/bin/python3", os.path.join(HERE, "text_program.py"), "--repeat", "7"],
@@ -280,10 +284,12 @@ def recording(ros, out, config_1khz, seconds):
                 "msgs", str(published))
     row("4 record", "bag size per simulated second", [os.path.getsize(bag) / seconds / 1e6], "MB/s")
     markers = info.get("/sim/markers")
-    if markers and markers.message_count < published:
-        note("rosbag record kept %d of %d /sim/markers messages (MarkerArrays with trails, most of the bag's %.0f MB "
-             "per simulated second at 1 kHz): the recorder's queue overflows on them, not on the states"
-             % (markers.message_count, published, os.path.getsize(bag) / seconds / 1e6))
+    if markers and (markers.message_count < published or any(lost)):
+        note("rosbag record kept %d of %d /sim/markers messages and lost up to %d state messages a topic: the "
+             "MarkerArrays (trails of 400 points, at 1 kHz) make most of the bag's %.0f MB per simulated second, "
+             "and rosbag's single callback queue falls behind on them at this load average (%s); states at 1 kHz "
+             "without markers at 1 kHz would be a small fraction of that" %
+             (markers.message_count, published, max(lost), os.path.getsize(bag) / seconds / 1e6, load()))
 
 
 def faster_than_real_time(ros, build, out, seconds):
