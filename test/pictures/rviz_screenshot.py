@@ -99,100 +99,126 @@ def render_window():
     return best
 
 
-def check_picture(image, scene, camera, config):
-    """Every finding: floor, slopes, rollers, rods; each region clipped to the render view."""
-    shape = image.shape[:2]
-    view = np.zeros(shape, dtype=bool)
-    view[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = True
-    findings, outlines = [], []
+class Checker:
+    """The checks of one picture. Regions are projected from the published scene and clipped to the
+    3-D view; `findings` collects the results, `outlines` the regions (for rviz_regions.png)."""
 
-    def hull_of(corners):
-        pixels, depth = camera.project(corners)
+    def __init__(self, image, scene, camera):
+        self.image, self.scene, self.camera = image, scene, camera
+        self.shape = image.shape[:2]
+        self.view = np.zeros(self.shape, dtype=bool)
+        self.view[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = True
+        self.findings, self.outlines = [], []
+
+    def hull_of(self, corners):
+        pixels, depth = self.camera.project(corners)
         return pc.convex_hull(pixels) if (depth > 0).all() else None
 
-    def in_view(what, region):
-        inside = int((region & view).sum())
-        if inside < 0.9 * max(1, int(region.sum())):
-            findings.append(pc.Finding(what + " inside the view", "-", int(region.sum()), inside,
-                                       int(np.ceil(0.9 * region.sum()))))
-        return region & view
+    def in_view(self, what, region):
+        """The region clipped to the view; a finding when a tenth of it or more lies outside."""
+        total, inside = int(region.sum()), int((region & self.view).sum())
+        if inside < 0.9 * max(1, total):
+            self.findings.append(pc.Finding(what + " inside the view", "-", total, inside, int(np.ceil(0.9 * total))))
+        return region & self.view
 
-    bodies = config["bodies"]
-    slopes, tops, discs, radii, centres = {}, {}, {}, {}, {}
-    for (ns, _), m in scene.markers.items():
-        if ns == "slope":
-            name = m.header.frame_id[:-len("_slope")]
-            rotation, centre = scene.world_pose(m.header.frame_id, m.pose)
+    def slopes(self):
+        """{roller: (mask of the whole slope box, mask of its top face)}."""
+        found = {}
+        for (ns, _), m in self.scene.markers.items():
+            if ns != "slope":
+                continue
+            rotation, centre = self.scene.world_pose(m.header.frame_id, m.pose)
             size = np.array([m.scale.x, m.scale.y, m.scale.z])
-            slopes[name] = pc.polygon_mask(shape, hull_of(pc.box_corners(rotation, centre, size)))
             # The lit face is the top one (the slope frame's +y): the sides are in the shade.
-            top = pc.box_corners(rotation, centre + 0.5 * size[1] * rotation[:, 1], size * [1, 0, 1])
-            tops[name] = pc.polygon_mask(shape, hull_of(top))
-            outlines.append(("brown", hull_of(top)))
-    for name, body in bodies.items():
-        if body["type"] != "roller" or name not in scene.frames:
-            continue
-        _, centre = scene.frames[name]
-        (pixel,), (depth,) = camera.project(centre)
-        radii[name], centres[name] = body.get("radius", 0.1) * camera.pixels_per_metre_at(depth), pixel
-        radius = radii[name] + 1.0
-        discs[name] = pc.disc_mask(shape, pixel, radius)
-        outlines.append(("circle", (pixel, radius)))
+            top = self.hull_of(pc.box_corners(rotation, centre + 0.5 * size[1] * rotation[:, 1], size * [1, 0, 1]))
+            box = self.hull_of(pc.box_corners(rotation, centre, size))
+            found[m.header.frame_id[:-len("_slope")]] = (pc.polygon_mask(self.shape, box),
+                                                         pc.polygon_mask(self.shape, top))
+            self.outlines.append(("brown", top))
+        return found
 
-    floor = next((m for (ns, _), m in scene.markers.items() if ns == "floor"), None)
-    if floor is None:
-        findings.append(pc.Finding("floor marker received", "-", 0, 0, 1))
-    else:
-        rotation, centre = scene.world_pose(floor.header.frame_id, floor.pose)
-        hull = hull_of(pc.box_corners(rotation, centre, [floor.scale.x, floor.scale.y, floor.scale.z]))
-        outlines.append(("grey", hull))
-        region = pc.polygon_mask(shape, hull) & view  # the floor runs out of the view: that is fine
-        for other in list(slopes.values()) + list(discs.values()):
-            region &= ~other
-        findings.append(pc.count(image, region, "grey", "floor", 0.6))
+    def discs(self, bodies):
+        """{roller: (disc mask, centre pixel, radius in pixels)} at each roller's last published pose."""
+        found = {}
+        for name, body in bodies.items():
+            if body["type"] != "roller" or name not in self.scene.frames:
+                continue
+            (pixel,), (depth,) = self.camera.project(self.scene.frames[name][1])
+            radius = body.get("radius", 0.1) * self.camera.pixels_per_metre_at(depth)
+            found[name] = (pc.disc_mask(self.shape, pixel, radius + 1.0), pixel, radius)
+            self.outlines.append(("circle", (pixel, radius + 1.0)))
+        return found
 
+    def floor(self, covered):
+        floor = next((m for (ns, _), m in self.scene.markers.items() if ns == "floor"), None)
+        if floor is None:
+            self.findings.append(flag("floor marker received", False))
+            return
+        rotation, centre = self.scene.world_pose(floor.header.frame_id, floor.pose)
+        hull = self.hull_of(pc.box_corners(rotation, centre, [floor.scale.x, floor.scale.y, floor.scale.z]))
+        self.outlines.append(("grey", hull))
+        region = pc.polygon_mask(self.shape, hull) & self.view & ~covered  # it runs out of the view: fine
+        self.findings.append(pc.count(self.image, region, "grey", "floor", 0.6))
+
+    def slope(self, name, slopes, covered):
+        """The top of a roller's slope, less what other slopes and the bodies may hide, brown."""
+        if name not in slopes:
+            self.findings.append(flag(f"{name}'s slope marker received", False))
+            return
+        own = self.in_view(f"{name}'s slope", slopes[name][1]) & ~covered
+        for other, (box, _) in slopes.items():
+            if other != name:
+                own &= ~box
+        self.findings.append(pc.count(self.image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
+
+    def roller(self, name, shape_name, disc):
+        if disc is None:
+            self.findings.append(flag(f"{name}'s pose received", False))
+            return
+        mask, centre, radius = disc
+        colour = pc.SHAPE_CLASS[shape_name]
+        found = pc.count(self.image, self.in_view(name, mask), colour, f"{name} ({shape_name})", 0.35)
+        if shape_name == "ring":  # a line 0.15 R wide: most of its circumference, not a share of the disc
+            found.needed_px = int(0.4 * 2 * np.pi * radius)
+        self.findings.append(found)
+        # A body, not a trail or a TF axis through its centre: its colour all round the centre.
+        quarters = pc.quadrants_with(self.image, mask, centre, colour)
+        self.findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
+
+    def rod(self, name, length):
+        """Blue along the rod's whole length (each quarter), not only somewhere near its centre."""
+        if name not in self.scene.frames:
+            self.findings.append(flag(f"{name}'s pose received", False))
+            return
+        rotation, centre = self.scene.frames[name]
+        half = 0.5 * length * rotation[:, 0]
+        (a, b), _ = self.camera.project(np.array([centre - half, centre + half]))
+        self.outlines.append(("segment", (a, b)))
+        for k in range(4):
+            p, q = a + (b - a) * k / 4, a + (b - a) * (k + 1) / 4
+            region = self.in_view(f"{name} quarter {k + 1}", pc.segment_mask(self.shape, p, q, 3.0))
+            self.findings.append(pc.count(self.image, region, "blue", f"{name} (rod), quarter {k + 1}", 0.25))
+
+
+def check_picture(image, scene, camera, config):
+    """Every finding (floor, each slope, each roller, each rod) and the outlines of the regions."""
+    checker = Checker(image, scene, camera)
+    bodies = config["bodies"]
+    slopes, discs = checker.slopes(), checker.discs(bodies)
+    covered = np.zeros(image.shape[:2], dtype=bool)
+    for mask in [box for box, _ in slopes.values()] + [disc[0] for disc in discs.values()]:
+        covered |= mask
+    checker.floor(covered)
+    bodies_only = np.zeros_like(covered)
+    for disc in discs.values():
+        bodies_only |= disc[0]
     for name, body in bodies.items():
         if body["type"] == "rod":
-            findings += check_rod(image, scene, camera, name, body, in_view, outlines)
-            continue
-        if name not in slopes:
-            findings.append(pc.Finding(f"{name}'s slope marker received", "-", 0, 0, 1))
+            checker.rod(name, body.get("length", 1.0))
         else:
-            own = in_view(f"{name}'s slope", tops[name])
-            for other_name, other in slopes.items():
-                if other_name != name:
-                    own &= ~other
-            for disc in discs.values():
-                own &= ~disc
-            findings.append(pc.count(image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
-        if name not in discs:
-            findings.append(pc.Finding(f"{name}'s pose received", "-", 0, 0, 1))
-            continue
-        shape_name = body.get("shape", "sphere")
-        found = pc.count(image, in_view(name, discs[name]), pc.SHAPE_CLASS[shape_name], f"{name} ({shape_name})", 0.35)
-        if shape_name == "ring":  # a line 0.15 R wide: most of its circumference, not a share of the disc
-            found.needed_px = int(0.4 * 2 * np.pi * radii[name])
-        findings.append(found)
-        # A body, not a trail or a TF axis through its centre: its colour all round the centre.
-        quarters = pc.quadrants_with(image, discs[name], centres[name], pc.SHAPE_CLASS[shape_name])
-        findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
-    return findings, outlines
-
-
-def check_rod(image, scene, camera, name, body, in_view, outlines):
-    """The rod: blue along its whole length (each quarter), not only somewhere near its centre."""
-    if name not in scene.frames:
-        return [pc.Finding(f"{name}'s pose received", "-", 0, 0, 1)]
-    rotation, centre = scene.frames[name]
-    half = 0.5 * body.get("length", 1.0) * rotation[:, 0]
-    (a, b), depth = camera.project(np.array([centre - half, centre + half]))
-    outlines.append(("segment", (a, b)))
-    found = []
-    for k in range(4):
-        p, q = a + (b - a) * k / 4, a + (b - a) * (k + 1) / 4
-        region = in_view(f"{name} quarter {k + 1}", pc.segment_mask(image.shape[:2], p, q, 3.0))
-        found.append(pc.count(image, region, "blue", f"{name} (rod), quarter {k + 1}", 0.25))
-    return found
+            checker.slope(name, slopes, bodies_only)
+            checker.roller(name, body.get("shape", "sphere"), discs.get(name))
+    return checker.findings, checker.outlines
 
 
 def save_outlined(image, outlines, path):
