@@ -32,11 +32,14 @@ def free_port():
         return s.getsockname()[1]
 
 
-def wait_for(what, predicate, timeout, period=0.25):
+def wait_for(what, predicate, timeout, launch, period=0.25):
+    """Until predicate() holds; an error at the timeout, or at once if roslaunch has ended."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline:
         if predicate():
             return
+        if launch.poll() is not None:
+            raise RuntimeError(f"roslaunch ended (status {launch.returncode}) while waiting for {what}: see its log")
         time.sleep(period)
     raise TimeoutError(f"timed out after {timeout:g} s waiting for {what}")
 
@@ -282,7 +285,7 @@ def run(args, start, stem, launch):
     with open(args.config) as f:
         config = yaml.safe_load(f)
     master = rosgraph.Master("/rviz_screenshot")
-    wait_for("the ROS master", master.is_online, left())
+    wait_for("the ROS master", master.is_online, left(), launch)
     rospy.init_node("rviz_screenshot", disable_signals=True)
     scene = Scene(rospy, config)
     rviz_errors = []
@@ -296,17 +299,17 @@ def run(args, start, stem, launch):
         except Exception:
             return False
         return {(c[1], c[4]) for c in info if c[2] == "o"} >= {("/rviz", "/sim/markers"), ("/rviz", "/tf")}
-    wait_for("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), 0.5)
-    wait_for("the render window", lambda: try_render_window() is not None, left(), 0.5)
+    wait_for("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
+    wait_for("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
 
     # The node publishes the floor and slopes once, when it starts, without latching: an rviz that
     # subscribes later never sees them. ~reset publishes them again (bodies restart, time goes on).
     rospy.wait_for_service("/sim/reset", timeout=left())
     rospy.ServiceProxy("/sim/reset", Empty)()
     scene.t = None
-    wait_for("a state after the reset", lambda: scene.t is not None, left())
+    wait_for("a state after the reset", lambda: scene.t is not None, left(), launch)
     t_reset = scene.t
-    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_reset + args.settle, left())
+    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_reset + args.settle, left(), launch)
     rospy.ServiceProxy("/sim/pause", Empty)()
     time.sleep(1.0)  # the last messages reach rviz and this node
 
