@@ -5,9 +5,13 @@
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "sim");
+  // These handles outlive the node: when the last NodeHandle goes, roscpp shuts down and rosconsole with
+  // it, so a refusal thrown from SimNode's constructor could no longer be logged.
+  const ros::NodeHandle node;
+  const ros::NodeHandle private_node("~");
   try {
-    rigid_body_sim::SimNode node(ros::NodeHandle(), ros::NodeHandle("~"));
-    node.run();
+    rigid_body_sim::SimNode sim(node, private_node);
+    sim.run();
   } catch (const rigid_body_sim::ConfigError& error) {
     ROS_FATAL_STREAM("refused config: " << error.what());
     return 1;
