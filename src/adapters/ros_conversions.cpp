@@ -327,6 +327,8 @@ Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vec
       msg.header.frame_id = placements_[i].frame;
     }, snapshot.states.back());
   }
+  // The floor and slopes too, every time: an rviz started after the node still sees them (a few markers).
+  for (const auto& m : staticMarkers(stamp).markers) snapshot.markers.markers.push_back(m);
   return snapshot;
 }
 

@@ -302,14 +302,12 @@ def run(args, start, stem, launch):
     wait_for("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
     wait_for("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
 
-    # The node publishes the floor and slopes once, when it starts, without latching: an rviz that
-    # subscribes later never sees them. ~reset publishes them again (bodies restart, time goes on).
-    rospy.wait_for_service("/sim/reset", timeout=left())
-    rospy.ServiceProxy("/sim/reset", Empty)()
+    # rviz subscribed after the node started: the floor and slopes must come with the markers it publishes
+    # from now on (every marker array carries them).
     scene.t = None
-    wait_for("a state after the reset", lambda: scene.t is not None, left(), launch)
-    t_reset = scene.t
-    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_reset + args.settle, left(), launch)
+    wait_for("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
+    t_connected = scene.t
+    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_connected + args.settle, left(), launch)
     rospy.ServiceProxy("/sim/pause", Empty)()
     time.sleep(1.0)  # the last messages reach rviz and this node
 
@@ -333,7 +331,7 @@ def run(args, start, stem, launch):
     findings.append(flag(f"rviz: {len(rviz_errors)} ERROR messages on /rosout", not rviz_errors))
     findings.append(flag(f"rviz: {len(rviz_log)} ERROR lines in its log", not rviz_log))
     findings += [flag(f"  {m[:100]}", False) for m in rviz_errors + rviz_log]
-    report = [f"t = {t_reset:.3f} s at reset, {scene.t:.3f} s at the picture; "
+    report = [f"t = {t_connected:.3f} s when rviz had subscribed, {scene.t:.3f} s at the picture; "
               f"render view {camera.width}x{camera.height}+{camera.left}+{camera.top}; "
               f"{time.monotonic() - start:.1f} s wall"] + [f.line() for f in findings]
     with open(stem + ".txt", "w") as f:
