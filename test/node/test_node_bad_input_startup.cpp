@@ -110,6 +110,7 @@ TEST(SimNodeBadInputStartup, EveryRowIsRefusedWithTheLoadersLine) {
   fs::create_directories(dir);
   int index = 0;
   int refused = 0;
+  int silent = 0;
   for (const Row& row : table()) {
     SCOPED_TRACE(row.what);
     const std::string name = "bad" + std::to_string(index++);
@@ -118,12 +119,20 @@ TEST(SimNodeBadInputStartup, EveryRowIsRefusedWithTheLoadersLine) {
     const fs::path err = dir / (name + ".err");
     // `timeout`: a node that accepted the input would run for ever; 124 then tells it apart.
     const std::string command = "timeout 30 " + simNodeExe() + " __name:=" + name +
-                                " >/dev/null 2>" + err.string();
-    const int status = std::system(command.c_str());
+                                " >" + (dir / (name + ".out")).string() + " 2>" + err.string();
+    int status = std::system(command.c_str());
+    // Under rostest, about one start in 250 exits 1 with nothing at all on stdout or stderr (not seen
+    // outside rostest; a rosconsole start-up race is suspected). Said, and tried once more: a node that
+    // never prints its refusal still fails below.
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 1 && slurp(err).empty()) {
+      std::printf("note: %s: sim_node exited 1 without a line; started again\n", row.what.c_str());
+      ++silent;
+      status = std::system(command.c_str());
+    }
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 1) << "(124: the node accepted the input and ran)";
     const auto lines = nonEmptyLines(slurp(err));
-    ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << slurp(err);
+    ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << slurp(err) << "stdout:\n" << slurp(dir / (name + ".out"));
     for (const auto& fragment : row.expect) {
       EXPECT_NE(lines[0].find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << lines[0];
     }
@@ -133,7 +142,7 @@ TEST(SimNodeBadInputStartup, EveryRowIsRefusedWithTheLoadersLine) {
     }
     refused += WEXITSTATUS(status) == 1;
   }
-  std::printf("sim_node refused %d bad inputs at start-up\n", refused);
+  std::printf("sim_node refused %d bad inputs at start-up (%d silent exits retried)\n", refused, silent);
   EXPECT_GE(index, 30);
 }
 
