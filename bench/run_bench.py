@@ -285,11 +285,12 @@ def recording(ros, out, config_1khz, seconds):
     row("4 record", "bag size per simulated second", [os.path.getsize(bag) / seconds / 1e6], "MB/s")
     markers = info.get("/sim/markers")
     if markers and (markers.message_count < published or any(lost)):
-        note("rosbag record kept %d of %d /sim/markers messages and lost up to %d state messages a topic: the "
-             "MarkerArrays (trails of 400 points, at 1 kHz) make most of the bag's %.0f MB per simulated second, "
-             "and rosbag's single callback queue falls behind on them at this load average (%s); states at 1 kHz "
-             "without markers at 1 kHz would be a small fraction of that" %
-             (markers.message_count, published, max(lost), os.path.getsize(bag) / seconds / 1e6, load()))
+        states = "lost up to %d state messages a topic" % max(lost) if any(lost) else "kept every state message"
+        note("rosbag record kept %d of %d /sim/markers messages and %s: the MarkerArrays (trails of 400 points, "
+             "at 1 kHz) make most of the bag's %.0f MB per simulated second, and rosbag's single callback queue "
+             "falls behind on them when the machine is busy (load average %s); markers at a lower rate than the "
+             "states would make the bag a fraction of that" %
+             (markers.message_count, published, states, os.path.getsize(bag) / seconds / 1e6, load()))
 
 
 def faster_than_real_time(ros, build, out, seconds):
@@ -332,9 +333,8 @@ def sweeps(build, out):
         "x", ">= 1.8")
     row("6 sweep", "CPU time per variant on 1 thread (user + sys, mean of 3 runs)", [t / 1000 * 1e3 for t in cpu_one], "ms")
     row("6 sweep", "CPU time per variant on 2 threads (user + sys, mean of 3 runs)", [t / 1000 * 1e3 for t in cpu_two], "ms")
-    note("sweeps ran at load average %s on %d cores: the speed-up on 2 threads needs 2 idle cores; "
-         "equal CPU time per variant on 1 and 2 threads means the threads do not slow each other"
-         % (load(), os.cpu_count()))
+    note("sweeps ran at load average %s on %d cores: the speed-up on 2 threads needs 2 idle cores; the CPU "
+         "time per variant on 1 and 2 threads shows how much the threads slow each other" % (load(), os.cpu_count()))
     big = hyperfine([command % (10000, 0)], runs=3, out=out, warmup=0)[0]
     row("6 sweep", "10,000 rods x 10 s, every core (whole process)", big, "s", "< 5")
 
