@@ -48,17 +48,14 @@ bool Roller::canRoll(const RollerParams& params) {
 }
 
 Roller::Roller(const RollerParams& params, const RollerInitial& initial)
-    : params_(params),
-      sin_angle_(std::sin(params.incline_angle)),
-      cos_angle_(std::cos(params.incline_angle)),
-      initial_(initial) {
+    : params_(params), initial_(initial) {
+  cacheAccelerations();
   reset();
 }
 
 void Roller::setParams(const RollerParams& params) {
   params_ = params;
-  sin_angle_ = std::sin(params_.incline_angle);
-  cos_angle_ = std::cos(params_.incline_angle);
+  cacheAccelerations();
   // A slipping body keeps slipping until u reaches 0; only a rolling one can lose its grip here.
   if (mode_ == RollMode::Rolling && !canRoll(params_)) {
     mode_ = RollMode::Slipping;
@@ -108,20 +105,25 @@ double Roller::frictionForce() const {
   return -slipDirection() * params_.mu_d * normalForce();
 }
 
-double Roller::acceleration() const {
-  const double c = params_.inertia_factor;
-  const double g_along = params_.gravity * sin_angle_;
-  if (mode_ == RollMode::Rolling) return g_along / (1.0 + c);
-  return g_along + frictionForce() / params_.mass;
-}
-
-double Roller::angularAcceleration() const {
+void Roller::cacheAccelerations() {
+  sin_angle_ = std::sin(params_.incline_angle);
+  cos_angle_ = std::cos(params_.incline_angle);
   const double c = params_.inertia_factor;
   const double r = params_.radius;
-  if (mode_ == RollMode::Rolling) return -acceleration() / r;
-  // Torque about +z of friction f at the contact (0, -R): tau = R f, and I = c M R^2.
-  return frictionForce() / (c * params_.mass * r);
+  const double g_along = params_.gravity * sin_angle_;
+  const double rolling = g_along / (1.0 + c);
+  accelerations_[0] = {rolling, -rolling / r};
+  for (const int direction : {1, -1}) {
+    // Kinetic friction opposes the sliding of the contact point (frictionForce() while slipping).
+    const double friction = -direction * params_.mu_d * normalForce();
+    // Torque about +z of friction f at the contact (0, -R): tau = R f, and I = c M R^2.
+    accelerations_[direction > 0 ? 1 : 2] = {g_along + friction / params_.mass, friction / (c * params_.mass * r)};
+  }
 }
+
+double Roller::acceleration() const { return current().a; }
+
+double Roller::angularAcceleration() const { return current().alpha; }
 
 double Roller::energy() const {
   const double m = params_.mass;

@@ -98,10 +98,20 @@ class Roller {
   void advance(double h, double a, double alpha);
 
   RollerParams params_;
-  // sin and cos of params_.incline_angle, computed when the parameters change rather than several
-  // times a step (the same values, so results are unchanged; see bench/bench_core.cpp).
+  // sin and cos of params_.incline_angle, and the constant accelerations of each mode (0: rolling,
+  // 1: slipping with u > 0, 2: with u < 0), computed when the parameters change rather than several
+  // times a step (the same expressions, so results are unchanged; see bench/bench_core.cpp).
+  struct ModeAccelerations {
+    double a = 0.0;
+    double alpha = 0.0;
+  };
+  void cacheAccelerations();
+  const ModeAccelerations& current() const {
+    return accelerations_[mode_ == RollMode::Rolling ? 0 : (slip_sign_ > 0 ? 1 : 2)];
+  }
   double sin_angle_ = 0.0;
   double cos_angle_ = 1.0;
+  ModeAccelerations accelerations_[3];
   RollerInitial initial_;
   RollerMotion state_;
   RollMode mode_ = RollMode::Rolling;
