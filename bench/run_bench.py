@@ -87,9 +87,10 @@ def core(build, out):
          "single dependent chain (sincos -> forces -> divisions -> state), so the step is latency-bound. Rod::step "
          "also recomputes its sub-step count (a sqrt and a division) every step: caching it in src/core/rod.cpp "
          "would save a few ns, not the 20 ns to the target")
-    note("roller: the sine and cosine of the incline are computed when the parameters change and the "
-         "accelerations once a step (before: 2 libm calls a rolling step, 6 a slipping one; 27 -> 10 ns rolling, "
-         "67 -> 20 ns slipping, results bit-identical). A slipping step still has three IEEE divisions")
+    note("roller: the sine and cosine of the incline and the accelerations of each mode are computed when the "
+         "parameters change, and the core is built with -fno-semantic-interposition so that its small functions "
+         "inline (before: 2 libm calls a rolling step, 6 a slipping one, and calls through the PLT; 27 -> 6 ns "
+         "rolling, 67 -> 6 ns slipping, results bit-identical)")
     return times
 
 
