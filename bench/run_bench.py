@@ -80,13 +80,10 @@ def core(build, out):
     note("core figures are CPU time per step (Google Benchmark's cpu_time): the machine is shared, and wall time "
          "per step ran 2-3x higher at the load averages seen. Debian's libbenchmark is built as DEBUG (its own "
          "warning); that slows its loop bookkeeping, not the code measured")
-    note("where the rod's time goes (perf record on bench_core, Euler-Cromer): 43 % in glibc's sincos (one call a "
-         "step, kept: the text's program uses libm's sin and cos, and test_rod checks the trajectory bit for bit), "
-         "28 % in the force model, most of it the three divisions by M and I kept in the text's order for the same "
-         "reason, 25 % in Rod::step/eulerCromerStep storing a state that waits on those divisions. One rod is a "
-         "single dependent chain (sincos -> forces -> divisions -> state), so the step is latency-bound. Rod::step "
-         "also recomputes its sub-step count (a sqrt and a division) every step: caching it in src/core/rod.cpp "
-         "would save a few ns, not the 20 ns to the target")
+    note("rod: in flight (centre at least L/2 above the floor) no end can touch it, so the force model returns "
+         "gravity alone without calling sincos, with the very bits the text's sums give (test_rod checks the "
+         "trajectory bit for bit); before, sincos was 43 % of every step (49.5 -> 17.4 ns). In contact the step "
+         "keeps the text's sincos and its three divisions by M and I, one dependent chain")
     note("roller: the sine and cosine of the incline and the accelerations of each mode are computed when the "
          "parameters change, and the core is built with -fno-semantic-interposition so that its small functions "
          "inline (before: 2 libm calls a rolling step, 6 a slipping one, and calls through the PLT; 27 -> 6 ns "
