@@ -28,32 +28,31 @@ Vec3 floorForce(double k, double dr) {
 
 // The body of `for i in range(n-1)`, for end A then end B, as in the text.
 void textStep(const TextParams& p, double I, std::vector<Vec3>& r, std::vector<Vec3>& v,
-              std::vector<double>& theta, std::vector<double>& omega, std::vector<double>& t,
-              std::size_t i) {
+              std::vector<double>& theta, std::vector<double>& omega, std::vector<double>& t, std::size_t i) {
   const Vec3 yhat{0.0, 1.0, 0.0};
-  Vec3 fnet{0.0, 0.0, 0.0};                                         // fnet = array([0,0,0])
-  Vec3 tnet{0.0, 0.0, 0.0};                                         // tnet = 0.0 (becomes 0.0 + torque)
-  const Vec3 u{std::cos(theta[i]), std::sin(theta[i]), 0.0};        // u = array([cos, sin, 0])
-  Vec3 rr = add(r[i], scale(0.5 * p.L, u));                         // rr = r[i] + 0.5*L*u
-  double dr = rr[1];                                                // dr = rr[1]
-  Vec3 f = floorForce(p.k, dr);                                     // f = -k*dr*(dr<0.0)*[0,1,0]
-  fnet = add(fnet, f);                                              // fnet = fnet + f
-  Vec3 torque = cross(sub(rr, r[i]), f);                            // torque = cross((rr-r[i]),f)
-  tnet = add(tnet, torque);                                         // tnet = tnet + torque
-  rr = sub(r[i], scale(0.5 * p.L, u));                              // rr = r[i] - 0.5*L*u
+  Vec3 fnet{0.0, 0.0, 0.0};                                   // fnet = array([0,0,0])
+  Vec3 tnet{0.0, 0.0, 0.0};                                   // tnet = 0.0 (becomes 0.0 + torque)
+  const Vec3 u{std::cos(theta[i]), std::sin(theta[i]), 0.0};  // u = array([cos, sin, 0])
+  Vec3 rr = add(r[i], scale(0.5 * p.L, u));                   // rr = r[i] + 0.5*L*u
+  double dr = rr[1];                                          // dr = rr[1]
+  Vec3 f = floorForce(p.k, dr);                               // f = -k*dr*(dr<0.0)*[0,1,0]
+  fnet = add(fnet, f);                                        // fnet = fnet + f
+  Vec3 torque = cross(sub(rr, r[i]), f);                      // torque = cross((rr-r[i]),f)
+  tnet = add(tnet, torque);                                   // tnet = tnet + torque
+  rr = sub(r[i], scale(0.5 * p.L, u));                        // rr = r[i] - 0.5*L*u
   dr = rr[1];
   f = floorForce(p.k, dr);
   fnet = add(fnet, f);
   torque = cross(sub(rr, r[i]), f);
   tnet = add(tnet, torque);
-  fnet = sub(fnet, scale(p.m * p.g, yhat));                         // fnet = fnet - m*g*[0,1,0]
-  const Vec3 a = divide(fnet, p.m);                                 // a = fnet/m
-  v[i + 1] = add(v[i], scale(p.dt, a));                             // v[i+1] = v[i] + a*dt
-  r[i + 1] = add(r[i], scale(p.dt, v[i + 1]));                      // r[i+1] = r[i] + v[i+1]*dt
-  const double alphaz = tnet[2] / I;                                // alphaz = tnet[2]/I
-  omega[i + 1] = omega[i] + alphaz * p.dt;                          // omega[i+1] = omega[i] + alphaz*dt
-  theta[i + 1] = theta[i] + omega[i + 1] * p.dt;                    // theta[i+1] = theta[i] + omega[i+1]*dt
-  t[i + 1] = t[i] + p.dt;                                           // t[i+1] = t[i] + dt
+  fnet = sub(fnet, scale(p.m * p.g, yhat));       // fnet = fnet - m*g*[0,1,0]
+  const Vec3 a = divide(fnet, p.m);               // a = fnet/m
+  v[i + 1] = add(v[i], scale(p.dt, a));           // v[i+1] = v[i] + a*dt
+  r[i + 1] = add(r[i], scale(p.dt, v[i + 1]));    // r[i+1] = r[i] + v[i+1]*dt
+  const double alphaz = tnet[2] / I;              // alphaz = tnet[2]/I
+  omega[i + 1] = omega[i] + alphaz * p.dt;        // omega[i+1] = omega[i] + alphaz*dt
+  theta[i + 1] = theta[i] + omega[i + 1] * p.dt;  // theta[i+1] = theta[i] + omega[i+1]*dt
+  t[i + 1] = t[i] + p.dt;                         // t[i+1] = t[i] + dt
 }
 
 }  // namespace

@@ -153,30 +153,65 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"nan length", "bodies: {rod: {type: rod, length: .nan}}", {"'length'", "nan"}},
         BadInput{"infinite k", "bodies: {rod: {type: rod, k: .inf}}", {"'k'", "inf", "finite"}},
         BadInput{"absurd mass", "bodies: {rod: {type: rod, mass: 1e300}}", {"'mass'", "1e+300", "1e+09]"}},
-        BadInput{"string for number", "bodies: {rod: {type: rod, y0: high}}", {"'rod'", "'y0'", "'high'", "a finite number in [-1e+06, 1e+06]"}},
-        BadInput{"list for number", "bodies: {rod: {type: rod, y0: [1, 2]}}", {"'y0'", "(a list)", "a finite number"}},
-        BadInput{"unknown rod key", "bodies: {rod: {type: rod, stiffness: 5}}", {"'rod'", "'stiffness'", "no such key", "k"}},
-        BadInput{"unknown roller key", "bodies: {b: {type: roller, mu: 0.5}}", {"'b'", "'mu'", "no such key", "mu_s"}},
-        BadInput{"unknown world key", "rates: 10\nbodies: {rod: {type: rod}}", {"(world)", "'rates'", "no such key"}},
-        BadInput{"unknown integrator", "bodies: {rod: {type: rod, integrator: leapfrog}}", {"'integrator'", "'leapfrog'", "euler_cromer"}},
-        BadInput{"unknown body type", "bodies: {box: {type: cube}}", {"'box'", "'type'", "'cube'", "rod or roller"}},
+        BadInput{"string for number",
+                 "bodies: {rod: {type: rod, y0: high}}",
+                 {"'rod'", "'y0'", "'high'", "a finite number in [-1e+06, 1e+06]"}},
+        BadInput{"list for number",
+                 "bodies: {rod: {type: rod, y0: [1, 2]}}",
+                 {"'y0'", "(a list)", "a finite number"}},
+        BadInput{"unknown rod key",
+                 "bodies: {rod: {type: rod, stiffness: 5}}",
+                 {"'rod'", "'stiffness'", "no such key", "k"}},
+        BadInput{"unknown roller key",
+                 "bodies: {b: {type: roller, mu: 0.5}}",
+                 {"'b'", "'mu'", "no such key", "mu_s"}},
+        BadInput{"unknown world key",
+                 "rates: 10\nbodies: {rod: {type: rod}}",
+                 {"(world)", "'rates'", "no such key"}},
+        BadInput{"unknown integrator",
+                 "bodies: {rod: {type: rod, integrator: leapfrog}}",
+                 {"'integrator'", "'leapfrog'", "euler_cromer"}},
+        BadInput{"unknown body type",
+                 "bodies: {box: {type: cube}}",
+                 {"'box'", "'type'", "'cube'", "rod or roller"}},
         BadInput{"missing type", "bodies: {box: {mass: 1}}", {"'box'", "'type'", "rod or roller"}},
-        BadInput{"unknown shape", "bodies: {b: {type: roller, shape: cube}}", {"'b'", "'shape'", "'cube'", "sphere"}},
-        BadInput{"custom without factor", "bodies: {b: {type: roller, shape: custom}}", {"'shape'", "inertia_factor"}},
-        BadInput{"factor contradicts shape", "bodies: {b: {type: roller, shape: ring, inertia_factor: 0.3}}", {"'inertia_factor'", "0.3", "ring"}},
-        BadInput{"zero factor", "bodies: {b: {type: roller, inertia_factor: 0}}", {"'inertia_factor'", "(0, "}},
-        BadInput{"negative mu_s", "bodies: {b: {type: roller, mu_s: -0.1, mu_d: 0}}", {"'b'", "'mu_s'", "-0.1", "[0, "}},
-        BadInput{"mu_d above mu_s", "bodies: {b: {type: roller, mu_s: 0.2, mu_d: 0.5}}", {"'mu_d'", "0.5", "mu_s = 0.2"}},
-        BadInput{"vertical slope", "bodies: {b: {type: roller, incline_angle: 1.5707963267948966}}", {"'incline_angle'", "1.5707963267948966)"}},
-        BadInput{"negative slope", "bodies: {b: {type: roller, incline_angle: -0.1}}", {"'incline_angle'", "-0.1"}},
+        BadInput{"unknown shape",
+                 "bodies: {b: {type: roller, shape: cube}}",
+                 {"'b'", "'shape'", "'cube'", "sphere"}},
+        BadInput{"custom without factor",
+                 "bodies: {b: {type: roller, shape: custom}}",
+                 {"'shape'", "inertia_factor"}},
+        BadInput{"factor contradicts shape",
+                 "bodies: {b: {type: roller, shape: ring, inertia_factor: 0.3}}",
+                 {"'inertia_factor'", "0.3", "ring"}},
+        BadInput{
+            "zero factor", "bodies: {b: {type: roller, inertia_factor: 0}}", {"'inertia_factor'", "(0, "}},
+        BadInput{"negative mu_s",
+                 "bodies: {b: {type: roller, mu_s: -0.1, mu_d: 0}}",
+                 {"'b'", "'mu_s'", "-0.1", "[0, "}},
+        BadInput{"mu_d above mu_s",
+                 "bodies: {b: {type: roller, mu_s: 0.2, mu_d: 0.5}}",
+                 {"'mu_d'", "0.5", "mu_s = 0.2"}},
+        BadInput{"vertical slope",
+                 "bodies: {b: {type: roller, incline_angle: 1.5707963267948966}}",
+                 {"'incline_angle'", "1.5707963267948966)"}},
+        BadInput{"negative slope",
+                 "bodies: {b: {type: roller, incline_angle: -0.1}}",
+                 {"'incline_angle'", "-0.1"}},
         BadInput{"zero radius", "bodies: {b: {type: roller, radius: 0}}", {"'radius'", "value 0"}},
-        BadInput{"x0 past the slope", "bodies: {b: {type: roller, x0: 6, incline_length: 5}}", {"'x0'", "6", "incline_length = 5"}},
+        BadInput{"x0 past the slope",
+                 "bodies: {b: {type: roller, x0: 6, incline_length: 5}}",
+                 {"'x0'", "6", "incline_length = 5"}},
         BadInput{"negative x0", "bodies: {b: {type: roller, x0: -1}}", {"'x0'", "-1"}},
         BadInput{"seed and theta0", "bodies: {rod: {type: rod, seed: 1, theta0: 0.5}}", {"'seed'", "theta0"}},
         BadInput{"fractional seed", "bodies: {rod: {type: rod, seed: 1.5}}", {"'seed'", "whole number"}},
         BadInput{"zero rate", "rate: 0\nbodies: {rod: {type: rod}}", {"(world)", "'rate'", "value 0"}},
-        BadInput{"publish_rate not dividing", "publish_rate: 30\nbodies: {rod: {type: rod}}", {"'publish_rate'", "30", "divisor of rate = 1000"}},
-        BadInput{"publish_rate above rate", "rate: 100\npublish_rate: 200\nbodies: {rod: {type: rod}}", {"'publish_rate'", "200"}},
+        BadInput{"publish_rate not dividing",
+                 "publish_rate: 30\nbodies: {rod: {type: rod}}",
+                 {"'publish_rate'", "30", "divisor of rate = 1000"}},
+        BadInput{"publish_rate above rate",
+                 "rate: 100\npublish_rate: 200\nbodies: {rod: {type: rod}}",
+                 {"'publish_rate'", "200"}},
         BadInput{"negative gravity", "gravity: -9.8\nbodies: {rod: {type: rod}}", {"'gravity'", "-9.8"}},
         BadInput{"missing bodies", "rate: 1000", {"'bodies'", "(missing)"}},
         BadInput{"bodies not a map", "bodies: [rod]", {"'bodies'", "(a list)"}},
@@ -185,7 +220,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"invalid body name", "bodies: {'my rod': {type: rod}}", {"'my rod'", "letters, digits"}},
         BadInput{"name starting with digit", "bodies: {'2rod': {type: rod}}", {"'2rod'"}},
         BadInput{"body named like world", "bodies: {world: {type: rod}}", {"'world'", "differ"}},
-        BadInput{"invalid world_frame", "world_frame: /map\nbodies: {rod: {type: rod}}", {"'world_frame'", "'/map'"}},
+        BadInput{"invalid world_frame",
+                 "world_frame: /map\nbodies: {rod: {type: rod}}",
+                 {"'world_frame'", "'/map'"}},
         BadInput{"file is a list", "[1, 2]", {"(world)", "(a list)"}},
         BadInput{"empty document", "", {"(world)", "(nothing)"}}));
 
@@ -211,7 +248,8 @@ TEST(ConfigFileErrors, MissingFileAndSyntaxError) {
 
 TEST(ConfigDuplicates, DuplicateBodyNamesAreRefused) {
   // yaml-cpp keeps both entries of a duplicated key; the loader must not silently pick one.
-  EXPECT_NE(refusal("bodies:\n  rod: {type: rod}\n  rod: {type: rod, k: 5}\n").find("'rod'"), std::string::npos);
+  EXPECT_NE(refusal("bodies:\n  rod: {type: rod}\n  rod: {type: rod, k: 5}\n").find("'rod'"),
+            std::string::npos);
 }
 
 // Found by the fuzzer / the bad-input tables: a key that is a list or a map made yaml-cpp throw its own
@@ -232,9 +270,10 @@ TEST(ConfigOddYaml, KeysThatAreListsOrMapsAreRefusedAsUnknownKeys) {
 }
 
 TEST(ConfigOddYaml, ControlCharactersAreEscapedAndLongValuesCut) {
-  EXPECT_EQ(refusal("bodies: {\"a\\nb\": {type: rod}}"),
-            "body '(world)', key 'bodies': value 'a\\nb' is not allowed (allowed: body names of letters, digits "
-            "and _ starting with a letter)");
+  EXPECT_EQ(
+      refusal("bodies: {\"a\\nb\": {type: rod}}"),
+      "body '(world)', key 'bodies': value 'a\\nb' is not allowed (allowed: body names of letters, digits "
+      "and _ starting with a letter)");
   EXPECT_NE(refusal("bodies: {rod: {type: rod, \"k\\tx\": 1}}").find("key 'k\\x09x'"), std::string::npos);
   const std::string message = refusal("bodies: {rod: {type: rod, y0: " + std::string(5000, 'x') + "}}");
   EXPECT_LT(message.size(), 300u) << message;
@@ -243,8 +282,10 @@ TEST(ConfigOddYaml, ControlCharactersAreEscapedAndLongValuesCut) {
 
 TEST(ConfigNames, FramesAndReservedNamesAreRefused) {
   // Every TF frame is distinct: a body may not be named like another body's fixed frame.
-  EXPECT_NE(refusal("bodies: {rod: {type: rod}, rod_floor: {type: rod}}").find("'rod_floor'"), std::string::npos);
-  EXPECT_NE(refusal("world_frame: ball_slope\nbodies: {ball: {type: roller}}").find("'ball'"), std::string::npos);
+  EXPECT_NE(refusal("bodies: {rod: {type: rod}, rod_floor: {type: rod}}").find("'rod_floor'"),
+            std::string::npos);
+  EXPECT_NE(refusal("world_frame: ball_slope\nbodies: {ball: {type: roller}}").find("'ball'"),
+            std::string::npos);
   for (const auto& name : reservedBodyNames()) {
     EXPECT_NE(refusal("bodies: {" + name + ": {type: rod}}").find("node's own"), std::string::npos) << name;
   }
@@ -253,7 +294,8 @@ TEST(ConfigNames, FramesAndReservedNamesAreRefused) {
 }
 
 TEST(ConfigNumbers, OutOfDoubleRangeNamesTheKeysRange) {
-  EXPECT_NE(refusal("bodies: {rod: {type: rod, k: 1e400}}").find("'1e400' is not allowed (allowed: a finite number in (0, 1e+12])"),
+  EXPECT_NE(refusal("bodies: {rod: {type: rod, k: 1e400}}")
+                .find("'1e400' is not allowed (allowed: a finite number in (0, 1e+12])"),
             std::string::npos);
 }
 

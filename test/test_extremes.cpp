@@ -66,7 +66,8 @@ RodRun runRod(double k, double mass, double rate, double gravity) {
   RodRun run;
   run.substeps = rod.substepsFor(world.dt());
   // The text's 10 s, or what the budget allows (at least one step).
-  const auto steps = static_cast<std::int64_t>(std::max(1.0, std::min(10.0 * rate, kSubstepBudget / run.substeps)));
+  const auto steps =
+      static_cast<std::int64_t>(std::max(1.0, std::min(10.0 * rate, kSubstepBudget / run.substeps)));
   const double e0 = rod.energy();
   double in_motion = e0;  // largest kinetic + elastic energy seen
   for (std::int64_t i = 0; i < steps; ++i) {
@@ -93,7 +94,8 @@ TEST(Extremes, RodEnergyStaysWithinFivePercentEverywhere) {
   for (const double k : kStiffness) {
     for (const double mass : kMasses) {
       for (const double rate : kRates) {
-        SCOPED_TRACE("k " + formatNumber(k) + ", mass " + formatNumber(mass) + ", rate " + formatNumber(rate));
+        SCOPED_TRACE("k " + formatNumber(k) + ", mass " + formatNumber(mass) + ", rate " +
+                     formatNumber(rate));
         const RodRun run = runRod(k, mass, rate, 0.0);
         EXPECT_EQ(run.substeps, readmeSubsteps(k, mass, rate)) << "sub-stepping as the README says";
         EXPECT_LE(run.largest_swing, 0.05);
@@ -115,8 +117,8 @@ TEST(Extremes, RodWithGravityStaysFiniteAndStable) {
     for (const double k : kStiffness) {
       for (const double mass : kMasses) {
         for (const double rate : {100.0, 100000.0}) {
-          SCOPED_TRACE("g " + formatNumber(gravity) + ", k " + formatNumber(k) + ", mass " + formatNumber(mass) +
-                       ", rate " + formatNumber(rate));
+          SCOPED_TRACE("g " + formatNumber(gravity) + ", k " + formatNumber(k) + ", mass " +
+                       formatNumber(mass) + ", rate " + formatNumber(rate));
           const double gain = runRod(k, mass, rate, gravity).largest_swing;
           EXPECT_LT(gain, 1.0);
           largest = std::max(largest, gain);

@@ -47,9 +47,12 @@ TEST(NonFiniteField, NamesTheFirstNonFiniteQuantityOfARod) {
   EXPECT_FALSE(nonFiniteField(world.bodies()[0]));
   EXPECT_TRUE(finiteState(world.bodies()[0]));
   for (const auto& [field, motion] : std::vector<std::pair<std::string, RodMotion>>{
-           {"x", {kNaN, 4, 0.3, 2, 0, 0}},      {"y", {0, kInf, 0.3, 2, 0, 0}},
-           {"theta", {0, 4, -kInf, 2, 0, 0}},   {"vx", {0, 4, 0.3, kNaN, 0, 0}},
-           {"vy", {0, 4, 0.3, 2, kNaN, 0}},     {"omega", {0, 4, 0.3, 2, 0, kInf}},
+           {"x", {kNaN, 4, 0.3, 2, 0, 0}},
+           {"y", {0, kInf, 0.3, 2, 0, 0}},
+           {"theta", {0, 4, -kInf, 2, 0, 0}},
+           {"vx", {0, 4, 0.3, kNaN, 0, 0}},
+           {"vy", {0, 4, 0.3, 2, kNaN, 0}},
+           {"omega", {0, 4, 0.3, 2, 0, kInf}},
            {"energy", {0, 4, 0.3, 2, 1e300, 0}}}) {  // every field finite, v^2 overflows
     rod.setInitial(motion);
     ASSERT_TRUE(nonFiniteField(world.bodies()[0])) << field;
@@ -76,12 +79,14 @@ TEST(NonFiniteField, NamesTheFirstNonFiniteQuantityOfARoller) {
 TEST(DescribeBody, ListsEveryKeyAndTheState) {
   World world(rodAndSphere());
   const std::string rod = describeBody(world.bodies()[0]);
-  for (const char* part : {"length=1 ", "mass=0.5 ", "k=1000 ", "y0=4 ", "theta0=0.3 ", "integrator=euler_cromer",
-                           "gravity=9.8", "| state x=0 y=4 theta=0.3 vx=2 vy=0 omega=0 energy="}) {
+  for (const char* part :
+       {"length=1 ", "mass=0.5 ", "k=1000 ", "y0=4 ", "theta0=0.3 ", "integrator=euler_cromer", "gravity=9.8",
+        "| state x=0 y=4 theta=0.3 vx=2 vy=0 omega=0 energy="}) {
     EXPECT_NE(std::string::npos, rod.find(part)) << part << " in " << rod;
   }
   const std::string sphere = describeBody(world.bodies()[1]);
-  for (const char* part : {"radius=0.1 ", "mu_s=0.3 ", "mu_d=0.2 ", "shape=sphere", "mode=rolling", "friction="}) {
+  for (const char* part :
+       {"radius=0.1 ", "mu_s=0.3 ", "mu_d=0.2 ", "shape=sphere", "mode=rolling", "friction="}) {
     EXPECT_NE(std::string::npos, sphere.find(part)) << part << " in " << sphere;
   }
 }

@@ -76,13 +76,13 @@ TEST(RodTextProgram, EulerCromerEqualsTranscriptionBitForBit) {
     for (std::size_t i = 0; i < text.size(); ++i) {
       const RodMotion& s = rod.state();
       const rbs_test::OracleSample& o = text[i];
-      const bool same = bits(s.x) == bits(o.x) && bits(s.y) == bits(o.y) &&
-                        bits(s.theta) == bits(o.theta) && bits(s.vx) == bits(o.vx) &&
-                        bits(s.vy) == bits(o.vy) && bits(s.omega) == bits(o.omega);
-      ASSERT_TRUE(same) << "theta0 " << theta0 << " sample " << i << ": rod (" << s.x << ", " << s.y
-                        << ", " << s.theta << ", " << s.vx << ", " << s.vy << ", " << s.omega
-                        << ") text (" << o.x << ", " << o.y << ", " << o.theta << ", " << o.vx
-                        << ", " << o.vy << ", " << o.omega << ")";
+      const bool same = bits(s.x) == bits(o.x) && bits(s.y) == bits(o.y) && bits(s.theta) == bits(o.theta) &&
+                        bits(s.vx) == bits(o.vx) && bits(s.vy) == bits(o.vy) &&
+                        bits(s.omega) == bits(o.omega);
+      ASSERT_TRUE(same) << "theta0 " << theta0 << " sample " << i << ": rod (" << s.x << ", " << s.y << ", "
+                        << s.theta << ", " << s.vx << ", " << s.vy << ", " << s.omega << ") text (" << o.x
+                        << ", " << o.y << ", " << o.theta << ", " << o.vx << ", " << o.vy << ", " << o.omega
+                        << ")";
       lowest_end = std::min({lowest_end, rod.endHeightA(), rod.endHeightB()});
       rod.step(kTextDt);
     }
@@ -135,8 +135,10 @@ TEST(RodTextProgram, AgreesWithNumpyRunOfTheText) {
       max_10s = std::max(max_10s, d);
       EXPECT_EQ(bits(s.vx), bits(row.vx)) << "vx is constant in both; theta0 " << theta0;
     }
-    std::printf("[ numpy  ] theta0 %-9.6g first differing sample %5d, max |dx,dy,dtheta| 3 s: %.3g, "
-                "10 s: %.3g\n", theta0, first_diff, max_3s, max_10s);
+    std::printf(
+        "[ numpy  ] theta0 %-9.6g first differing sample %5d, max |dx,dy,dtheta| 3 s: %.3g, "
+        "10 s: %.3g\n",
+        theta0, first_diff, max_3s, max_10s);
     EXPECT_LE(max_3s, 1e-9) << "theta0 " << theta0;
   }
 }
@@ -201,9 +203,10 @@ TEST(RodFreeFlight, ParabolaAndUniformSpin) {
       const double y_ec = start.y + start.vy * t - 0.5 * g * dt * dt * n * (n + 1.0);
       max_dy_discrete = std::max(max_dy_discrete, std::fabs(s.y - y_ec));
     });
-    std::printf("[ flight ] %-15s max error x %.2e, y %.2e, vy %.2e, theta %.2e; y vs EC closed "
-                "form %.2e\n", toString(integrator).c_str(), max_dx, max_dy, max_dvy, max_dtheta,
-                max_dy_discrete);
+    std::printf(
+        "[ flight ] %-15s max error x %.2e, y %.2e, vy %.2e, theta %.2e; y vs EC closed "
+        "form %.2e\n",
+        toString(integrator).c_str(), max_dx, max_dy, max_dvy, max_dtheta, max_dy_discrete);
     EXPECT_LT(max_dx, 1e-10);
     EXPECT_LT(max_dtheta, 1e-10);
     EXPECT_LT(max_dvy, 1e-10);  // velocities are exact for every scheme under constant gravity
@@ -222,7 +225,9 @@ TEST(RodFreeFlight, ParabolaAndUniformSpin) {
 
 int expectedSubsteps(double k, double mass, double dt) {
   const double ratio = std::sqrt(4.0 * k / mass) * dt;  // omega_c dt
-  return ratio > 2.0 * Rod::kSubstepFraction ? static_cast<int>(std::ceil(ratio / (2.0 * Rod::kSubstepFraction))) : 1;
+  return ratio > 2.0 * Rod::kSubstepFraction
+             ? static_cast<int>(std::ceil(ratio / (2.0 * Rod::kSubstepFraction)))
+             : 1;
 }
 
 TEST(RodSubstepping, SubstepCounts) {
@@ -261,8 +266,8 @@ TEST(RodSubstepping, StiffFloorStaysFiniteAndConservesEnergy) {
     ASSERT_GT(rod.substepsFor(kTextDt), 1);
     const EnergySwing swing = energySwing(rod, kTextDt, 10000);
     const RodMotion& s = rod.state();
-    ASSERT_TRUE(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.theta) &&
-                std::isfinite(s.vx) && std::isfinite(s.vy) && std::isfinite(s.omega));
+    ASSERT_TRUE(std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.theta) && std::isfinite(s.vx) &&
+                std::isfinite(s.vy) && std::isfinite(s.omega));
     std::printf("[ stiff  ] k %.0e %-15s %d substeps: max |dE|/E0 %.4f, in flight %.4f\n", c.k,
                 toString(c.integrator).c_str(), rod.substepsFor(kTextDt), swing.all, swing.in_flight);
     // Within 5 % at every sample. Inside a contact Euler-Cromer's energy swings by up to omega h / 2
@@ -294,7 +299,7 @@ using StepFn = RodMotion (*)(const RodParams&, const RodMotion&, double);
 
 // Trajectory sampled every `every` steps of dt, `samples` samples after the start.
 std::vector<RodMotion> trajectory(StepFn step, const RodParams& p, RodMotion s, double dt, int every,
-                                 int samples) {
+                                  int samples) {
   std::vector<RodMotion> out;
   for (int n = 0; n < samples; ++n) {
     for (int i = 0; i < every; ++i) s = step(p, s, dt);
@@ -305,7 +310,8 @@ std::vector<RodMotion> trajectory(StepFn step, const RodParams& p, RodMotion s, 
 
 double maxPositionError(const std::vector<RodMotion>& a, const std::vector<RodMotion>& b) {
   double e = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) e = std::max(e, maxPositionDiff(a[i], b[i].x, b[i].y, b[i].theta));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    e = std::max(e, maxPositionDiff(a[i], b[i].x, b[i].y, b[i].theta));
   return e;
 }
 
@@ -327,9 +333,9 @@ TEST(RodConvergence, ObservedOrdersOnSmoothContact) {
     double order;
     double band;
   };
-  for (const Scheme sc : {Scheme{eulerCromerStep, "euler_cromer", 8, 1.0, 0.2},
-                          Scheme{velocityVerletStep, "velocity_verlet", 1, 2.0, 0.2},
-                          Scheme{rk4Step, "rk4", 1, 4.0, 0.4}}) {
+  for (const Scheme sc :
+       {Scheme{eulerCromerStep, "euler_cromer", 8, 1.0, 0.2},
+        Scheme{velocityVerletStep, "velocity_verlet", 1, 2.0, 0.2}, Scheme{rk4Step, "rk4", 1, 4.0, 0.4}}) {
     double err[3];
     for (int j = 0; j < 3; ++j) {
       const int per_sample = sc.steps_per_sample << j;
@@ -376,13 +382,14 @@ TEST(RodIntegratorsAgree, FirstContactOfTiltedDrop) {
     EXPECT_NEAR(fine.contact_time, t_c, dt / 100);
     for (Integrator integrator : kIntegrators) {
       const FirstBounce b = firstBounce(integrator, theta0, dt);
-      std::printf("[ bounce ] theta0 %-4g %-15s contact at %.4f s (exact %.5f), depth %.5f m (fine RK4 "
-                  "%.5f)\n", theta0, toString(integrator).c_str(), b.contact_time, t_c, b.depth,
-                  fine.depth);
+      std::printf(
+          "[ bounce ] theta0 %-4g %-15s contact at %.4f s (exact %.5f), depth %.5f m (fine RK4 "
+          "%.5f)\n",
+          theta0, toString(integrator).c_str(), b.contact_time, t_c, b.depth, fine.depth);
       if (integrator == Integrator::EulerCromer) {
         EXPECT_NEAR(b.contact_time, t_c, dt);  // it falls g t dt / 2 ahead, half a step early
       } else {
-        EXPECT_GT(b.contact_time, t_c);        // exact parabola: the first sample past t_c
+        EXPECT_GT(b.contact_time, t_c);  // exact parabola: the first sample past t_c
         EXPECT_LE(b.contact_time, t_c + dt + 1e-12) << toString(integrator);
       }
       // Measured within 1.3e-4 m of the fine run; 1 mm is (1 m/s) dt.

@@ -288,7 +288,8 @@ TEST(RollerCritical, RollsJustBelowAndSlipsJustAbove) {
     EXPECT_TRUE(Roller::canRoll(makeParams(sc.shape, below)));
     Roller rolling(makeParams(sc.shape, below), rest);
     ASSERT_EQ(rolling.mode(), RollMode::Rolling);
-    const RunLog roll_log = runAndCompare(rolling, startAt(rest, below.rollAccel(), below.rollAlpha()), 0, 10000);
+    const RunLog roll_log =
+        runAndCompare(rolling, startAt(rest, below.rollAccel(), below.rollAlpha()), 0, 10000);
     for (const StepLog& st : roll_log.steps) ASSERT_EQ(st.mode, RollMode::Rolling) << "t = " << st.t;
     EXPECT_EQ(roll_log.started_slipping, 0);
 
@@ -445,7 +446,8 @@ TEST(RollerHysteresis, RollingKeepsRollingAndForwardSlipNeverSticks) {
 
   const RollerInitial sliding{0.0, 1.0, 0.0, 0.0};
   Roller slipping(p, sliding);
-  const RunLog slip_log = runAndCompare(slipping, startAt(sliding, s.slipAccel(+1), s.slipAlpha(+1)), 0, 10000);
+  const RunLog slip_log =
+      runAndCompare(slipping, startAt(sliding, s.slipAccel(+1), s.slipAlpha(+1)), 0, 10000);
   EXPECT_TRUE(slip_log.stick_times.empty());
   double u_prev = 1.0;
   for (const StepLog& st : slip_log.steps) {

@@ -43,8 +43,8 @@ class SimulateTest : public ::testing::Test {
   }
 
   ToolRun simulate(const std::string& args) {
-    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" + (dir_ / "stdout").string() +
-                                " 2>" + (dir_ / "stderr").string();
+    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" +
+                                (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
   }
@@ -81,7 +81,8 @@ TEST_F(SimulateTest, WritesOneCsvPerBodyWithTheContractsColumns) {
 }
 
 TEST_F(SimulateTest, SamplesAtWholeMultiplesOfTheSamplePeriodFromZero) {
-  const ToolRun run = simulate(config("rod.yaml") + " --duration 1.5 --sample-rate 20 --out-dir " + dir_.string());
+  const ToolRun run =
+      simulate(config("rod.yaml") + " --duration 1.5 --sample-rate 20 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = lines(dir_ / "rod.csv");
   ASSERT_EQ(rows.size(), 1u + 31u);  // header, t = 0, 0.05, ..., 1.5
@@ -92,7 +93,8 @@ TEST_F(SimulateTest, SamplesAtWholeMultiplesOfTheSamplePeriodFromZero) {
 }
 
 TEST_F(SimulateTest, CsvRowsAreTheCoresStatesAtThoseTimes) {
-  const ToolRun run = simulate(config("demo.yaml") + " --duration 3 --sample-rate 100 --out-dir " + dir_.string());
+  const ToolRun run =
+      simulate(config("demo.yaml") + " --duration 3 --sample-rate 100 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   World world(loadWorldConfigFile(config("demo.yaml")));
   std::vector<std::vector<std::string>> files;
@@ -114,7 +116,7 @@ TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
 
 TEST_F(SimulateTest, WritesABag) {
   const ToolRun run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
-                           (dir_ / "run.bag").string());
+                               (dir_ / "run.bag").string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(fs::exists(dir_ / "run.bag"));
   EXPECT_FALSE(fs::exists(dir_ / "run.bag.active"));

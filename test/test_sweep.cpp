@@ -74,8 +74,8 @@ class SweepTest : public ::testing::Test {
     std::string err;
   };
   Run simulate(const std::string& args) {
-    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" + (dir_ / "stdout").string() +
-                                " 2>" + (dir_ / "stderr").string();
+    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" +
+                                (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
   }
@@ -105,7 +105,8 @@ TEST(SweepAxis, VariantsAreTheCartesianProductOnceEach) {
   for (std::int64_t v = 0; v < 12; ++v) seen.insert(variantValues(axes, v));
   EXPECT_EQ(seen.size(), 12u);
   for (double theta : {0.0, 1.0, 2.0, 3.0}) {
-    for (double mu : {0.2, axes[1].value(1), 0.4}) EXPECT_EQ(seen.count({theta, mu}), 1u) << theta << " " << mu;
+    for (double mu : {0.2, axes[1].value(1), 0.4})
+      EXPECT_EQ(seen.count({theta, mu}), 1u) << theta << " " << mu;
   }
   // The last axis varies fastest, and the variant's config carries its values into the world.
   EXPECT_EQ(variantValues(axes, 5), (std::vector<double>{1.0, 0.4}));
@@ -117,10 +118,10 @@ TEST(SweepAxis, VariantsAreTheCartesianProductOnceEach) {
 
 TEST(SweepAxis, BadSpecificationsAreRefusedWithOneLine) {
   const WorldConfig base = loadWorldConfigFile(config("demo.yaml"));
-  for (const char* spec : {"rod.theta0", "rod.theta0=0:1", "rod.theta0=0:1:0", "rod.theta0=0:1:2.5",
-                           "rod.theta0=a:1:3", "rod.theta0=0:1:3:4", "theta0=0:1:3", "rod.theta0=0:nan:3",
-                           "rod.theta0= 0:1:3", "nobody.k=1:2:3", "rod.mu_s=0:1:3", "sphere.k=1:2:3",
-                           "rod.integrator=0:1:2", "sphere.shape=0:1:2"}) {
+  for (const char* spec :
+       {"rod.theta0", "rod.theta0=0:1", "rod.theta0=0:1:0", "rod.theta0=0:1:2.5", "rod.theta0=a:1:3",
+        "rod.theta0=0:1:3:4", "theta0=0:1:3", "rod.theta0=0:nan:3", "rod.theta0= 0:1:3", "nobody.k=1:2:3",
+        "rod.mu_s=0:1:3", "sphere.k=1:2:3", "rod.integrator=0:1:2", "sphere.shape=0:1:2"}) {
     try {
       parseSweepAxis(spec, base);
       ADD_FAILURE() << spec << " was accepted";
@@ -133,8 +134,9 @@ TEST(SweepAxis, BadSpecificationsAreRefusedWithOneLine) {
   }
   EXPECT_THROW(variantCount({parseSweepAxis("rod.k=1:2:3", base), parseSweepAxis("rod.k=5:6:3", base)}),
                ConfigError);
-  EXPECT_THROW(variantCount({parseSweepAxis("rod.k=1:2:100000", base), parseSweepAxis("rod.mass=1:2:100000", base)}),
-               ConfigError);
+  EXPECT_THROW(
+      variantCount({parseSweepAxis("rod.k=1:2:100000", base), parseSweepAxis("rod.mass=1:2:100000", base)}),
+      ConfigError);
 }
 
 TEST(SweepShard, ShardsCoverEveryVariantExactlyOnceInOrder) {
@@ -180,8 +182,9 @@ int bouncesOf(const WorldConfig& config, const std::string& body, std::int64_t s
 }
 
 TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
-  const Run run = simulate(config("demo.yaml") + " --duration 3 --sweep rod.theta0=0:3:3 --sweep bowler.omega0=5:15:2" +
-                           " --jobs 2 --out-dir " + dir_.string());
+  const Run run =
+      simulate(config("demo.yaml") + " --duration 3 --sweep rod.theta0=0:3:3 --sweep bowler.omega0=5:15:2" +
+               " --jobs 2 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const auto rows = readCsv(dir_ / "sweep.csv");
   ASSERT_EQ(rows.size(), 6u);
@@ -196,8 +199,8 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
     const fs::path variant_dir = dir_ / ("variant" + std::to_string(v));
     fs::create_directories(variant_dir);
     std::ofstream(variant_dir / "variant.yaml") << yaml;
-    const Run single = simulate((variant_dir / "variant.yaml").string() + " --duration 3 --out-dir " +
-                                variant_dir.string());
+    const Run single =
+        simulate((variant_dir / "variant.yaml").string() + " --duration 3 --out-dir " + variant_dir.string());
     ASSERT_EQ(single.exit_code, 0) << single.err;
     for (const auto& body : base.bodies) {
       const auto samples = readCsv(variant_dir / (body.name + ".csv"));
@@ -220,7 +223,8 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
     for (int s = 0; s < 3000 && first_roll.empty(); ++s) {
       world.step();
       for (const auto& event : world.takeEvents()) {
-        if (event.body == "bowler" && event.kind == WorldEvent::Kind::StartedRolling) first_roll = formatNumber(event.t);
+        if (event.body == "bowler" && event.kind == WorldEvent::Kind::StartedRolling)
+          first_roll = formatNumber(event.t);
       }
     }
     ASSERT_FALSE(first_roll.empty());
@@ -230,7 +234,8 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
 }
 
 TEST_F(SweepTest, ResultsDoNotDependOnTheNumberOfThreads) {
-  const std::string sweep = config("demo.yaml") + " --duration 1 --sweep rod.theta0=0:6:7 --sweep sphere.mu_s=0.15:0.6:3";
+  const std::string sweep =
+      config("demo.yaml") + " --duration 1 --sweep rod.theta0=0:6:7 --sweep sphere.mu_s=0.15:0.6:3";
   ASSERT_EQ(simulate(sweep + " --jobs 1 --out-dir " + (dir_ / "one").string()).exit_code, 0);
   const Run three = simulate(sweep + " --jobs 3 --out-dir " + (dir_ / "three").string());
   ASSERT_EQ(three.exit_code, 0) << three.err;
@@ -241,8 +246,8 @@ TEST_F(SweepTest, ResultsDoNotDependOnTheNumberOfThreads) {
 }
 
 TEST_F(SweepTest, ShardsConcatenateToTheWholeSweep) {
-  const std::string sweep = config("rod.yaml") + " --duration 0.5 --sweep rod.theta0=0:6.283:10 --out-dir " +
-                            dir_.string();
+  const std::string sweep =
+      config("rod.yaml") + " --duration 0.5 --sweep rod.theta0=0:6.283:10 --out-dir " + dir_.string();
   ASSERT_EQ(simulate(sweep).exit_code, 0);
   std::string joined;
   for (int i = 1; i <= 4; ++i) {
@@ -256,12 +261,14 @@ TEST_F(SweepTest, ShardsConcatenateToTheWholeSweep) {
 TEST_F(SweepTest, ABadSweptValueIsRefusedWithOneLineAndNoOutput) {
   const Run run = simulate(config("rod.yaml") + " --sweep rod.k=-1000:1000:3 --out-dir " + dir_.string());
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("body 'rod', key 'k': value -1000 is not allowed (allowed:"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("body 'rod', key 'k': value -1000 is not allowed (allowed:"), std::string::npos)
+      << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
   EXPECT_FALSE(fs::exists(dir_ / "sweep.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "sweep.csv.tmp"));
   // A relation between keys is checked per variant too: mu_d above a swept mu_s.
-  const Run relation = simulate(config("incline.yaml") + " --sweep sphere.mu_s=0:0.3:4 --out-dir " + dir_.string());
+  const Run relation =
+      simulate(config("incline.yaml") + " --sweep sphere.mu_s=0:0.3:4 --out-dir " + dir_.string());
   EXPECT_EQ(relation.exit_code, 1);
   EXPECT_NE(relation.err.find("body 'sphere', key 'mu_d'"), std::string::npos) << relation.err;
   EXPECT_FALSE(fs::exists(dir_ / "sweep.csv"));
@@ -278,7 +285,8 @@ TEST_F(SweepTest, OptionsThatNeedASweepOrExcludeOneAreRefused) {
 }
 
 TEST_F(SweepTest, NoProgressBarWhenStderrIsNotATerminal) {
-  const Run run = simulate(config("rod.yaml") + " --sweep rod.theta0=0:1:4000 --duration 10 --out-dir " + dir_.string());
+  const Run run =
+      simulate(config("rod.yaml") + " --sweep rod.theta0=0:1:4000 --duration 10 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0);
   EXPECT_EQ(run.err, "");
 }

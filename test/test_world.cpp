@@ -35,7 +35,8 @@ TEST(World, TimeIsAStepCountWithoutAccumulatedRounding) {
 TEST(World, StepsEveryBodyAsOnItsOwn) {
   const WorldConfig config = rodAndBall();
   World world(config);
-  Rod rod(std::get<RodConfig>(config.bodies[0].config).params, std::get<RodConfig>(config.bodies[0].config).initial);
+  Rod rod(std::get<RodConfig>(config.bodies[0].config).params,
+          std::get<RodConfig>(config.bodies[0].config).initial);
   const auto& ball_config = std::get<RollerConfig>(config.bodies[1].config);
   Roller ball(ball_config.params, ball_config.initial);
   for (int i = 0; i < 3000; ++i) {
@@ -57,7 +58,8 @@ TEST(World, ReportsTheSlipToRollInstantInsideTheStep) {
   const WorldConfig config = rodAndBall();
   const RollerParams& p = std::get<RollerConfig>(config.bodies[1].config).params;
   const double c = p.inertia_factor;
-  const double du_dt = p.gravity * (std::sin(p.incline_angle) - p.mu_d * std::cos(p.incline_angle) * (1 + c) / c);
+  const double du_dt =
+      p.gravity * (std::sin(p.incline_angle) - p.mu_d * std::cos(p.incline_angle) * (1 + c) / c);
   const double expected = -3.0 / du_dt;  // u0 = v0 = 3 m/s, omega0 = 0
   World world(config);
   std::vector<WorldEvent> events;

@@ -148,8 +148,9 @@ double theta0FromSeed(unsigned long long seed) {
 
 WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (!root.IsMap()) {
-    throw ConfigError(kWorld, "(file)", describe(root), "a map with rate, publish_rate, gravity, "
-                                                        "world_frame and bodies");
+    throw ConfigError(kWorld, "(file)", describe(root),
+                      "a map with rate, publish_rate, gravity, "
+                      "world_frame and bodies");
   }
   refuseUnknownKeys(kWorld, root, {"rate", "publish_rate", "gravity", "world_frame", "bodies"});
   WorldConfig config;
@@ -157,7 +158,8 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (root["publish_rate"]) {
     config.publish_rate = asNumber(kWorld, "publish_rate", root["publish_rate"], "a divisor of rate");
   }
-  if (root["gravity"]) config.gravity = asNumber(kWorld, "gravity", root["gravity"], gravityRange().describe());
+  if (root["gravity"])
+    config.gravity = asNumber(kWorld, "gravity", root["gravity"], gravityRange().describe());
   if (root["world_frame"]) {
     config.world_frame = asString(kWorld, "world_frame", root["world_frame"], "a frame name");
   }

@@ -44,7 +44,8 @@ void describeKeys(std::ostream& out, Config config, const std::vector<NumericKey
 
 void describeModel(std::ostream& out, const Rod& rod) {
   describeKeys(out, RodConfig{rod.params(), rod.initial()}, rodNumericKeys());
-  out << "integrator=" << toString(rod.params().integrator) << " gravity=" << formatNumber(rod.params().gravity);
+  out << "integrator=" << toString(rod.params().integrator)
+      << " gravity=" << formatNumber(rod.params().gravity);
 }
 
 void describeModel(std::ostream& out, const Roller& roller) {
@@ -67,11 +68,14 @@ std::optional<std::string> nonFiniteField(const Body& body) {
 
 std::string describeBody(const Body& body) {
   std::ostringstream out;
-  std::visit([&](const auto& model) {
-    describeModel(out, model);
-    out << " | state";
-    for (const auto& [name, value] : quantitiesOf(model)) out << ' ' << name << '=' << formatNumber(value);
-  }, body.model);
+  std::visit(
+      [&](const auto& model) {
+        describeModel(out, model);
+        out << " | state";
+        for (const auto& [name, value] : quantitiesOf(model))
+          out << ' ' << name << '=' << formatNumber(value);
+      },
+      body.model);
   return out.str();
 }
 

@@ -24,7 +24,8 @@ double effectiveSampleRate(const OfflineOptions& options, const WorldConfig& con
 // Follows the energy of every body from sample to sample.
 class EnergyTracker {
  public:
-  explicit EnergyTracker(const std::vector<Body>& bodies) : records_(bodies.size()), rolling_start_(bodies.size()) {
+  explicit EnergyTracker(const std::vector<Body>& bodies)
+      : records_(bodies.size()), rolling_start_(bodies.size()) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       const double e = energyOf(bodies[i]);
       records_[i] = {e, e, e, e, 0.0};
@@ -75,7 +76,8 @@ std::vector<bool> interruptedBodies(const std::vector<Body>& bodies, const std::
 // neither was below it at the step before. Checked every step, as a contact lasts only tens of steps.
 class BounceCounter {
  public:
-  explicit BounceCounter(const std::vector<Body>& bodies) : touching_(bodies.size()), bounces_(bodies.size(), 0) {
+  explicit BounceCounter(const std::vector<Body>& bodies)
+      : touching_(bodies.size()), bounces_(bodies.size(), 0) {
     for (std::size_t i = 0; i < bodies.size(); ++i) touching_[i] = touchesFloor(bodies[i]);
   }
 
@@ -147,7 +149,8 @@ OfflineSummary stepAndSample(const WorldConfig& config, const OfflineOptions& op
 
 // How many samples a run takes, for the progress bar.
 std::int64_t sampleCount(const WorldConfig& config, const OfflineOptions& options) {
-  return static_cast<std::int64_t>(std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
+  return static_cast<std::int64_t>(
+      std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
 }
 
 }  // namespace
@@ -189,7 +192,8 @@ OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& optio
 }
 
 OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options) {
-  return stepAndSample(config, options, [](const World&) {}, nullptr);
+  return stepAndSample(
+      config, options, [](const World&) {}, nullptr);
 }
 
 std::string formatSummary(const OfflineSummary& summary) {
@@ -204,7 +208,8 @@ std::string formatSummary(const OfflineSummary& summary) {
     out << "\n";
     if (summary.bounces[i] > 0) out << "  " << summary.bounces[i] << " bounces\n";
     for (const auto& event : summary.events) {
-      if (event.body == summary.bodies[i]) out << "  t = " << event.t << " s: " << toString(event.kind) << "\n";
+      if (event.body == summary.bodies[i])
+        out << "  t = " << event.t << " s: " << toString(event.kind) << "\n";
     }
   }
   return out.str();

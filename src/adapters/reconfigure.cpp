@@ -34,14 +34,16 @@ RollerReconfigureConfig toReconfigure(const RollerConfig& config) {
   return out;
 }
 
-RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request, const RodConfig& current) {
+RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request,
+                          const RodConfig& current) {
   RodConfig out = current;
   out.params.k = request.k;
   out.params.mass = request.mass;
   out.params.length = request.length;
   const auto integrator = integratorFromString(request.integrator);
   if (!integrator) {
-    throw ConfigError(body, "integrator", "'" + request.integrator + "'", "euler_cromer, velocity_verlet or rk4");
+    throw ConfigError(body, "integrator", "'" + request.integrator + "'",
+                      "euler_cromer, velocity_verlet or rk4");
   }
   out.params.integrator = *integrator;
   out.initial = {request.x0, request.y0, request.theta0, request.vx0, request.vy0, request.omega0};

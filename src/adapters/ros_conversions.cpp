@@ -276,8 +276,8 @@ visualization_msgs::MarkerArray SnapshotBuilder::staticMarkers(const ros::Time& 
   for (std::size_t i = 0; i < placements_.size(); ++i) {
     const double length = placements_[i].slope_length;
     if (length <= 0.0) continue;
-    auto slope = marker(kNsSlope, static_cast<int>(i), visualization_msgs::Marker::CUBE,
-                        placements_[i].frame, stamp);
+    auto slope =
+        marker(kNsSlope, static_cast<int>(i), visualization_msgs::Marker::CUBE, placements_[i].frame, stamp);
     slope.pose.position.x = length / 2;
     slope.pose.position.y = -0.025;
     slope.scale.x = length;
@@ -307,7 +307,8 @@ Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vec
     for (const auto& point : trail) trail_marker.points.push_back(toPoint(point));
 
     auto label = marker(kNsLabel, id, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-    label.pose.position = toPoint(world_from_body.translation() + Eigen::Vector3d(0, 0, radiusOf(body) + 0.35));
+    label.pose.position =
+        toPoint(world_from_body.translation() + Eigen::Vector3d(0, 0, radiusOf(body) + 0.35));
     label.scale.z = 0.15;
     label.color = rgba(1, 1, 1);
     label.text = labelText(body);
@@ -322,10 +323,12 @@ Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vec
     } else {
       snapshot.states.emplace_back(toRollerStateMsg(t, std::get<Roller>(body.model)));
     }
-    std::visit([&](auto& msg) {
-      msg.header.stamp = stamp;
-      msg.header.frame_id = placements_[i].frame;
-    }, snapshot.states.back());
+    std::visit(
+        [&](auto& msg) {
+          msg.header.stamp = stamp;
+          msg.header.frame_id = placements_[i].frame;
+        },
+        snapshot.states.back());
   }
   // The floor and slopes too, every time: an rviz started after the node still sees them (a few markers).
   for (const auto& m : staticMarkers(stamp).markers) snapshot.markers.markers.push_back(m);

@@ -168,7 +168,7 @@ SweepAxis parseSweepAxis(const std::string& spec, const WorldConfig& config) {
                          : findKey(rollerNumericKeys(), axis.key) != nullptr;
   if (!known) {
     const std::string names = std::holds_alternative<RodConfig>(body->config) ? keyNames(rodNumericKeys())
-                                                                            : keyNames(rollerNumericKeys());
+                                                                              : keyNames(rollerNumericKeys());
     throw ConfigError(axis.body, axis.key, "'" + spec + "'", "a numeric key of this body: " + names);
   }
   return axis;
@@ -261,11 +261,12 @@ SweepResult runSweep(const WorldConfig& base, const SweepOptions& sweep, const O
   result.total = variantCount(sweep.axes);
   std::tie(result.first, result.end) = shardRange(result.total, sweep.shard);
   validate(options, base);
-  for (std::int64_t v = result.first; v < result.end; ++v) variantConfig(base, sweep.axes, v);  // refuse early
+  for (std::int64_t v = result.first; v < result.end; ++v)
+    variantConfig(base, sweep.axes, v);  // refuse early
 
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  result.jobs = static_cast<unsigned>(
-      std::max<std::int64_t>(1, std::min<std::int64_t>(sweep.jobs ? sweep.jobs : cores, result.end - result.first)));
+  result.jobs = static_cast<unsigned>(std::max<std::int64_t>(
+      1, std::min<std::int64_t>(sweep.jobs ? sweep.jobs : cores, result.end - result.first)));
   std::filesystem::create_directories(options.out_dir);
   result.path = (std::filesystem::path(options.out_dir) / sweepFileName(sweep.shard)).string();
   const std::string temp_path = result.path + ".tmp";

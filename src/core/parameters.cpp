@@ -55,8 +55,7 @@ Range positive(double max) { return {0.0, max, true, false}; }
 Range closed(double min, double max) { return {min, max, false, false}; }
 
 template <class Config>
-void checkRanges(const std::string& body, const Config& config,
-                 const std::vector<NumericKey<Config>>& keys) {
+void checkRanges(const std::string& body, const Config& config, const std::vector<NumericKey<Config>>& keys) {
   auto& mutable_config = const_cast<Config&>(config);  // NumericKey fields are shared with the loader
   for (const auto& key : keys) {
     const double value = key.field(mutable_config);
@@ -105,10 +104,8 @@ const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {
       {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(-kMaxSize, kMaxSize)},
       {"vx0", [](RodConfig& c) -> double& { return c.initial.vx; }, closed(-kMaxSpeed, kMaxSpeed)},
       {"vy0", [](RodConfig& c) -> double& { return c.initial.vy; }, closed(-kMaxSpeed, kMaxSpeed)},
-      {"theta0", [](RodConfig& c) -> double& { return c.initial.theta; },
-       closed(-kMaxAngle, kMaxAngle)},
-      {"omega0", [](RodConfig& c) -> double& { return c.initial.omega; },
-       closed(-kMaxSpin, kMaxSpin)},
+      {"theta0", [](RodConfig& c) -> double& { return c.initial.theta; }, closed(-kMaxAngle, kMaxAngle)},
+      {"omega0", [](RodConfig& c) -> double& { return c.initial.omega; }, closed(-kMaxSpin, kMaxSpin)},
   };
   return keys;
 }
@@ -119,7 +116,8 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
       {"mass", [](RollerConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
       {"inertia_factor", [](RollerConfig& c) -> double& { return c.params.inertia_factor; },
        positive(kMaxInertiaFactor)},
-      {"incline_angle", [](RollerConfig& c) -> double& { return c.params.incline_angle; },
+      {"incline_angle",
+       [](RollerConfig& c) -> double& { return c.params.incline_angle; },
        {0.0, kPi / 2, false, true}},
       {"incline_length", [](RollerConfig& c) -> double& { return c.params.incline_length; },
        positive(kMaxSize)},
@@ -127,10 +125,8 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
       {"mu_d", [](RollerConfig& c) -> double& { return c.params.mu_d; }, closed(0, kMaxFriction)},
       {"x0", [](RollerConfig& c) -> double& { return c.initial.x0; }, closed(0, kMaxSize)},
       {"v0", [](RollerConfig& c) -> double& { return c.initial.v0; }, closed(-kMaxSpeed, kMaxSpeed)},
-      {"theta0", [](RollerConfig& c) -> double& { return c.initial.theta0; },
-       closed(-kMaxAngle, kMaxAngle)},
-      {"omega0", [](RollerConfig& c) -> double& { return c.initial.omega0; },
-       closed(-kMaxSpin, kMaxSpin)},
+      {"theta0", [](RollerConfig& c) -> double& { return c.initial.theta0; }, closed(-kMaxAngle, kMaxAngle)},
+      {"omega0", [](RollerConfig& c) -> double& { return c.initial.omega0; }, closed(-kMaxSpin, kMaxSpin)},
   };
   return keys;
 }
@@ -145,8 +141,9 @@ void validate(const std::string& body, const RodConfig& config) {
   const double max_k = kMaxContactFrequency * kMaxContactFrequency * p.mass / 4.0;
   if (p.k > max_k) {
     throw ConfigError(body, "k", formatNumber(p.k),
-                      "a finite number in (0, " + formatNumber(max_k) + "] for mass = " + formatNumber(p.mass) +
-                          ": sqrt(4 k / mass) at most " + formatNumber(kMaxContactFrequency) + " rad/s");
+                      "a finite number in (0, " + formatNumber(max_k) +
+                          "] for mass = " + formatNumber(p.mass) + ": sqrt(4 k / mass) at most " +
+                          formatNumber(kMaxContactFrequency) + " rad/s");
   }
 }
 
@@ -164,14 +161,14 @@ void validate(const std::string& body, const RollerConfig& config) {
                       "a finite number in [0, mu_s = " + formatNumber(p.mu_s) + "]");
   }
   if (config.initial.x0 > p.incline_length) {
-    throw ConfigError(body, "x0", formatNumber(config.initial.x0),
-                      "a position on the slope, in [0, incline_length = " +
-                          formatNumber(p.incline_length) + "]");
+    throw ConfigError(
+        body, "x0", formatNumber(config.initial.x0),
+        "a position on the slope, in [0, incline_length = " + formatNumber(p.incline_length) + "]");
   }
   if (p.shape != Shape::Custom && p.inertia_factor != inertiaFactorOf(p.shape)) {
     throw ConfigError(body, "inertia_factor", formatNumber(p.inertia_factor),
-                      "only with shape custom, or " + formatNumber(inertiaFactorOf(p.shape)) +
-                          " for shape " + toString(p.shape));
+                      "only with shape custom, or " + formatNumber(inertiaFactorOf(p.shape)) + " for shape " +
+                          toString(p.shape));
   }
 }
 
@@ -198,10 +195,20 @@ std::string fixedFrameOf(const BodyConfig& body) {
 }
 
 const std::vector<std::string>& reservedBodyNames() {
-  static const std::vector<std::string> names = {
-      "rate", "publish_rate", "gravity", "world_frame", "bodies",                 // world keys
-      "real_time_factor", "publish_clock", "duration", "start_delay",            // node options
-      "markers", "reset", "pause", "unpause", "step"};                           // topics, services
+  static const std::vector<std::string> names = {"rate",
+                                                 "publish_rate",
+                                                 "gravity",
+                                                 "world_frame",
+                                                 "bodies",  // world keys
+                                                 "real_time_factor",
+                                                 "publish_clock",
+                                                 "duration",
+                                                 "start_delay",  // node options
+                                                 "markers",
+                                                 "reset",
+                                                 "pause",
+                                                 "unpause",
+                                                 "step"};  // topics, services
   return names;
 }
 
@@ -210,8 +217,7 @@ void validate(const WorldConfig& config) {
   if (!rateRange().contains(config.rate)) {
     throw ConfigError(world, "rate", formatNumber(config.rate), rateRange().describe());
   }
-  if (!publishRateRange().contains(config.publish_rate) ||
-      !dividesRate(config.rate, config.publish_rate)) {
+  if (!publishRateRange().contains(config.publish_rate) || !dividesRate(config.rate, config.publish_rate)) {
     throw ConfigError(world, "publish_rate", formatNumber(config.publish_rate),
                       "a divisor of rate = " + formatNumber(config.rate) + " (rate / publish_rate whole)");
   }
@@ -233,8 +239,9 @@ void validate(const WorldConfig& config) {
                         "body names of letters, digits and _ starting with a letter");
     }
     if (std::find(reserved.begin(), reserved.end(), body.name) != reserved.end()) {
-      throw ConfigError(world, "bodies", "'" + body.name + "'",
-                        "a name other than the node's own keys, topics and services (" + joined(reserved) + ")");
+      throw ConfigError(
+          world, "bodies", "'" + body.name + "'",
+          "a name other than the node's own keys, topics and services (" + joined(reserved) + ")");
     }
     // Each body brings two TF frames: its own and its fixed frame (<name>_floor or <name>_slope).
     if (!frames.insert(body.name).second || !frames.insert(fixedFrameOf(body)).second) {

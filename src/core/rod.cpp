@@ -54,8 +54,8 @@ double Rod::momentOfInertia() const {
 
 double Rod::energy() const {
   const RodMotion& s = state_;
-  const double kinetic = 0.5 * params_.mass * (s.vx * s.vx + s.vy * s.vy) +
-                         0.5 * momentOfInertia() * s.omega * s.omega;
+  const double kinetic =
+      0.5 * params_.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * momentOfInertia() * s.omega * s.omega;
   const double gravitational = params_.mass * params_.gravity * s.y;
   double elastic = 0.0;
   for (double y_end : {endHeightA(), endHeightB()}) {

@@ -101,10 +101,12 @@ RodMotion rk4Step(const RodParams& p, const RodMotion& s, double dt) {
   const auto mix = [](double d1, double d2, double d3, double d4) {
     return (d1 + 2.0 * d2 + 2.0 * d3 + d4) / 6.0;
   };
-  const RodMotion slope{mix(k1.x, k2.x, k3.x, k4.x),         mix(k1.y, k2.y, k3.y, k4.y),
-                       mix(k1.theta, k2.theta, k3.theta, k4.theta),
-                       mix(k1.vx, k2.vx, k3.vx, k4.vx),     mix(k1.vy, k2.vy, k3.vy, k4.vy),
-                       mix(k1.omega, k2.omega, k3.omega, k4.omega)};
+  const RodMotion slope{mix(k1.x, k2.x, k3.x, k4.x),
+                        mix(k1.y, k2.y, k3.y, k4.y),
+                        mix(k1.theta, k2.theta, k3.theta, k4.theta),
+                        mix(k1.vx, k2.vx, k3.vx, k4.vx),
+                        mix(k1.vy, k2.vy, k3.vy, k4.vy),
+                        mix(k1.omega, k2.omega, k3.omega, k4.omega)};
   return advance(s, slope, dt);
 }
 

@@ -92,9 +92,7 @@ int Roller::slipDirection() const { return slip_sign_; }
 
 double Roller::slipSpeed() const { return state_.v + state_.omega * params_.radius; }
 
-double Roller::normalForce() const {
-  return params_.mass * params_.gravity * cos_angle_;
-}
+double Roller::normalForce() const { return params_.mass * params_.gravity * cos_angle_; }
 
 double Roller::frictionForce() const {
   const double c = params_.inertia_factor;
@@ -117,7 +115,8 @@ void Roller::cacheAccelerations() {
     // Kinetic friction opposes the sliding of the contact point (frictionForce() while slipping).
     const double friction = -direction * params_.mu_d * normalForce();
     // Torque about +z of friction f at the contact (0, -R): tau = R f, and I = c M R^2.
-    accelerations_[direction > 0 ? 1 : 2] = {g_along + friction / params_.mass, friction / (c * params_.mass * r)};
+    accelerations_[direction > 0 ? 1 : 2] = {g_along + friction / params_.mass,
+                                             friction / (c * params_.mass * r)};
   }
 }
 

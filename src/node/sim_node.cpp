@@ -78,8 +78,9 @@ Config& configOf(WorldConfig& world, std::size_t index) {
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
 bool placementChanged(const RodConfig&, const RodConfig&) { return false; }
 bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
-  return a.params.incline_angle != b.params.incline_angle || a.params.incline_length != b.params.incline_length ||
-         a.params.shape != b.params.shape || a.params.radius != b.params.radius;
+  return a.params.incline_angle != b.params.incline_angle ||
+         a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
+         a.params.radius != b.params.radius;
 }
 
 }  // namespace
@@ -142,8 +143,9 @@ void SimNode::startReconfigureServers() {
     } else {
       auto server = std::make_unique<RollerServer>(reconfigure_mutex_, body_node);
       server->updateConfig(toReconfigure(configOf<RollerConfig>(config_, i)));
-      server->setCallback(
-          [this, i](RollerReconfigureConfig& request, uint32_t) { reconfigure<Roller, RollerConfig>(i, request); });
+      server->setCallback([this, i](RollerReconfigureConfig& request, uint32_t) {
+        reconfigure<Roller, RollerConfig>(i, request);
+      });
       roller_servers_.push_back(std::move(server));
     }
   }
@@ -243,10 +245,11 @@ void SimNode::stepOnceLocked() {
 void SimNode::guardLocked() {
   for (const NonFinite& fault : guard_.afterStep(world_.bodies())) {
     const Body held{world_.bodies()[fault.index].name, guard_.lastFinite(fault.index)};
-    ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field << " became non-finite in the step to t = "
-                     << formatNumber(world_.time()) << " s; the body is paused at its last finite state, the "
-                     << "others go on (a reconfigure of it or ~reset restarts it). It ran with: "
-                     << describeBody(held));
+    ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field
+                              << " became non-finite in the step to t = " << formatNumber(world_.time())
+                              << " s; the body is paused at its last finite state, the "
+                              << "others go on (a reconfigure of it or ~reset restarts it). It ran with: "
+                              << describeBody(held));
   }
 }
 
@@ -289,7 +292,8 @@ void SimNode::stepLoop() {
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
   publishClockLocked();
-  wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay), [this] { return stopping_.load(); });
+  wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
+                 [this] { return stopping_.load(); });
   publishStaticLocked();
   publishLocked();
   pacer_.restart(wallNow(), world_.stepCount());
@@ -319,8 +323,8 @@ void SimNode::stepLoop() {
       lock.lock();
       continue;
     }
-    const double wake_at = pacer_.wallTimeOf(
-        (world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_);
+    const double wake_at =
+        pacer_.wallTimeOf((world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_);
     const auto wait = std::chrono::duration<double>(wake_at - wallNow());
     if (wait.count() > 0) wake_.wait_for(lock, wait);
   }

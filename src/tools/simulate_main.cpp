@@ -36,7 +36,8 @@ void checkModes(const SweepArgs& args, const rigid_body_sim::OfflineOptions& opt
     throw ConfigError(where, "--shard", "'" + args.shard + "'", "only with --sweep");
   }
   if (!args.specs.empty() && !options.bag.empty()) {
-    throw ConfigError(where, "--bag", "'" + options.bag + "'", "no bag with --sweep (run one variant for a bag)");
+    throw ConfigError(where, "--bag", "'" + options.bag + "'",
+                      "no bag with --sweep (run one variant for a bag)");
   }
 }
 
@@ -68,18 +69,21 @@ int main(int argc, char** argv) {
                  "samples per simulated second, a divisor of rate (default: publish_rate)");
   app.add_option("--out-dir", options.out_dir, "folder for <body>.csv (or sweep.csv)")->capture_default_str();
   app.add_option("--bag", options.bag, "also write what the node would publish into this bag");
-  app.add_option("--sweep", sweep_args.specs,
-                 "BODY.KEY=START:STOP:N: N values from START to STOP inclusive; repeat for a Cartesian product")
+  app.add_option(
+         "--sweep", sweep_args.specs,
+         "BODY.KEY=START:STOP:N: N values from START to STOP inclusive; repeat for a Cartesian product")
       ->allow_extra_args(false);  // one value per --sweep, so that CONFIG may follow
   app.add_option("--jobs", sweep_args.jobs, "threads for --sweep (default 0: every core)");
   app.add_option("--shard", sweep_args.shard, "i/n: run only slice i of n of the sweep (1 <= i <= n)");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return "simulate: " + std::string(e.what()) + "\n"; });
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& e) { return "simulate: " + std::string(e.what()) + "\n"; });
   CLI11_PARSE(app, argc, argv);
 
   try {
     checkModes(sweep_args, options);
     const auto config = rigid_body_sim::loadWorldConfigFile(config_path);
-    for (const auto& warning : rigid_body_sim::slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
+    for (const auto& warning : rigid_body_sim::slowRunWarnings(config))
+      std::cerr << "simulate: warning: " << warning << "\n";
     if (!sweep_args.specs.empty()) {
       sweep(config, sweep_args, options);
     } else {

@@ -3,8 +3,8 @@
 // (under ASan + UBSan) is a failure.
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "rigid_body_sim/adapters/config_loader.h"

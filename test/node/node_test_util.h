@@ -32,19 +32,25 @@ class StateCollector {
       const std::string topic = ns + "/" + body.name + "/state";
       const std::string name = body.name;
       if (std::holds_alternative<Rod>(body.model)) {
-        subs_.push_back(nh.subscribe<RodState>(topic, 100000, [this, name](const RodState::ConstPtr& msg) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          rods_[name].push_back(*msg);
-          ++count_;
-          cv_.notify_all();
-        }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+        subs_.push_back(nh.subscribe<RodState>(
+            topic, 100000,
+            [this, name](const RodState::ConstPtr& msg) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              rods_[name].push_back(*msg);
+              ++count_;
+              cv_.notify_all();
+            },
+            ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
       } else {
-        subs_.push_back(nh.subscribe<RollerState>(topic, 100000, [this, name](const RollerState::ConstPtr& msg) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          rollers_[name].push_back(*msg);
-          ++count_;
-          cv_.notify_all();
-        }, ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+        subs_.push_back(nh.subscribe<RollerState>(
+            topic, 100000,
+            [this, name](const RollerState::ConstPtr& msg) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              rollers_[name].push_back(*msg);
+              ++count_;
+              cv_.notify_all();
+            },
+            ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
       }
     }
   }
@@ -93,29 +99,34 @@ class StateCollector {
 
   // Waits until every body has a state with time exactly t.
   bool waitAllAt(const World& world, double t, double timeout = 3.0) {
-    return waitFor([&] {
-      for (const auto& body : world.bodies()) {
-        bool found = false;
-        if (std::holds_alternative<Rod>(body.model)) {
-          for (const auto& m : rods_[body.name]) found = found || m.t == t;
-        } else {
-          for (const auto& m : rollers_[body.name]) found = found || m.t == t;
-        }
-        if (!found) return false;
-      }
-      return true;
-    }, timeout);
+    return waitFor(
+        [&] {
+          for (const auto& body : world.bodies()) {
+            bool found = false;
+            if (std::holds_alternative<Rod>(body.model)) {
+              for (const auto& m : rods_[body.name]) found = found || m.t == t;
+            } else {
+              for (const auto& m : rollers_[body.name]) found = found || m.t == t;
+            }
+            if (!found) return false;
+          }
+          return true;
+        },
+        timeout);
   }
 
   // Waits until every body has at least one state.
   bool waitAllAny(const World& world, double timeout = 3.0) {
-    return waitFor([&] {
-      for (const auto& body : world.bodies()) {
-        if (std::holds_alternative<Rod>(body.model) ? rods_[body.name].empty() : rollers_[body.name].empty())
-          return false;
-      }
-      return true;
-    }, timeout);
+    return waitFor(
+        [&] {
+          for (const auto& body : world.bodies()) {
+            if (std::holds_alternative<Rod>(body.model) ? rods_[body.name].empty()
+                                                        : rollers_[body.name].empty())
+              return false;
+          }
+          return true;
+        },
+        timeout);
   }
 
   std::vector<RodState> rod(const std::string& name) {
@@ -206,17 +217,17 @@ inline Step callStep(std::uint32_t steps, bool* called = nullptr) {
 inline std::int64_t stepIndex(double t, double rate) { return std::llround(t * rate); }
 
 // main() for a rostest gtest node: ros::init, an AsyncSpinner, then the tests.
-#define RBS_ROSTEST_MAIN(node_name)                                   \
-  int main(int argc, char** argv) {                                   \
-    testing::InitGoogleTest(&argc, argv);                             \
-    ros::init(argc, argv, node_name);                                 \
-    ros::NodeHandle nh;                                               \
-    ros::AsyncSpinner spinner(2);                                     \
-    spinner.start();                                                  \
-    const int result = RUN_ALL_TESTS();                               \
-    spinner.stop();                                                   \
-    ros::shutdown();                                                  \
-    return result;                                                    \
+#define RBS_ROSTEST_MAIN(node_name)       \
+  int main(int argc, char** argv) {       \
+    testing::InitGoogleTest(&argc, argv); \
+    ros::init(argc, argv, node_name);     \
+    ros::NodeHandle nh;                   \
+    ros::AsyncSpinner spinner(2);         \
+    spinner.start();                      \
+    const int result = RUN_ALL_TESTS();   \
+    spinner.stop();                       \
+    ros::shutdown();                      \
+    return result;                        \
   }
 
 }  // namespace test

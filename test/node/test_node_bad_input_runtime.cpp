@@ -53,12 +53,13 @@ const std::vector<BadRequest>& badRequests() {
 class ErrorLog {
  public:
   explicit ErrorLog(ros::NodeHandle& nh)
-      : sub_(nh.subscribe<rosgraph_msgs::Log>("/rosout", 1000, [this](const rosgraph_msgs::Log::ConstPtr& msg) {
-          if (msg->name != "/sim" || msg->level < rosgraph_msgs::Log::ERROR) return;
-          std::lock_guard<std::mutex> lock(mutex_);
-          lines_.push_back(msg->msg);
-          arrived_.notify_all();
-        })) {}
+      : sub_(nh.subscribe<rosgraph_msgs::Log>(
+            "/rosout", 1000, [this](const rosgraph_msgs::Log::ConstPtr& msg) {
+              if (msg->name != "/sim" || msg->level < rosgraph_msgs::Log::ERROR) return;
+              std::lock_guard<std::mutex> lock(mutex_);
+              lines_.push_back(msg->msg);
+              arrived_.notify_all();
+            })) {}
   bool waitConnected(double timeout) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
     while (sub_.getNumPublishers() == 0 && ros::WallTime::now() < end) ros::WallDuration(0.02).sleep();
@@ -68,7 +69,8 @@ class ErrorLog {
   // machine may be slow to deliver it), then 0.3 s more for any extra line.
   std::vector<std::string> take(std::size_t expected = 1) {
     std::unique_lock<std::mutex> lock(mutex_);
-    if (expected > 0) arrived_.wait_for(lock, std::chrono::seconds(10), [&] { return lines_.size() >= expected; });
+    if (expected > 0)
+      arrived_.wait_for(lock, std::chrono::seconds(10), [&] { return lines_.size() >= expected; });
     lock.unlock();
     ros::WallDuration(0.3).sleep();
     lock.lock();

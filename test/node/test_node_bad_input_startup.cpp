@@ -73,7 +73,8 @@ std::string loaderMessage(const std::string& ns) {
   XmlRpc::XmlRpcValue params;
   if (!ros::param::get(ns, params)) return "";
   try {
-    parseWorldConfig(configFromParams(params, {"real_time_factor", "publish_clock", "duration", "start_delay"}));
+    parseWorldConfig(
+        configFromParams(params, {"real_time_factor", "publish_clock", "duration", "start_delay"}));
   } catch (const ConfigError& error) {
     return error.what();
   }
@@ -118,8 +119,8 @@ TEST(SimNodeBadInputStartup, EveryRowIsRefusedWithTheLoadersLine) {
     if (!row.params.empty()) ros::param::set(ns, toXmlRpc(YAML::Load(row.params)));
     const fs::path err = dir / (name + ".err");
     // `timeout`: a node that accepted the input would run for ever; 124 then tells it apart.
-    const std::string command = "timeout 30 " + simNodeExe() + " __name:=" + name +
-                                " >" + (dir / (name + ".out")).string() + " 2>" + err.string();
+    const std::string command = "timeout 30 " + simNodeExe() + " __name:=" + name + " >" +
+                                (dir / (name + ".out")).string() + " 2>" + err.string();
     int status = std::system(command.c_str());
     // Under rostest, about one start in 250 exits 1 with nothing at all on stdout or stderr (not seen
     // outside rostest; a rosconsole start-up race is suspected). Said, and tried once more: a node that
@@ -134,7 +135,8 @@ TEST(SimNodeBadInputStartup, EveryRowIsRefusedWithTheLoadersLine) {
     const auto lines = nonEmptyLines(slurp(err));
     ASSERT_EQ(lines.size(), 1u) << "stderr:\n" << slurp(err) << "stdout:\n" << slurp(dir / (name + ".out"));
     for (const auto& fragment : row.expect) {
-      EXPECT_NE(lines[0].find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << lines[0];
+      EXPECT_NE(lines[0].find(fragment), std::string::npos)
+          << "missing '" << fragment << "' in: " << lines[0];
     }
     const std::string message = loaderMessage(ns);
     if (!message.empty()) {

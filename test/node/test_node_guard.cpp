@@ -13,11 +13,15 @@ using namespace rigid_body_sim::test;
 
 namespace {
 
-bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool finite(const geometry_msgs::Point& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
 bool finite(const geometry_msgs::Quaternion& q) {
   return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w);
 }
-bool finite(const geometry_msgs::Vector3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const geometry_msgs::Vector3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Everything that /tf, /sim/markers and /rosout carried, counted as it arrives.
 struct Watch {
@@ -74,7 +78,8 @@ TEST(SimNodeGuard, HoldsTheNonFiniteBodyAndPublishesNothingNonFinite) {
 
   Watch watch;
   auto tf_sub = nh.subscribe<tf2_msgs::TFMessage>("/tf", 10000, &Watch::onTf, &watch);
-  auto marker_sub = nh.subscribe<visualization_msgs::MarkerArray>("/sim/markers", 10000, &Watch::onMarkers, &watch);
+  auto marker_sub =
+      nh.subscribe<visualization_msgs::MarkerArray>("/sim/markers", 10000, &Watch::onMarkers, &watch);
   auto log_sub = nh.subscribe<rosgraph_msgs::Log>("/rosout", 1000, &Watch::onLog, &watch);
   StateCollector collector(nh, full);
   ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
@@ -126,8 +131,8 @@ TEST(SimNodeGuard, HoldsTheNonFiniteBodyAndPublishesNothingNonFinite) {
   EXPECT_EQ(0u, watch.markers_bad) << "non-finite markers";
   ASSERT_EQ(1u, watch.errors.size()) << "exactly one error from the node";
   const std::string& error = watch.errors.front().msg;
-  for (const char* part : {"body 'tiny'", "theta became non-finite", "paused", "mass=1e-200", "length=1e-100",
-                           "k=1e-200"}) {
+  for (const char* part :
+       {"body 'tiny'", "theta became non-finite", "paused", "mass=1e-200", "length=1e-100", "k=1e-200"}) {
     EXPECT_NE(std::string::npos, error.find(part)) << part << " in: " << error;
   }
 }

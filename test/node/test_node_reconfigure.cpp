@@ -9,7 +9,8 @@ using namespace rigid_body_sim::test;
 
 namespace {
 
-dynamic_reconfigure::Config setDouble(const std::string& body, const std::string& key, double value, bool* called) {
+dynamic_reconfigure::Config setDouble(const std::string& body, const std::string& key, double value,
+                                      bool* called) {
   dynamic_reconfigure::Reconfigure srv;
   dynamic_reconfigure::DoubleParameter p;
   p.name = key;
@@ -51,13 +52,16 @@ void stepAndCompare(StateCollector& c, World& world, std::uint32_t n, const std:
   }
   ASSERT_EQ(world.time(), s.response.t) << what;
   const double end = s.response.t;
-  ASSERT_TRUE(c.waitFor([&] {
-    for (const auto& [name, msgs] : c.rodsLocked())
-      if (msgs.empty() || msgs.back().t != end) return false;
-    for (const auto& [name, msgs] : c.rollersLocked())
-      if (msgs.empty() || msgs.back().t != end) return false;
-    return c.rodsLocked().size() + c.rollersLocked().size() == world.bodies().size();
-  }, 5.0)) << what << ": no state at t = " << end << " for some body";
+  ASSERT_TRUE(c.waitFor(
+      [&] {
+        for (const auto& [name, msgs] : c.rodsLocked())
+          if (msgs.empty() || msgs.back().t != end) return false;
+        for (const auto& [name, msgs] : c.rollersLocked())
+          if (msgs.empty() || msgs.back().t != end) return false;
+        return c.rodsLocked().size() + c.rollersLocked().size() == world.bodies().size();
+      },
+      5.0))
+      << what << ": no state at t = " << end << " for some body";
   std::size_t compared = 0;
   for (const auto& body : world.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {

@@ -8,8 +8,8 @@
 //   new, older data.
 #include <signal.h>
 
-#include <tf2_ros/transform_listener.h>
 #include <ros/network.h>
+#include <tf2_ros/transform_listener.h>
 #include <xmlrpcpp/XmlRpc.h>
 
 #include "node_test_util.h"
@@ -52,10 +52,13 @@ TEST(SimNodeRespawn, KilledNodeComesBackWithFreshTimeAndTfFollows) {
   ASSERT_TRUE(collector.waitConnected(20.0)) << "no publisher of the state topics";
   double first_run = 3.0;
   ros::param::get("~first_run", first_run);
-  ASSERT_TRUE(collector.waitFor([&] {
-    const auto& rods = collector.rodsLocked()[body];
-    return !rods.empty() && rods.back().t >= first_run;
-  }, 60.0)) << "the first run did not reach t = " << first_run << " s";
+  ASSERT_TRUE(collector.waitFor(
+      [&] {
+        const auto& rods = collector.rodsLocked()[body];
+        return !rods.empty() && rods.back().t >= first_run;
+      },
+      60.0))
+      << "the first run did not reach t = " << first_run << " s";
   const RodState before = collector.rod(body).back();
   std::string error;
   ASSERT_TRUE(buffer.canTransform(config.world_frame, body, ros::Time(0), &error)) << error;
@@ -72,10 +75,13 @@ TEST(SimNodeRespawn, KilledNodeComesBackWithFreshTimeAndTfFollows) {
     while (j < rods.size() && rods[j].t >= before.t) ++j;
     return j;
   };
-  ASSERT_TRUE(collector.waitFor([&] {
-    const auto& rods = collector.rodsLocked()[body];
-    return rods.size() >= new_run(rods) + 50;
-  }, 60.0)) << "no state from a respawned node";
+  ASSERT_TRUE(collector.waitFor(
+      [&] {
+        const auto& rods = collector.rodsLocked()[body];
+        return rods.size() >= new_run(rods) + 50;
+      },
+      60.0))
+      << "no state from a respawned node";
   ASSERT_NE(pid, pidOf("/sim")) << "the same process";
   const std::vector<RodState> received = collector.rod(body);
   const std::vector<RodState> after(received.begin() + static_cast<std::ptrdiff_t>(new_run(received)),
@@ -101,9 +107,11 @@ TEST(SimNodeRespawn, KilledNodeComesBackWithFreshTimeAndTfFollows) {
       << "the TF listener lost track after the respawn: " << error;
   const auto transform = buffer.lookupTransform(config.world_frame, body, probe.header.stamp);
   // The fixed frame too, which the new node sends once on /tf_static (latched).
-  EXPECT_TRUE(buffer.canTransform(config.world_frame, body + "_floor", ros::Time(0), ros::Duration(5.0), &error))
+  EXPECT_TRUE(
+      buffer.canTransform(config.world_frame, body + "_floor", ros::Time(0), ros::Duration(5.0), &error))
       << "the static frame is lost after the respawn: " << error;
-  EXPECT_NEAR(probe.x, transform.transform.translation.x, 1e-9) << "the rod's floor frame runs along the world's x";
+  EXPECT_NEAR(probe.x, transform.transform.translation.x, 1e-9)
+      << "the rod's floor frame runs along the world's x";
 }
 
 RBS_ROSTEST_MAIN("test_node_respawn")

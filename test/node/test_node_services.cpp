@@ -16,29 +16,34 @@ double latestRodT(StateCollector& c) {
 // Waits for a state of `body` with exactly time t; returns whether it came.
 bool waitRodAt(StateCollector& c, double t, RodState* out, double timeout = 3.0) {
   bool found = false;
-  c.waitFor([&] {
-    for (const auto& m : c.rodsLocked()["rod"]) {
-      if (m.t == t) {
-        *out = m;
-        found = true;
-      }
-    }
-    return found;
-  }, timeout);
+  c.waitFor(
+      [&] {
+        for (const auto& m : c.rodsLocked()["rod"]) {
+          if (m.t == t) {
+            *out = m;
+            found = true;
+          }
+        }
+        return found;
+      },
+      timeout);
   return found;
 }
 
-bool waitRollerAt(StateCollector& c, const std::string& name, double t, RollerState* out, double timeout = 3.0) {
+bool waitRollerAt(StateCollector& c, const std::string& name, double t, RollerState* out,
+                  double timeout = 3.0) {
   bool found = false;
-  c.waitFor([&] {
-    for (const auto& m : c.rollersLocked()[name]) {
-      if (m.t == t) {
-        *out = m;
-        found = true;
-      }
-    }
-    return found;
-  }, timeout);
+  c.waitFor(
+      [&] {
+        for (const auto& m : c.rollersLocked()[name]) {
+          if (m.t == t) {
+            *out = m;
+            found = true;
+          }
+        }
+        return found;
+      },
+      timeout);
   return found;
 }
 
@@ -54,10 +59,11 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   // Every transform on /tf: per frame, stamps strictly increasing through pause, step, reset and unpause.
   std::mutex tf_mutex;
   std::map<std::string, std::vector<ros::Time>> tf_stamps;
-  ros::Subscriber tf_sub = nh.subscribe<tf2_msgs::TFMessage>("/tf", 10000, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(tf_mutex);
-    for (const auto& tf : m->transforms) tf_stamps[tf.child_frame_id].push_back(tf.header.stamp);
-  });
+  ros::Subscriber tf_sub =
+      nh.subscribe<tf2_msgs::TFMessage>("/tf", 10000, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(tf_mutex);
+        for (const auto& tf : m->transforms) tf_stamps[tf.child_frame_id].push_back(tf.header.stamp);
+      });
   ASSERT_TRUE(c.waitConnected(10.0));
   ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
   ASSERT_TRUE(c.waitFor([&] { return c.rodsLocked()["rod"].size() >= 5; }, 5.0)) << "no rod states";
@@ -78,7 +84,8 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   ASSERT_TRUE(s1.response.success) << s1.response.message;
   EXPECT_GE(s1.response.t, t_paused + dt - 1e-9);
   RodState rod_msg;
-  EXPECT_TRUE(waitRodAt(c, s1.response.t, &rod_msg)) << "no state at t = " << s1.response.t << " after step(1)";
+  EXPECT_TRUE(waitRodAt(c, s1.response.t, &rod_msg))
+      << "no state at t = " << s1.response.t << " after step(1)";
 
   // --- step(10): t advances by exactly 10 dt and the state at that t is published for every body
   Step s10 = callStep(10, &called);
@@ -116,7 +123,8 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   EXPECT_NEAR(s_alive.response.t, s10.response.t + dt, 1e-9);
   const double t_before_reset = s_alive.response.t;
   // Everything published so far has arrived before the reset's states are looked at.
-  ASSERT_TRUE(c.waitAllAt(initial_world, t_before_reset)) << "no state of every body at t = " << t_before_reset;
+  ASSERT_TRUE(c.waitAllAt(initial_world, t_before_reset))
+      << "no state of every body at t = " << t_before_reset;
 
   // --- reset (paused): the states at the same t show the initial conditions; time does not go back
   c.clear();
@@ -159,10 +167,13 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   ASSERT_TRUE(called);
   EXPECT_FALSE(running.response.success) << "step accepted while running";
   const double t_unpaused = s5.response.t;
-  EXPECT_TRUE(c.waitFor([&] {
-    const auto& rods = c.rodsLocked()["rod"];
-    return !rods.empty() && rods.back().t > t_unpaused + 0.1;
-  }, 3.0)) << "time does not advance after unpause";
+  EXPECT_TRUE(c.waitFor(
+      [&] {
+        const auto& rods = c.rodsLocked()["rod"];
+        return !rods.empty() && rods.back().t > t_unpaused + 0.1;
+      },
+      3.0))
+      << "time does not advance after unpause";
   // ... at wall pace: about 1 simulated second per wall second.
   const double t_a = latestRodT(c);
   ros::WallDuration(1.0).sleep();
@@ -175,7 +186,8 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   EXPECT_EQ(initial_world.bodies().size(), tf_stamps.size()) << "a body without transforms on /tf";
   for (const auto& [frame, stamps] : tf_stamps) {
     for (std::size_t j = 1; j < stamps.size(); ++j) {
-      ASSERT_GT(stamps[j], stamps[j - 1]) << frame << ": transform " << j << " repeats or goes back (TF_REPEATED_DATA)";
+      ASSERT_GT(stamps[j], stamps[j - 1])
+          << frame << ": transform " << j << " repeats or goes back (TF_REPEATED_DATA)";
     }
   }
 }

@@ -27,8 +27,8 @@ void checkSequence(const std::vector<Msg>& msgs, double publish_rate, const std:
         << name << " message " << j;
   }
   EXPECT_GT(consecutive, msgs.size() / 2) << name << ": too few consecutive samples";
-  ROS_INFO("%s: %zu messages, %zu consecutive pairs, t from %.2f to %.2f", name.c_str(), msgs.size(), consecutive,
-           msgs.front().t, msgs.back().t);
+  ROS_INFO("%s: %zu messages, %zu consecutive pairs, t from %.2f to %.2f", name.c_str(), msgs.size(),
+           consecutive, msgs.front().t, msgs.back().t);
 }
 
 }  // namespace

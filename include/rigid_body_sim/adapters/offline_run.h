@@ -14,7 +14,7 @@ struct OfflineOptions {
   double duration = 10.0;    // s of simulated time (the text's 10 s)
   double sample_rate = 0.0;  // Hz; 0 means the config's publish_rate
   std::string out_dir = ".";
-  std::string bag;           // empty: no bag
+  std::string bag;  // empty: no bag
 };
 
 // Energy of one body over the run.
@@ -30,12 +30,12 @@ struct EnergyRecord {
 struct OfflineSummary {
   double end_time = 0.0;
   std::int64_t steps = 0;
-  std::int64_t samples = 0;              // per body
+  std::int64_t samples = 0;  // per body
   std::vector<std::string> bodies;
-  std::vector<std::string> final_states; // one CSV row per body, at end_time
-  std::vector<std::string> final_rows;   // the same rows without their header (csvRow)
-  std::vector<EnergyRecord> energy;      // per body
-  std::vector<int> bounces;              // per body: contacts with the floor begun (rods; 0 for rollers)
+  std::vector<std::string> final_states;  // one CSV row per body, at end_time
+  std::vector<std::string> final_rows;    // the same rows without their header (csvRow)
+  std::vector<EnergyRecord> energy;       // per body
+  std::vector<int> bounces;               // per body: contacts with the floor begun (rods; 0 for rollers)
   std::vector<WorldEvent> events;
 };
 

@@ -17,7 +17,10 @@ class ProgressBar {
  public:
   // `total` units of work (samples, variants); `unit` names them in the bar.
   ProgressBar(std::int64_t total, std::string unit, bool enabled = isatty(STDERR_FILENO) != 0)
-      : total_(total), unit_(std::move(unit)), enabled_(enabled && total > 0), start_(Clock::now()),
+      : total_(total),
+        unit_(std::move(unit)),
+        enabled_(enabled && total > 0),
+        start_(Clock::now()),
         last_draw_(start_) {}
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;

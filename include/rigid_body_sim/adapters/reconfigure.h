@@ -13,7 +13,8 @@ RollerReconfigureConfig toReconfigure(const RollerConfig& config);
 // The body config a reconfigure request asks for, starting from the current one (gravity is kept).
 // A named shape brings its own c; changing c without shape custom is left for validation to refuse.
 // Throws ConfigError for a name that no enum allows.
-RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request, const RodConfig& current);
+RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request,
+                          const RodConfig& current);
 RollerConfig fromReconfigure(const std::string& body, const RollerReconfigureConfig& request,
                              const RollerConfig& current);
 

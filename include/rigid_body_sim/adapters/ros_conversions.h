@@ -14,11 +14,11 @@
 #include <variant>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
+#include <Eigen/Geometry>
 
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
@@ -31,9 +31,9 @@ ros::Time simStamp(double t);
 
 // The fixed frame of a body (its floor or slope) and where it sits in the world.
 struct BodyPlacement {
-  std::string frame;               // <body>_floor or <body>_slope
+  std::string frame;  // <body>_floor or <body>_slope
   Eigen::Isometry3d world_from_frame;
-  double slope_length = 0.0;       // m; 0 for a rod's floor
+  double slope_length = 0.0;  // m; 0 for a rod's floor
 };
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies);
 
@@ -46,9 +46,9 @@ using StateMsg = std::variant<RodState, RollerState>;
 
 // Everything published at one sample time.
 struct Snapshot {
-  tf2_msgs::TFMessage tf;                     // world_frame -> <body>
-  visualization_msgs::MarkerArray markers;   // bodies, trails, labels (floor and slopes: staticMarkers)
-  std::vector<StateMsg> states;              // in the order of the bodies
+  tf2_msgs::TFMessage tf;                   // world_frame -> <body>
+  visualization_msgs::MarkerArray markers;  // bodies, trails, labels (floor and slopes: staticMarkers)
+  std::vector<StateMsg> states;             // in the order of the bodies
 };
 
 // Builds snapshots; keeps the bounded trail of every body between calls.

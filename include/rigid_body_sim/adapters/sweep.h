@@ -66,7 +66,7 @@ struct SweepResult {
   std::int64_t first = 0;  // this shard's [first, end)
   std::int64_t end = 0;
   unsigned jobs = 1;
-  std::string path;        // the CSV written
+  std::string path;  // the CSV written
 };
 
 // "sweep.csv", or "sweep.<i>-of-<n>.csv" for a shard (i zero-padded, so the files sort in order).

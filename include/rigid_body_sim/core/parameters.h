@@ -66,9 +66,9 @@ struct BodyConfig {
 };
 
 struct WorldConfig {
-  double rate = 1000.0;         // physics steps per simulated second
-  double publish_rate = 50.0;   // samples per simulated second
-  double gravity = 9.8;         // copied into every body
+  double rate = 1000.0;        // physics steps per simulated second
+  double publish_rate = 50.0;  // samples per simulated second
+  double gravity = 9.8;        // copied into every body
   std::string world_frame = "world";
   std::vector<BodyConfig> bodies;
 };

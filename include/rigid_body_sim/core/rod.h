@@ -15,10 +15,10 @@ std::string toString(Integrator integrator);
 std::optional<Integrator> integratorFromString(const std::string& name);
 
 struct RodParams {
-  double length = 1.0;  // m
-  double mass = 0.5;    // kg
-  double k = 1000.0;    // N/m, floor spring constant per end
-  double gravity = 9.8; // m/s^2
+  double length = 1.0;   // m
+  double mass = 0.5;     // kg
+  double k = 1000.0;     // N/m, floor spring constant per end
+  double gravity = 9.8;  // m/s^2
   Integrator integrator = Integrator::EulerCromer;
 };
 
@@ -42,9 +42,9 @@ class Rod {
   // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator.
   void step(double dt);
 
-  void setParams(const RodParams& params);   // applies from the next step; the state is kept
+  void setParams(const RodParams& params);    // applies from the next step; the state is kept
   void setInitial(const RodMotion& initial);  // restarts from it
-  void reset();                              // back to the initial state
+  void reset();                               // back to the initial state
 
   const RodParams& params() const { return params_; }
   const RodMotion& initial() const { return initial_; }

@@ -26,14 +26,14 @@ std::string toString(RollMode mode);
 
 struct RollerParams {
   Shape shape = Shape::Sphere;
-  double inertia_factor = 0.4;  // c; must equal inertiaFactorOf(shape) unless shape is Custom
-  double radius = 0.1;          // m
-  double mass = 1.0;            // kg
-  double incline_angle = 0.349; // rad, 0 <= phi < pi/2
-  double incline_length = 5.0;  // m of slope; the centre runs over x in [0, incline_length]
-  double mu_s = 0.3;            // static friction coefficient
-  double mu_d = 0.2;            // kinetic friction coefficient, mu_d <= mu_s
-  double gravity = 9.8;         // m/s^2
+  double inertia_factor = 0.4;   // c; must equal inertiaFactorOf(shape) unless shape is Custom
+  double radius = 0.1;           // m
+  double mass = 1.0;             // kg
+  double incline_angle = 0.349;  // rad, 0 <= phi < pi/2
+  double incline_length = 5.0;   // m of slope; the centre runs over x in [0, incline_length]
+  double mu_s = 0.3;             // static friction coefficient
+  double mu_d = 0.2;             // kinetic friction coefficient, mu_d <= mu_s
+  double gravity = 9.8;          // m/s^2
 };
 
 struct RollerInitial {
@@ -52,9 +52,9 @@ struct RollerMotion {
 
 // What happened inside one call of Roller::step.
 struct RollerStepEvents {
-  std::optional<double> stuck_at;    // offset in [0, dt] at which slipping turned into rolling
-  bool started_slipping = false;     // a rolling body could not hold (only after setParams)
-  bool restarted = false;            // the centre left the slope and the body restarted
+  std::optional<double> stuck_at;  // offset in [0, dt] at which slipping turned into rolling
+  bool started_slipping = false;   // a rolling body could not hold (only after setParams)
+  bool restarted = false;          // the centre left the slope and the body restarted
 };
 
 class Roller {

@@ -30,11 +30,11 @@ class World {
  public:
   explicit World(const WorldConfig& config);  // validates; throws ConfigError
 
-  void step();                       // one step of dt = 1 / rate for every body
-  void reset();                      // every body back to its initial conditions; time goes on
+  void step();   // one step of dt = 1 / rate for every body
+  void reset();  // every body back to its initial conditions; time goes on
 
   std::int64_t stepCount() const { return steps_; }
-  double time() const;               // stepCount() / rate
+  double time() const;  // stepCount() / rate
   double rate() const { return rate_; }
   double dt() const { return dt_; }
 

@@ -73,7 +73,7 @@ class SimNode {
   NodeOptions options_;
   WorldConfig config_;  // the current config of every body (what reconfigure changes)
 
-  std::mutex mutex_;    // guards everything below that the stepping thread touches
+  std::mutex mutex_;  // guards everything below that the stepping thread touches
   World world_;
   FiniteGuard guard_;
   std::int64_t steps_per_publish_;
