@@ -1,6 +1,8 @@
 # The two commands for a newcomer on a fresh Debian 12 machine:
 #   make demo   installs what is missing, builds, and runs the demo
 #   make test   installs what is missing, builds, and runs every test (ctest; honest exit code)
+# and for the edit loop:
+#   make check  the unit tests alone (ctest label unit: no master), under a minute
 SHELL := /bin/bash
 # Debian's python3 first: ROS's Python modules are Debian's (a pyenv python3 cannot import them).
 export PATH := /usr/bin:$(PATH)
@@ -11,7 +13,7 @@ JOBS ?= $(shell nproc)
 EXTRA_TESTS :=
 include $(sort $(wildcard mk/*.mk))
 
-.PHONY: all deps build demo test lint clean
+.PHONY: all deps build demo test check lint clean
 
 all: build
 
@@ -28,6 +30,10 @@ demo: build
 test: build $(EXTRA_TESTS)
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
 	env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
+
+check: build
+	cmake --build $(BUILD) --target unit_tests -j$(JOBS) -- --no-print-directory
+	ctest --test-dir $(BUILD) -L '^unit$$' --output-on-failure
 
 lint: deps
 	catkin_lint -W2 .

@@ -1,4 +1,4 @@
-# Reliability (issue 5): the config loader fuzzed with libFuzzer, and the core/adapters unit tests under
+# Reliability: the config loader fuzzed with libFuzzer, and the unit tests (ctest label `unit`) under
 # AddressSanitizer + UndefinedBehaviorSanitizer, each in a build folder of its own. `make test` runs both
 # before ctest's main suite; `make fuzz` / `make asan` run one.
 FUZZ_BUILD ?= build-fuzz
@@ -6,11 +6,7 @@ ASAN_BUILD ?= build-asan
 # A fixed number of runs (the same inputs for a given libFuzzer and seed); max_total_time caps a slow machine.
 FUZZ_RUNS ?= 100000
 FUZZ_SECONDS ?= 60
-FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/adapters/config_loader.cpp src/core/parameters.cpp \
-                src/core/rod.cpp src/core/rod_dynamics.cpp src/core/roller.cpp
-# The unit tests that need no master (rostests stay in the main build).
-ASAN_TESTS := test_roller test_rod test_world test_config test_simulate test_sweep test_finite_guard test_extremes \
-              test_bad_input_simulate
+FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/io/config_loader.cpp $(wildcard src/core/*.cpp)
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 export ASAN_OPTIONS := halt_on_error=1:detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
@@ -33,11 +29,10 @@ fuzz: deps $(FUZZ_BUILD)/fuzz_config_loader
 	  || { tail -60 $(FUZZ_BUILD)/fuzz.log; echo "fuzz: FAILED, the input is in $(FUZZ_BUILD)/artifacts/"; exit 1; }
 	@grep -E "^Done|number_of_executed_units|average_exec_per_sec|new_units_added" $(FUZZ_BUILD)/fuzz.log
 
-# gcc's ASan and UBSan; only the unit-test targets (and simulate, which test_simulate runs) are built.
+# gcc's ASan and UBSan; only the unit tests (and the tools they run) are built, and ctest runs them.
 asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=Debug \
 	  -DCMAKE_CXX_FLAGS="-O1 $(SANITIZE)" -DCMAKE_EXE_LINKER_FLAGS="$(SANITIZE)" \
 	  -DCMAKE_SHARED_LINKER_FLAGS="$(SANITIZE)" >/dev/null
-	cmake --build $(ASAN_BUILD) -j$(JOBS) --target simulate $(ASAN_TESTS) -- --no-print-directory
-	set -e; for t in $(ASAN_TESTS); do echo "== $$t (ASan + UBSan)"; \
-	  $(ASAN_BUILD)/devel/lib/rigid_body_sim/$$t --gtest_brief=1; done
+	cmake --build $(ASAN_BUILD) -j$(JOBS) --target unit_tests -- --no-print-directory
+	ctest --test-dir $(ASAN_BUILD) -L '^unit$$' --output-on-failure

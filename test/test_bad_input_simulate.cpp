@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/io/config_loader.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;

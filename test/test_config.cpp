@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/io/config_loader.h"
 
 using namespace rigid_body_sim;
 

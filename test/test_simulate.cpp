@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "rigid_body_sim/adapters/config_loader.h"
-#include "rigid_body_sim/adapters/csv_writer.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/csv_writer.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;

@@ -16,9 +16,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "rigid_body_sim/adapters/config_loader.h"
-#include "rigid_body_sim/adapters/sweep.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/sweep.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;

@@ -5,10 +5,10 @@
 
 #include <rosgraph_msgs/Clock.h>
 
-#include "rigid_body_sim/adapters/bag_recorder.h"
-#include "rigid_body_sim/adapters/config_loader.h"
-#include "rigid_body_sim/adapters/reconfigure.h"
-#include "rigid_body_sim/adapters/ros_params.h"
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/ros/bag_recorder.h"
+#include "rigid_body_sim/ros/params.h"
+#include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
 

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/io/config_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -17,9 +17,9 @@
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/adapters/config_loader.h"
-#include "rigid_body_sim/adapters/ros_conversions.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/ros/ros_conversions.h"
 
 namespace rigid_body_sim {
 namespace test {

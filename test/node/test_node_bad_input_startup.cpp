@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "node_test_util.h"
-#include "rigid_body_sim/adapters/ros_params.h"
+#include "rigid_body_sim/ros/params.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;

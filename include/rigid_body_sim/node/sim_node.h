@@ -20,10 +20,10 @@
 #include "rigid_body_sim/RodReconfigureConfig.h"
 #include "rigid_body_sim/RollerReconfigureConfig.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/adapters/finite_guard.h"
-#include "rigid_body_sim/adapters/ros_conversions.h"
-#include "rigid_body_sim/adapters/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/finite_guard.h"
+#include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/ros/ros_conversions.h"
 
 namespace rigid_body_sim {
 

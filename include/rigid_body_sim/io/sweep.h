@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "rigid_body_sim/adapters/offline_run.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/io/offline_run.h"
 
 namespace rigid_body_sim {
 

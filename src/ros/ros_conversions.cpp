@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/ros_conversions.h"
+#include "rigid_body_sim/ros/ros_conversions.h"
 
 #include <algorithm>
 #include <cmath>

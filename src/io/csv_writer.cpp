@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/csv_writer.h"
+#include "rigid_body_sim/io/csv_writer.h"
 
 #include <filesystem>
 #include <stdexcept>

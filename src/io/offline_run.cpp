@@ -1,14 +1,14 @@
-#include "rigid_body_sim/adapters/offline_run.h"
+#include "rigid_body_sim/io/offline_run.h"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
-#include "rigid_body_sim/adapters/bag_recorder.h"
-#include "rigid_body_sim/adapters/csv_writer.h"
-#include "rigid_body_sim/adapters/progress.h"
+#include "rigid_body_sim/io/csv_writer.h"
+#include "rigid_body_sim/io/progress.h"
 
 namespace rigid_body_sim {
 
@@ -167,27 +167,26 @@ void validate(const OfflineOptions& options, const WorldConfig& config) {
   }
 }
 
-OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options) {
+OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options,
+                          const SinkOpener& open_bag) {
   validate(options, config);
   const std::vector<Body> bodies = World(config).bodies();
   CsvWriter csv(options.out_dir, bodies);
-  std::unique_ptr<BagRecorder> bag;
-  SnapshotBuilder snapshots(config.world_frame, bodies);
+  std::unique_ptr<SampleSink> bag;
   if (!options.bag.empty()) {
-    bag = std::make_unique<BagRecorder>(options.bag);
-    bag->writeStatic(snapshots.staticTransforms(simStamp(0.0)), snapshots.staticMarkers(simStamp(0.0)),
-                     simStamp(0.0));
+    if (!open_bag)
+      throw std::runtime_error("cannot write '" + options.bag + "': no bag writer in this program");
+    bag = open_bag(options.bag, config, bodies);
   }
   ProgressBar progress(sampleCount(config, options), "samples");
   const auto write = [&](const World& world) {
-    const double t = world.time();
-    csv.write(t, world.bodies());
-    if (bag) bag->write(snapshots.build(t, simStamp(t), world.bodies()), world.bodies(), simStamp(t));
+    csv.write(world.time(), world.bodies());
+    if (bag) bag->write(world);
   };
   OfflineSummary summary = stepAndSample(config, options, write, &progress);
   progress.finish();
   csv.commit();
-  if (bag) bag->close();
+  if (bag) bag->commit();
   return summary;
 }
 

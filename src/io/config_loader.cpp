@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/config_loader.h"
+#include "rigid_body_sim/io/config_loader.h"
 
 #include <cmath>
 #include <filesystem>

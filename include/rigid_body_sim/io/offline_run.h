@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -42,9 +44,25 @@ struct OfflineSummary {
 // Checks the options against the config; throws ConfigError naming the option.
 void validate(const OfflineOptions& options, const WorldConfig& config);
 
-// Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure.
-// Shows a progress bar on stderr when it is a terminal and the run lasts.
-OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options);
+// Where the samples of a run go beside the CSV files: the bag of `simulate --bag`. This layer knows only
+// the interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads no
+// ROS library.
+class SampleSink {
+ public:
+  virtual ~SampleSink() = default;
+  virtual void write(const World& world) = 0;  // at every sample, t = 0 included
+  virtual void commit() = 0;                   // the run is complete: the output becomes final
+};
+
+// Opens the sink of options.bag for a run of `config` whose bodies start as `bodies`.
+using SinkOpener = std::function<std::unique_ptr<SampleSink>(
+    const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies)>;
+
+// Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure (also
+// for options.bag without `open_bag`). Shows a progress bar on stderr when it is a terminal and the run
+// lasts.
+OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options,
+                          const SinkOpener& open_bag = nullptr);
 
 // The same run and summary, writing nothing (out_dir and bag are ignored): one variant of a sweep.
 OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options);

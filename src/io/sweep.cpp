@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/sweep.h"
+#include "rigid_body_sim/io/sweep.h"
 
 #include <algorithm>
 #include <atomic>
@@ -14,7 +14,7 @@
 #include <thread>
 #include <tuple>
 
-#include "rigid_body_sim/adapters/progress.h"
+#include "rigid_body_sim/io/progress.h"
 
 namespace rigid_body_sim {
 

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/step_pacer.h"
+#include "rigid_body_sim/io/step_pacer.h"
 
 #include <cmath>
 #include <limits>

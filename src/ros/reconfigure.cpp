@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/reconfigure.h"
+#include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
 

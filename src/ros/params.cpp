@@ -1,4 +1,4 @@
-#include "rigid_body_sim/adapters/ros_params.h"
+#include "rigid_body_sim/ros/params.h"
 
 #include <sstream>
 
