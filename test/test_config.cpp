@@ -5,13 +5,13 @@
 #include <cmath>
 #include <string>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/node_interface.h"
 
 using namespace rigid_body_sim;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 WorldConfig parse(const std::string& yaml) { return parseWorldConfig(YAML::Load(yaml)); }
 
@@ -286,7 +286,9 @@ TEST(ConfigNames, FramesAndReservedNamesAreRefused) {
             std::string::npos);
   EXPECT_NE(refusal("world_frame: ball_slope\nbodies: {ball: {type: roller}}").find("'ball'"),
             std::string::npos);
-  for (const auto& name : reservedBodyNames()) {
+  std::vector<std::string> reserved = worldKeys();
+  for (const auto& name : node_interface::ownNames()) reserved.push_back(name);
+  for (const auto& name : reserved) {
     EXPECT_NE(refusal("bodies: {" + name + ": {type: rod}}").find("node's own"), std::string::npos) << name;
   }
   // Names that merely resemble them are fine.

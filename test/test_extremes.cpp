@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/core/world.h"
 
@@ -17,7 +18,6 @@ using namespace rigid_body_sim;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Sub-steps one case may take: bounds the test's time (about 20 ns each) whatever k, mass and rate.
 constexpr double kSubstepBudget = 3e5;
 

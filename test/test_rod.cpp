@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/rod_dynamics.h"
 #include "rod_text_oracle.h"
@@ -21,7 +22,6 @@
 namespace rigid_body_sim {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTextDt = 0.001;
 const std::vector<double> kTheta0s = {0.0, 0.3, 1.0, kPi / 2, 2.5, 4.0, 5.5};
 const std::vector<Integrator> kIntegrators = {Integrator::EulerCromer, Integrator::VelocityVerlet,

@@ -6,11 +6,12 @@
 #include <cmath>
 #include <set>
 
+#include "rigid_body_sim/core/constants.h"
+
 namespace rigid_body_sim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Upper bounds are generous, but finite: an absurd value is far more often a typo than an intent.
 constexpr double kMaxMass = 1e9;
 constexpr double kMaxSize = 1e6;
@@ -190,29 +191,22 @@ bool dividesRate(double rate, double divisor) {
   return ratio >= 1.0 - 1e-9 && std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio;
 }
 
-std::string fixedFrameOf(const BodyConfig& body) {
-  return body.name + (std::holds_alternative<RodConfig>(body.config) ? "_floor" : "_slope");
+BodyKind kindOf(const BodyConfig& body) {
+  return std::holds_alternative<RodConfig>(body.config) ? BodyKind::Rod : BodyKind::Roller;
 }
 
-const std::vector<std::string>& reservedBodyNames() {
-  static const std::vector<std::string> names = {"rate",
-                                                 "publish_rate",
-                                                 "gravity",
-                                                 "world_frame",
-                                                 "bodies",  // world keys
-                                                 "real_time_factor",
-                                                 "publish_clock",
-                                                 "duration",
-                                                 "start_delay",  // node options
-                                                 "markers",
-                                                 "reset",
-                                                 "pause",
-                                                 "unpause",
-                                                 "step"};  // topics, services
-  return names;
+std::string fixedFrameOf(const std::string& name, BodyKind kind) {
+  return name + (kind == BodyKind::Rod ? "_floor" : "_slope");
 }
 
-void validate(const WorldConfig& config) {
+std::string fixedFrameOf(const BodyConfig& body) { return fixedFrameOf(body.name, kindOf(body)); }
+
+const std::vector<std::string>& worldKeys() {
+  static const std::vector<std::string> keys = {"rate", "publish_rate", "gravity", "world_frame", "bodies"};
+  return keys;
+}
+
+void validate(const WorldConfig& config, const std::vector<std::string>& reserved_names) {
   const std::string world = "(world)";
   if (!rateRange().contains(config.rate)) {
     throw ConfigError(world, "rate", formatNumber(config.rate), rateRange().describe());
@@ -232,7 +226,8 @@ void validate(const WorldConfig& config) {
     throw ConfigError(world, "bodies", "(none)", "a map of at least one body");
   }
   std::set<std::string> frames{config.world_frame};
-  const auto& reserved = reservedBodyNames();
+  std::vector<std::string> reserved = worldKeys();
+  reserved.insert(reserved.end(), reserved_names.begin(), reserved_names.end());
   for (const auto& body : config.bodies) {
     if (!isValidName(body.name)) {
       throw ConfigError(world, "bodies", "'" + body.name + "'",

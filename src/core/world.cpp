@@ -82,4 +82,10 @@ double energyOf(const Body& body) {
   return std::visit([](const auto& model) { return model.energy(); }, body.model);
 }
 
+BodyKind kindOf(const Body& body) {
+  return std::holds_alternative<Rod>(body.model) ? BodyKind::Rod : BodyKind::Roller;
+}
+
+std::string fixedFrameOf(const Body& body) { return fixedFrameOf(body.name, kindOf(body)); }
+
 }  // namespace rigid_body_sim

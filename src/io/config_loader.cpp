@@ -7,6 +7,9 @@
 #include <random>
 #include <set>
 
+#include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/io/node_interface.h"
+
 namespace rigid_body_sim {
 
 namespace {
@@ -40,9 +43,16 @@ std::string asString(const std::string& body, const std::string& key, const YAML
   return node.Scalar();
 }
 
-std::string joined(const std::set<std::string>& names) {
+// "a, b and c" with last_separator " and ".
+template <class Names>
+std::string joined(const Names& names, const char* last_separator = ", ") {
   std::string out;
-  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  std::size_t i = 0;
+  for (const auto& name : names) {
+    if (i > 0) out += i + 1 == names.size() ? last_separator : ", ";
+    out += name;
+    ++i;
+  }
   return out;
 }
 
@@ -143,16 +153,14 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
 double theta0FromSeed(unsigned long long seed) {
   std::mt19937_64 generator(seed);
   const double unit = static_cast<double>(generator() >> 11) * 0x1.0p-53;
-  return 2.0 * 3.14159265358979323846 * unit;
+  return 2.0 * kPi * unit;
 }
 
 WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (!root.IsMap()) {
-    throw ConfigError(kWorld, "(file)", describe(root),
-                      "a map with rate, publish_rate, gravity, "
-                      "world_frame and bodies");
+    throw ConfigError(kWorld, "(file)", describe(root), "a map with " + joined(worldKeys(), " and "));
   }
-  refuseUnknownKeys(kWorld, root, {"rate", "publish_rate", "gravity", "world_frame", "bodies"});
+  refuseUnknownKeys(kWorld, root, {worldKeys().begin(), worldKeys().end()});
   WorldConfig config;
   if (root["rate"]) config.rate = asNumber(kWorld, "rate", root["rate"], rateRange().describe());
   if (root["publish_rate"]) {
@@ -167,7 +175,7 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
   for (auto& body : config.bodies) {
     std::visit([&](auto& body_config) { body_config.params.gravity = config.gravity; }, body.config);
   }
-  validate(config);
+  validate(config, node_interface::ownNames());
   return config;
 }
 

@@ -3,40 +3,30 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "rigid_body_sim/core/state_fields.h"
+
 namespace rigid_body_sim {
 
 namespace {
 
-std::string joinNumbers(std::initializer_list<double> values) {
-  std::string row;
-  for (const double value : values) {
-    if (!row.empty()) row += ',';
-    row += formatNumber(value);
-  }
+template <std::size_t N>
+std::string joinFields(double t, const std::array<StateField, N>& fields) {
+  std::string row = formatNumber(t);
+  for (const auto& field : fields)
+    row += ',' + (field.text.empty() ? formatNumber(field.number) : field.text);
   return row;
-}
-
-std::string rodRow(double t, const Rod& rod) {
-  const auto& s = rod.state();
-  return joinNumbers({t, s.x, s.y, s.theta, s.vx, s.vy, s.omega, rod.energy()});
-}
-
-std::string rollerRow(double t, const Roller& roller) {
-  const auto& s = roller.state();
-  return joinNumbers({t, s.x, s.v, s.theta, s.omega}) + "," + toString(roller.mode()) + "," +
-         joinNumbers({roller.frictionForce(), roller.normalForce(), roller.energy()});
 }
 
 }  // namespace
 
 std::string csvHeader(const Body& body) {
-  if (std::holds_alternative<Rod>(body.model)) return "t,x,y,theta,vx,vy,omega,energy";
-  return "t,x,v,theta,omega,mode,friction,normal,energy";
+  std::string header = "t";
+  for (const auto& name : stateFieldNames(kindOf(body))) header += "," + name;
+  return header;
 }
 
 std::string csvRow(double t, const Body& body) {
-  if (const auto* rod = std::get_if<Rod>(&body.model)) return rodRow(t, *rod);
-  return rollerRow(t, std::get<Roller>(body.model));
+  return std::visit([t](const auto& model) { return joinFields(t, stateFields(model)); }, body.model);
 }
 
 CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies) {

@@ -6,35 +6,11 @@
 #include <utility>
 
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/core/state_fields.h"
 
 namespace rigid_body_sim {
 
 namespace {
-
-// What a state message carries beside t and the mode: seven numbers for either kind of body.
-using Quantities = std::array<std::pair<const char*, double>, 7>;
-
-Quantities quantitiesOf(const Rod& rod) {
-  const RodMotion& s = rod.state();
-  return {{{"x", s.x},
-           {"y", s.y},
-           {"theta", s.theta},
-           {"vx", s.vx},
-           {"vy", s.vy},
-           {"omega", s.omega},
-           {"energy", rod.energy()}}};
-}
-
-Quantities quantitiesOf(const Roller& roller) {
-  const RollerMotion& s = roller.state();
-  return {{{"x", s.x},
-           {"v", s.v},
-           {"theta", s.theta},
-           {"omega", s.omega},
-           {"friction", roller.frictionForce()},
-           {"normal", roller.normalForce()},
-           {"energy", roller.energy()}}};
-}
 
 // Every numeric key of the body's config table, as key=value.
 template <class Config>
@@ -59,11 +35,14 @@ void describeModel(std::ostream& out, const Roller& roller) {
 }  // namespace
 
 std::optional<std::string> nonFiniteField(const Body& body) {
-  const Quantities quantities = std::visit([](const auto& model) { return quantitiesOf(model); }, body.model);
-  for (const auto& [name, value] : quantities) {
-    if (!std::isfinite(value)) return std::string(name);
-  }
-  return std::nullopt;
+  return std::visit(
+      [](const auto& model) -> std::optional<std::string> {
+        for (const auto& field : stateFields(model)) {
+          if (field.text.empty() && !std::isfinite(field.number)) return std::string(field.name);
+        }
+        return std::nullopt;
+      },
+      body.model);
 }
 
 std::string describeBody(const Body& body) {
@@ -72,8 +51,9 @@ std::string describeBody(const Body& body) {
       [&](const auto& model) {
         describeModel(out, model);
         out << " | state";
-        for (const auto& [name, value] : quantitiesOf(model))
-          out << ' ' << name << '=' << formatNumber(value);
+        for (const auto& field : stateFields(model)) {
+          if (field.text.empty()) out << ' ' << field.name << '=' << formatNumber(field.number);
+        }
       },
       body.model);
   return out.str();

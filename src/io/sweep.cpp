@@ -14,6 +14,7 @@
 #include <thread>
 #include <tuple>
 
+#include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/io/progress.h"
 
 namespace rigid_body_sim {
@@ -44,14 +45,6 @@ bool parseWhole(const std::string& text, std::int64_t min, std::int64_t max, std
 }
 
 template <class Config>
-const NumericKey<Config>* findKey(const std::vector<NumericKey<Config>>& keys, const std::string& name) {
-  for (const auto& key : keys) {
-    if (name == key.name) return &key;
-  }
-  return nullptr;
-}
-
-template <class Config>
 std::string keyNames(const std::vector<NumericKey<Config>>& keys) {
   std::string names;
   for (const auto& key : keys) names += (names.empty() ? "" : ", ") + std::string(key.name);
@@ -75,17 +68,15 @@ void setKey(BodyConfig& body, const std::string& key, double value) {
   }
 }
 
+// The body's final state (its CSV columns), its energy drift, and its bounces (rod) or first slip-to-roll
+// instant (roller), each prefixed with "<body>.".
 std::string bodyColumns(const BodyConfig& body) {
-  const bool rod = std::holds_alternative<RodConfig>(body.config);
-  const std::string fields = rod ? "x,y,theta,vx,vy,omega,energy,energy_drift,bounces"
-                                 : "x,v,theta,omega,mode,friction,normal,energy,energy_drift,slip_to_roll";
+  const BodyKind kind = kindOf(body);
+  std::vector<std::string> fields = stateFieldNames(kind);
+  fields.push_back("energy_drift");
+  fields.push_back(kind == BodyKind::Rod ? "bounces" : "slip_to_roll");
   std::string columns;
-  std::size_t from = 0;
-  while (from <= fields.size()) {
-    const std::size_t comma = std::min(fields.find(',', from), fields.size());
-    columns += "," + body.name + "." + fields.substr(from, comma - from);
-    from = comma + 1;
-  }
+  for (const auto& field : fields) columns += "," + body.name + "." + field;
   return columns;
 }
 
@@ -243,7 +234,7 @@ std::string sweepRow(const WorldConfig& base, std::int64_t variant, const std::v
     const std::string& state = summary.final_rows[b];
     row += state.substr(state.find(','));  // the CSV row without its t
     row += "," + formatNumber(summary.energy[b].final - summary.energy[b].initial);
-    const bool rod = std::holds_alternative<RodConfig>(base.bodies[b].config);
+    const bool rod = kindOf(base.bodies[b]) == BodyKind::Rod;
     row += "," + (rod ? std::to_string(summary.bounces[b]) : slipToRoll(summary, summary.bodies[b]));
   }
   return row;

@@ -5,70 +5,16 @@
 
 #include <rosgraph_msgs/Clock.h>
 
-#include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/ros/bag_recorder.h"
-#include "rigid_body_sim/ros/params.h"
+#include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
 
 namespace {
 
-const std::string kNode = "(node)";
 // Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
 constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
-
-double numberOption(const YAML::Node& params, const std::string& key, double fallback, const Range& range) {
-  if (!params[key]) return fallback;
-  double value = NAN;
-  try {
-    value = params[key].as<double>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", range.describe());
-  }
-  if (!range.contains(value)) throw ConfigError(kNode, key, formatNumber(value), range.describe());
-  return value;
-}
-
-bool boolOption(const YAML::Node& params, const std::string& key, bool fallback) {
-  if (!params[key]) return fallback;
-  try {
-    return params[key].as<bool>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", "true or false");
-  }
-}
-
-XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node) {
-  XmlRpc::XmlRpcValue params;
-  if (!ros::param::get(private_node.getNamespace(), params)) {
-    throw ConfigError("no parameters in " + private_node.getNamespace() +
-                      ": load a config (rosparam load, or the launch files' config arg)");
-  }
-  return params;
-}
-
-NodeOptions loadOptions(XmlRpc::XmlRpcValue& params) {
-  const YAML::Node yaml = toYaml(params);
-  NodeOptions options;
-  options.real_time_factor = numberOption(yaml, "real_time_factor", 1.0, {0.0, 1e6});
-  options.publish_clock = boolOption(yaml, "publish_clock", false);
-  options.duration = numberOption(yaml, "duration", 0.0, {0.0, 1e7});
-  options.start_delay = numberOption(yaml, "start_delay", 0.0, {0.0, 60.0});
-  return options;
-}
-
-// The config keys of the private namespace, without the node's options and the reconfigure servers'
-// namespaces (one per body name).
-WorldConfig loadConfig(XmlRpc::XmlRpcValue& params) {
-  std::set<std::string> ignored = {"real_time_factor", "publish_clock", "duration", "start_delay"};
-  if (params.getType() == XmlRpc::XmlRpcValue::TypeStruct && params.hasMember("bodies") &&
-      params["bodies"].getType() == XmlRpc::XmlRpcValue::TypeStruct) {
-    for (auto& body : params["bodies"]) ignored.insert(body.first);
-  }
-  return parseWorldConfig(configFromParams(params, ignored));
-}
 
 template <class Config>
 Config& configOf(WorldConfig& world, std::size_t index) {
@@ -90,11 +36,11 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       private_node_(private_node),
       options_([&] {
         auto params = privateParams(private_node);
-        return loadOptions(params);
+        return parseNodeOptions(params);
       }()),
       config_([&] {
         auto params = privateParams(private_node);
-        return loadConfig(params);
+        return parseNodeConfig(params);
       }()),
       world_(config_),
       guard_(world_.bodies()),
@@ -114,19 +60,22 @@ SimNode::~SimNode() {
 }
 
 void SimNode::advertise() {
-  marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>("markers", 10);
+  namespace names = node_interface;
+  marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
-      state_publishers_.push_back(private_node_.advertise<RodState>(body.name + "/state", kStateQueue));
+      state_publishers_.push_back(
+          private_node_.advertise<RodState>(names::stateTopic(body.name), kStateQueue));
     } else {
-      state_publishers_.push_back(private_node_.advertise<RollerState>(body.name + "/state", kStateQueue));
+      state_publishers_.push_back(
+          private_node_.advertise<RollerState>(names::stateTopic(body.name), kStateQueue));
     }
   }
-  services_.push_back(private_node_.advertiseService("reset", &SimNode::onReset, this));
-  services_.push_back(private_node_.advertiseService("pause", &SimNode::onPause, this));
-  services_.push_back(private_node_.advertiseService("unpause", &SimNode::onUnpause, this));
-  services_.push_back(private_node_.advertiseService("step", &SimNode::onStep, this));
+  services_.push_back(private_node_.advertiseService(names::kReset, &SimNode::onReset, this));
+  services_.push_back(private_node_.advertiseService(names::kPause, &SimNode::onPause, this));
+  services_.push_back(private_node_.advertiseService(names::kUnpause, &SimNode::onUnpause, this));
+  services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
 }
 
 // The YAML's values go to each server before its callback is set, so that they win over the .cfg

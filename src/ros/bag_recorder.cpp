@@ -4,13 +4,21 @@
 
 #include <boost/make_shared.hpp>
 
+#include "rigid_body_sim/io/node_interface.h"
+
 namespace rigid_body_sim {
 
+namespace {
+
 std::string stateTopic(const std::string& node_namespace, const std::string& body) {
-  return node_namespace + "/" + body + "/state";
+  return node_namespace + "/" + node_interface::stateTopic(body);
 }
 
-std::string markerTopic(const std::string& node_namespace) { return node_namespace + "/markers"; }
+std::string markerTopic(const std::string& node_namespace) {
+  return node_namespace + "/" + node_interface::kMarkers;
+}
+
+}  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame,
                          const std::vector<Body>& bodies, std::string node_namespace)

@@ -1,8 +1,53 @@
 #include "rigid_body_sim/ros/params.h"
 
+#include <cmath>
+#include <set>
 #include <sstream>
 
+#include <ros/param.h>
+
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/node_interface.h"
+
 namespace rigid_body_sim {
+
+namespace {
+
+const std::string kNode = "(node)";
+
+double numberOption(const YAML::Node& params, const std::string& key, double fallback, const Range& range) {
+  if (!params[key]) return fallback;
+  double value = NAN;
+  try {
+    value = params[key].as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", range.describe());
+  }
+  if (!range.contains(value)) throw ConfigError(kNode, key, formatNumber(value), range.describe());
+  return value;
+}
+
+bool boolOption(const YAML::Node& params, const std::string& key, bool fallback) {
+  if (!params[key]) return fallback;
+  try {
+    return params[key].as<bool>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", "true or false");
+  }
+}
+
+bool isMap(XmlRpc::XmlRpcValue& value) { return value.getType() == XmlRpc::XmlRpcValue::TypeStruct; }
+
+}  // namespace
+
+XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node) {
+  XmlRpc::XmlRpcValue params;
+  if (!ros::param::get(private_node.getNamespace(), params)) {
+    throw ConfigError("no parameters in " + private_node.getNamespace() +
+                      ": load a config (rosparam load, or the launch files' config arg)");
+  }
+  return params;
+}
 
 YAML::Node toYaml(XmlRpc::XmlRpcValue& value) {
   switch (value.getType()) {
@@ -30,13 +75,29 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value) {
   }
 }
 
-YAML::Node configFromParams(XmlRpc::XmlRpcValue& private_namespace, const std::set<std::string>& ignored) {
+NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
+  namespace names = node_interface;
+  const YAML::Node yaml = toYaml(private_namespace);
+  NodeOptions options;
+  options.real_time_factor = numberOption(yaml, names::kRealTimeFactor, options.real_time_factor, {0.0, 1e6});
+  options.publish_clock = boolOption(yaml, names::kPublishClock, options.publish_clock);
+  options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
+  options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
+  return options;
+}
+
+WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace) {
   YAML::Node config(YAML::NodeType::Map);
-  if (private_namespace.getType() != XmlRpc::XmlRpcValue::TypeStruct) return config;
+  if (!isMap(private_namespace)) return parseWorldConfig(config);
+  const auto& options = node_interface::optionNames();
+  std::set<std::string> ignored(options.begin(), options.end());
+  if (private_namespace.hasMember("bodies") && isMap(private_namespace["bodies"])) {
+    for (auto& body : private_namespace["bodies"]) ignored.insert(body.first);
+  }
   for (auto& entry : private_namespace) {
     if (!ignored.count(entry.first)) config[entry.first] = toYaml(entry.second);
   }
-  return config;
+  return parseWorldConfig(config);
 }
 
 }  // namespace rigid_body_sim

@@ -1,79 +1,83 @@
 #include "rigid_body_sim/ros/reconfigure.h"
 
+#include <boost/pointer_cast.hpp>
+
 namespace rigid_body_sim {
 
+namespace {
+
+// Calls visit(key, field) for every number of a .cfg: `field` is the request's member, `key` the core's
+// numeric key of the same name (test_reconfigure checks that the .cfg's numbers are the core's keys, with
+// their ranges and defaults). Texts (the integrator, the shape) are left to the caller.
+template <class Request, class Config, class Visit>
+void forEachNumber(const std::vector<NumericKey<Config>>& keys, Visit visit) {
+  using Number = typename Request::template ParamDescription<double>;
+  for (const auto& description : Request::__getParamDescriptions__()) {
+    const auto number = boost::dynamic_pointer_cast<const Number>(description);
+    const NumericKey<Config>* key = number ? findKey(keys, number->name) : nullptr;
+    if (key) visit(*key, number->field);
+  }
+}
+
+template <class Request, class Config>
+Request numbersOf(Config config, const std::vector<NumericKey<Config>>& keys) {
+  Request request;
+  forEachNumber<Request>(keys, [&](const NumericKey<Config>& key, double Request::*field) {
+    request.*field = key.field(config);
+  });
+  return request;
+}
+
+template <class Request, class Config>
+void setNumbers(const Request& request, Config& config, const std::vector<NumericKey<Config>>& keys) {
+  forEachNumber<Request>(keys, [&](const NumericKey<Config>& key, double Request::*field) {
+    key.field(config) = request.*field;
+  });
+}
+
+}  // namespace
+
 RodReconfigureConfig toReconfigure(const RodConfig& config) {
-  RodReconfigureConfig out;
-  out.k = config.params.k;
-  out.mass = config.params.mass;
-  out.length = config.params.length;
-  out.integrator = toString(config.params.integrator);
-  out.x0 = config.initial.x;
-  out.y0 = config.initial.y;
-  out.vx0 = config.initial.vx;
-  out.vy0 = config.initial.vy;
-  out.theta0 = config.initial.theta;
-  out.omega0 = config.initial.omega;
-  return out;
+  auto request = numbersOf<RodReconfigureConfig>(config, rodNumericKeys());
+  request.integrator = toString(config.params.integrator);
+  return request;
 }
 
 RollerReconfigureConfig toReconfigure(const RollerConfig& config) {
-  RollerReconfigureConfig out;
-  out.shape = toString(config.params.shape);
-  out.inertia_factor = config.params.inertia_factor;
-  out.radius = config.params.radius;
-  out.mass = config.params.mass;
-  out.incline_angle = config.params.incline_angle;
-  out.incline_length = config.params.incline_length;
-  out.mu_s = config.params.mu_s;
-  out.mu_d = config.params.mu_d;
-  out.x0 = config.initial.x0;
-  out.v0 = config.initial.v0;
-  out.theta0 = config.initial.theta0;
-  out.omega0 = config.initial.omega0;
-  return out;
+  auto request = numbersOf<RollerReconfigureConfig>(config, rollerNumericKeys());
+  request.shape = toString(config.params.shape);
+  return request;
 }
 
 RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request,
                           const RodConfig& current) {
   RodConfig out = current;
-  out.params.k = request.k;
-  out.params.mass = request.mass;
-  out.params.length = request.length;
+  setNumbers(request, out, rodNumericKeys());
   const auto integrator = integratorFromString(request.integrator);
   if (!integrator) {
     throw ConfigError(body, "integrator", "'" + request.integrator + "'",
                       "euler_cromer, velocity_verlet or rk4");
   }
   out.params.integrator = *integrator;
-  out.initial = {request.x0, request.y0, request.theta0, request.vx0, request.vy0, request.omega0};
   return out;
 }
 
 RollerConfig fromReconfigure(const std::string& body, const RollerReconfigureConfig& request,
                              const RollerConfig& current) {
   RollerConfig out = current;
+  setNumbers(request, out, rollerNumericKeys());
   if (request.shape == "custom") {
     out.params.shape = Shape::Custom;
-    out.params.inertia_factor = request.inertia_factor;
-  } else {
-    const auto shape = shapeFromString(request.shape);
-    if (!shape) {
-      throw ConfigError(body, "shape", "'" + request.shape + "'",
-                        "sphere, cylinder, ring, spherical_shell or custom");
-    }
-    // A new named shape brings its own c; an unchanged one keeps the requested c for validation.
-    const bool shape_changed = *shape != current.params.shape;
-    out.params.shape = *shape;
-    out.params.inertia_factor = shape_changed ? inertiaFactorOf(*shape) : request.inertia_factor;
+    return out;
   }
-  out.params.radius = request.radius;
-  out.params.mass = request.mass;
-  out.params.incline_angle = request.incline_angle;
-  out.params.incline_length = request.incline_length;
-  out.params.mu_s = request.mu_s;
-  out.params.mu_d = request.mu_d;
-  out.initial = {request.x0, request.v0, request.theta0, request.omega0};
+  const auto shape = shapeFromString(request.shape);
+  if (!shape) {
+    throw ConfigError(body, "shape", "'" + request.shape + "'",
+                      "sphere, cylinder, ring, spherical_shell or custom");
+  }
+  // A new named shape brings its own c; an unchanged one keeps the requested c for validation.
+  if (*shape != current.params.shape) out.params.inertia_factor = inertiaFactorOf(*shape);
+  out.params.shape = *shape;
   return out;
 }
 

@@ -8,12 +8,14 @@
 #include <string>
 
 #include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/node_interface.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const rigid_body_sim::WorldConfig config = rigid_body_sim::parseWorldConfigText(text, "fuzz");
-    rigid_body_sim::validate(config);  // what loads must validate again (the node re-validates)
+    // What loads must validate again (the node re-validates).
+    rigid_body_sim::validate(config, rigid_body_sim::node_interface::ownNames());
     rigid_body_sim::slowRunWarnings(config);
   } catch (const rigid_body_sim::ConfigError& error) {
     const std::string message = error.what();

@@ -19,7 +19,7 @@
 #include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/ros/ros_conversions.h"
+#include "rigid_body_sim/ros/messages.h"
 
 namespace rigid_body_sim {
 namespace test {

@@ -9,6 +9,7 @@
 #include <rosgraph_msgs/Log.h>
 
 #include "node_test_util.h"
+#include "rigid_body_sim/core/constants.h"
 
 using namespace rigid_body_sim;
 using namespace rigid_body_sim::test;
@@ -37,7 +38,7 @@ const std::vector<BadRequest>& badRequests() {
       {"sphere mu_s below mu_d", "sphere", {{"mu_s", 0.1}}, {}},
       {"sphere x0 beyond incline_length", "sphere", {{"x0", 6.0}}, {}},
       {"bowler incline_length below x0", "bowler", {{"x0", 10.0}, {"incline_length", 8.0}}, {}},
-      {"sphere vertical slope", "sphere", {{"incline_angle", 1.5707963267948966}}, {}},
+      {"sphere vertical slope", "sphere", {{"incline_angle", kPi / 2}}, {}},
       {"sphere incline_angle NaN", "sphere", {{"incline_angle", kNan}}, {}},
       {"sphere radius = 0", "sphere", {{"radius", 0.0}}, {}},
       {"sphere mass = 0", "sphere", {{"mass", 0.0}}, {}},

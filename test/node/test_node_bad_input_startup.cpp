@@ -73,8 +73,7 @@ std::string loaderMessage(const std::string& ns) {
   XmlRpc::XmlRpcValue params;
   if (!ros::param::get(ns, params)) return "";
   try {
-    parseWorldConfig(
-        configFromParams(params, {"real_time_factor", "publish_clock", "duration", "start_delay"}));
+    parseNodeConfig(params);
   } catch (const ConfigError& error) {
     return error.what();
   }

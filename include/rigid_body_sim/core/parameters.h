@@ -52,6 +52,15 @@ struct NumericKey {
 const std::vector<NumericKey<RodConfig>>& rodNumericKeys();
 const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys();
 
+// The key named `name`, or null.
+template <class Config>
+const NumericKey<Config>* findKey(const std::vector<NumericKey<Config>>& keys, const std::string& name) {
+  for (const auto& key : keys) {
+    if (name == key.name) return &key;
+  }
+  return nullptr;
+}
+
 // Throw ConfigError on the first refused value (ranges, then relations between keys such as
 // mu_d <= mu_s, x0 on the slope, inertia_factor matching the shape).
 // A rod also needs its contact frequency sqrt(4 k / mass) <= maxContactFrequency(): its sub-stepping
@@ -65,6 +74,9 @@ struct BodyConfig {
   std::variant<RodConfig, RollerConfig> config;
 };
 
+enum class BodyKind { Rod, Roller };
+BodyKind kindOf(const BodyConfig& body);
+
 struct WorldConfig {
   double rate = 1000.0;        // physics steps per simulated second
   double publish_rate = 50.0;  // samples per simulated second
@@ -72,6 +84,9 @@ struct WorldConfig {
   std::string world_frame = "world";
   std::vector<BodyConfig> bodies;
 };
+
+// The world's keys in a config file, in the order of WorldConfig.
+const std::vector<std::string>& worldKeys();
 
 // World-level ranges.
 Range rateRange();
@@ -82,15 +97,14 @@ Range gravityRange();
 bool isValidName(const std::string& name);
 
 // The fixed frame in which a body's coordinates are measured: <name>_floor (rod) or <name>_slope (roller).
+std::string fixedFrameOf(const std::string& name, BodyKind kind);
 std::string fixedFrameOf(const BodyConfig& body);
 
-// Names a body cannot have: the world keys and the node's own parameters, topics and services share the
-// node's private namespace with the bodies (a body named `rate` would shadow the world's rate).
-const std::vector<std::string>& reservedBodyNames();
-
 // Checks the world keys, every body, name validity, that every TF frame (world_frame, each body and its
-// fixed frame) is distinct, and that publish_rate divides rate.
-void validate(const WorldConfig& config);
+// fixed frame) is distinct, and that publish_rate divides rate. A body cannot be named like a world key
+// nor like one of `reserved_names`: the names of the node's private namespace, which the bodies share
+// (its options, topics and services; a body named `rate` would shadow the world's rate).
+void validate(const WorldConfig& config, const std::vector<std::string>& reserved_names = {});
 
 // Sub-steps per simulated second above which a valid config is reported as slow.
 constexpr double kSlowSubstepsPerSecond = 1e7;

@@ -56,4 +56,7 @@ class World {
 // Total energy of a body (J), whatever its kind.
 double energyOf(const Body& body);
 
+BodyKind kindOf(const Body& body);
+std::string fixedFrameOf(const Body& body);  // <name>_floor or <name>_slope
+
 }  // namespace rigid_body_sim

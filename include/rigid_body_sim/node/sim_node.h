@@ -23,17 +23,10 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
-#include "rigid_body_sim/ros/ros_conversions.h"
+#include "rigid_body_sim/ros/params.h"
+#include "rigid_body_sim/ros/snapshot.h"
 
 namespace rigid_body_sim {
-
-// The node's own options (private parameters beside the config keys).
-struct NodeOptions {
-  double real_time_factor = 1.0;  // 1 = wall-clock pace, 0 = as fast as possible
-  bool publish_clock = false;     // publish /clock (simulated time) for use_sim_time users
-  double duration = 0.0;          // simulated seconds before the node shuts down; 0 = run until stopped
-  double start_delay = 0.0;       // wall seconds before stepping starts (lets a recorder subscribe first)
-};
 
 class SimNode {
  public:

@@ -10,12 +10,9 @@
 #include <rosbag/bag.h>
 
 #include "rigid_body_sim/io/offline_run.h"
-#include "rigid_body_sim/ros/ros_conversions.h"
+#include "rigid_body_sim/ros/snapshot.h"
 
 namespace rigid_body_sim {
-
-std::string stateTopic(const std::string& node_namespace, const std::string& body);
-std::string markerTopic(const std::string& node_namespace);
 
 class BagRecorder : public SampleSink {
  public:

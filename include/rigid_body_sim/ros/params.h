@@ -1,20 +1,38 @@
-// The node's private parameters -> the same YAML tree a config file gives, so that one loader serves both.
+// The node's private parameters -> its options, and the same YAML tree a config file gives, so that one
+// loader serves the node and `simulate`.
 #pragma once
 
-#include <set>
 #include <string>
 
+#include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
 
+#include "rigid_body_sim/core/parameters.h"
+
 namespace rigid_body_sim {
+
+// The node's own options (private parameters beside the config keys; names in io/node_interface.h).
+struct NodeOptions {
+  double real_time_factor = 1.0;  // 1 = wall-clock pace, 0 = as fast as possible
+  bool publish_clock = false;     // publish /clock (simulated time) for use_sim_time users
+  double duration = 0.0;          // simulated seconds before the node shuts down; 0 = run until stopped
+  double start_delay = 0.0;       // wall seconds before stepping starts (lets a recorder subscribe first)
+};
+
+// The node's private namespace from the parameter server; throws ConfigError when it holds nothing.
+XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node);
 
 // Converts a parameter-server value (maps, lists, numbers, strings, booleans) to YAML.
 YAML::Node toYaml(XmlRpc::XmlRpcValue& value);
 
-// The config part of the node's private namespace: the world keys only, leaving out the node's own
-// options and the namespaces of the reconfigure servers (`ignored`). Any other key stays, so that the
-// loader refuses a typo.
-YAML::Node configFromParams(XmlRpc::XmlRpcValue& private_namespace, const std::set<std::string>& ignored);
+// The options in the private namespace; a missing one keeps its default. Throws ConfigError naming the
+// option, its value and its range.
+NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace);
+
+// The config in the private namespace, loaded and validated as a config file is: the node's options and
+// the namespaces of the reconfigure servers (one per body) are left out; any other key stays, so that the
+// loader refuses a typo. Throws ConfigError.
+WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace);
 
 }  // namespace rigid_body_sim

@@ -1,4 +1,4 @@
-// Core state -> ROS messages: TF, markers and state messages, shared by sim_node and `simulate --bag`.
+// Where every body sits in the world and how it looks in rviz: the fixed frames and the markers.
 //
 // Placement in the world (REP 103: x forward, z up; all in world_frame):
 // - every body has a fixed 2-D frame in which its CSV coordinates are measured, published on /tf_static:
@@ -11,23 +11,15 @@
 #include <cstddef>
 #include <deque>
 #include <string>
-#include <variant>
 #include <vector>
 
-#include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
-#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <Eigen/Geometry>
 
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/core/world.h"
 
 namespace rigid_body_sim {
-
-// Simulated time as a ROS stamp: t plus 1 ns, so that the t = 0 sample is a valid, non-zero time.
-ros::Time simStamp(double t);
 
 // The fixed frame of a body (its floor or slope) and where it sits in the world.
 struct BodyPlacement {
@@ -40,26 +32,20 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies);
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
 
-RodState toRodStateMsg(double t, const Rod& rod);
-RollerState toRollerStateMsg(double t, const Roller& roller);
-using StateMsg = std::variant<RodState, RollerState>;
-
-// Everything published at one sample time.
-struct Snapshot {
-  tf2_msgs::TFMessage tf;                   // world_frame -> <body>
-  visualization_msgs::MarkerArray markers;  // bodies, trails, labels (floor and slopes: staticMarkers)
-  std::vector<StateMsg> states;             // in the order of the bodies
-};
-
-// Builds snapshots; keeps the bounded trail of every body between calls.
-class SnapshotBuilder {
+// The markers of a world: fixed scenery (floor, slopes) and, at every sample, each body's shape, a spoke
+// that turns with it, its bounded trail and a label with its mode and energy.
+class Scene {
  public:
-  SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points = 400);
+  Scene(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points = 400);
 
-  std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
-  visualization_msgs::MarkerArray staticMarkers(const ros::Time& stamp) const;  // floor, slopes
-  Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies);
-  // A DELETEALL marker followed by the static markers again; also forgets the trails (for a reset).
+  const std::string& worldFrame() const { return world_frame_; }
+  const std::vector<BodyPlacement>& placements() const { return placements_; }
+
+  visualization_msgs::MarkerArray fixedMarkers(const ros::Time& stamp) const;  // floor, slopes
+  // Appends the markers of body `index`, whose centre is at world_from_body, and extends its trail.
+  void addBodyMarkers(std::size_t index, const Body& body, const Eigen::Isometry3d& world_from_body,
+                      const ros::Time& stamp, visualization_msgs::MarkerArray& markers);
+  // A DELETEALL marker followed by the fixed markers again; also forgets the trails (for a reset).
   visualization_msgs::MarkerArray restartMarkers(const ros::Time& stamp);
 
  private:

@@ -1,0 +1,42 @@
+// The names sim_node takes in its private namespace beside the config's keys: its options, topics and
+// services, listed once. The node reads its options (ros/params.h) and advertises under these names; a
+// body may take none of them (they share the namespace), whichever program reads the config file, so that
+// a file `simulate` runs is one the node runs too. Plain names: no ROS header.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rigid_body_sim::node_interface {
+
+// Options (private parameters)
+inline constexpr const char* kRealTimeFactor = "real_time_factor";
+inline constexpr const char* kPublishClock = "publish_clock";
+inline constexpr const char* kDuration = "duration";
+inline constexpr const char* kStartDelay = "start_delay";
+// Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
+inline constexpr const char* kMarkers = "markers";
+inline constexpr const char* kReset = "reset";
+inline constexpr const char* kPause = "pause";
+inline constexpr const char* kUnpause = "unpause";
+inline constexpr const char* kStep = "step";
+
+// A body's state topic, relative to the node's namespace.
+inline std::string stateTopic(const std::string& body) { return body + "/state"; }
+
+inline const std::vector<std::string>& optionNames() {
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration, kStartDelay};
+  return names;
+}
+
+// Every name above: what the config loader refuses as a body name.
+inline const std::vector<std::string>& ownNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> all = optionNames();
+    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep});
+    return all;
+  }();
+  return names;
+}
+
+}  // namespace rigid_body_sim::node_interface

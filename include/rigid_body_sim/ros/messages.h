@@ -1,0 +1,34 @@
+// Core state -> ROS messages: the state messages, stamps, and Eigen poses as geometry messages.
+#pragma once
+
+#include <string>
+#include <variant>
+
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/time.h>
+#include <Eigen/Geometry>
+
+#include "rigid_body_sim/RodState.h"
+#include "rigid_body_sim/RollerState.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+// Simulated time as a ROS stamp: t plus 1 ns, so that the t = 0 sample is a valid, non-zero time.
+ros::Time simStamp(double t);
+
+// The state messages carry the fields of core/state_fields.h (test_messages checks the definitions); the
+// header is left to the caller.
+RodState toRodStateMsg(double t, const Rod& rod);
+RollerState toRollerStateMsg(double t, const Roller& roller);
+using StateMsg = std::variant<RodState, RollerState>;
+StateMsg toStateMsg(double t, const Body& body);
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& point);
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& transform);
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& transform, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp);
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,72 @@
+#include "rigid_body_sim/ros/messages.h"
+
+namespace rigid_body_sim {
+
+ros::Time simStamp(double t) { return ros::Time(0, 1) + ros::Duration(t); }
+
+RodState toRodStateMsg(double t, const Rod& rod) {
+  RodState msg;
+  msg.t = t;
+  msg.x = rod.state().x;
+  msg.y = rod.state().y;
+  msg.theta = rod.state().theta;
+  msg.vx = rod.state().vx;
+  msg.vy = rod.state().vy;
+  msg.omega = rod.state().omega;
+  msg.energy = rod.energy();
+  return msg;
+}
+
+RollerState toRollerStateMsg(double t, const Roller& roller) {
+  RollerState msg;
+  msg.t = t;
+  msg.x = roller.state().x;
+  msg.v = roller.state().v;
+  msg.theta = roller.state().theta;
+  msg.omega = roller.state().omega;
+  msg.mode = toString(roller.mode());
+  msg.friction = roller.frictionForce();
+  msg.normal = roller.normalForce();
+  msg.energy = roller.energy();
+  return msg;
+}
+
+StateMsg toStateMsg(double t, const Body& body) {
+  if (const auto* rod = std::get_if<Rod>(&body.model)) return toRodStateMsg(t, *rod);
+  return toRollerStateMsg(t, std::get<Roller>(body.model));
+}
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& point) {
+  geometry_msgs::Point msg;
+  msg.x = point.x();
+  msg.y = point.y();
+  msg.z = point.z();
+  return msg;
+}
+
+geometry_msgs::Pose toPose(const Eigen::Isometry3d& transform) {
+  geometry_msgs::Pose pose;
+  const Eigen::Quaterniond q(transform.rotation());
+  pose.position = toPoint(transform.translation());
+  pose.orientation.x = q.x();
+  pose.orientation.y = q.y();
+  pose.orientation.z = q.z();
+  pose.orientation.w = q.w();
+  return pose;
+}
+
+geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& transform, const std::string& parent,
+                                            const std::string& child, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped msg;
+  msg.header.stamp = stamp;
+  msg.header.frame_id = parent;
+  msg.child_frame_id = child;
+  const geometry_msgs::Pose pose = toPose(transform);
+  msg.transform.translation.x = pose.position.x;
+  msg.transform.translation.y = pose.position.y;
+  msg.transform.translation.z = pose.position.z;
+  msg.transform.rotation = pose.orientation;
+  return msg;
+}
+
+}  // namespace rigid_body_sim

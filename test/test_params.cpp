@@ -1,0 +1,82 @@
+// The node's private parameters (as the parameter server gives them) -> its options and its config, with
+// no master: defaults, ranges, and the keys that are not config (options, reconfigure namespaces).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <tuple>
+
+#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/params.h"
+
+using namespace rigid_body_sim;
+
+namespace {
+
+// A private namespace holding a config of one rod, as `rosparam load` leaves it.
+XmlRpc::XmlRpcValue oneRod() {
+  XmlRpc::XmlRpcValue params;
+  params["rate"] = 1000.0;
+  params["bodies"]["rod"]["type"] = std::string("rod");
+  params["bodies"]["rod"]["k"] = 2000;
+  return params;
+}
+
+std::string refusal(XmlRpc::XmlRpcValue params) {
+  try {
+    parseNodeOptions(params);
+    parseNodeConfig(params);
+  } catch (const ConfigError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(NodeOptions, EveryOptionIsReadAndAMissingOneKeepsItsDefault) {
+  XmlRpc::XmlRpcValue params = oneRod();
+  const NodeOptions defaults = parseNodeOptions(params);
+  params["real_time_factor"] = 0;
+  params["publish_clock"] = true;
+  params["duration"] = 30.0;
+  params["start_delay"] = 2.5;
+  const NodeOptions options = parseNodeOptions(params);
+  EXPECT_EQ(std::make_tuple(defaults.real_time_factor, defaults.publish_clock, defaults.duration,
+                            defaults.start_delay),
+            std::make_tuple(1.0, false, 0.0, 0.0));
+  EXPECT_EQ(
+      std::make_tuple(options.real_time_factor, options.publish_clock, options.duration, options.start_delay),
+      std::make_tuple(0.0, true, 30.0, 2.5));
+}
+
+TEST(NodeOptions, ABadOptionIsRefusedInOneLine) {
+  XmlRpc::XmlRpcValue negative = oneRod();
+  negative["real_time_factor"] = -1.0;
+  EXPECT_EQ(refusal(negative),
+            "body '(node)', key 'real_time_factor': value -1 is not allowed (allowed: a finite number in [0, "
+            "1e+06])");
+  XmlRpc::XmlRpcValue text = oneRod();
+  text["publish_clock"] = std::string("maybe");
+  EXPECT_NE(refusal(text).find("'maybe' is not allowed (allowed: true or false)"), std::string::npos);
+  XmlRpc::XmlRpcValue long_delay = oneRod();
+  long_delay["start_delay"] = 1e6;
+  EXPECT_NE(refusal(long_delay).find("'start_delay'"), std::string::npos);
+}
+
+TEST(NodeConfig, LeavesOutTheOptionsAndTheReconfigureNamespaces) {
+  XmlRpc::XmlRpcValue params = oneRod();
+  for (const auto& option : node_interface::optionNames()) params[option] = 1;
+  params["rod"]["k"] = 5.0;  // what the rod's reconfigure server keeps in ~rod
+  const WorldConfig config = parseNodeConfig(params);
+  ASSERT_EQ(config.bodies.size(), 1u);
+  EXPECT_EQ(std::get<RodConfig>(config.bodies[0].config).params.k, 2000.0);
+}
+
+TEST(NodeConfig, AnyOtherKeyIsRefusedAsAConfigFileWouldBe) {
+  XmlRpc::XmlRpcValue typo = oneRod();
+  typo["rates"] = 100;
+  EXPECT_NE(refusal(typo).find("'rates'"), std::string::npos);
+  XmlRpc::XmlRpcValue named_like_a_service = oneRod();
+  named_like_a_service["bodies"]["step"]["type"] = std::string("roller");
+  EXPECT_NE(refusal(named_like_a_service).find("node's own"), std::string::npos);
+}
