@@ -3,19 +3,18 @@
 // way to the out dir (not even a half-written or temporary file).
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "rigid_body_sim/io/config_loader.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
 
 namespace {
 
@@ -38,29 +37,10 @@ std::vector<Row> table() {
   return rows;
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> result;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) result.push_back(line);
-  return result;
-}
-
 // What the loader says about the same text (the line simulate must print after "simulate: "), or ""
 // when the loader accepts it (a command-line error).
 std::string loaderMessage(const std::string& text, const std::string& source) {
-  try {
-    parseWorldConfigText(text, source);
-  } catch (const ConfigError& error) {
-    return error.what();
-  }
-  return "";
+  return refusalOf([&] { parseWorldConfigText(text, source); });
 }
 
 }  // namespace
@@ -90,14 +70,13 @@ TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
     } else {
       std::ofstream(config) << row.config;
     }
-    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + config.string() + " " + row.args +
-                                " --out-dir " + out.string() + " --bag " + (out / "run.bag").string() + " >" +
-                                (dir / "stdout").string() + " 2>" + (dir / "stderr").string();
-    const int status = std::system(command.c_str());
-    ASSERT_TRUE(WIFEXITED(status)) << "simulate did not exit normally (a crash?)";
-    EXPECT_NE(WEXITSTATUS(status), 0);
-    const auto err = lines(slurp(dir / "stderr"));
-    ASSERT_EQ(err.size(), 1u) << "stderr:\n" << slurp(dir / "stderr");
+    const ToolRun run = runTool(std::string(RBS_SIMULATE_EXE) + " " + config.string() + " " + row.args +
+                                    " --out-dir " + out.string() + " --bag " + (out / "run.bag").string(),
+                                dir);
+    ASSERT_NE(run.exit_code, -1) << "simulate did not exit normally (a crash?)";
+    EXPECT_NE(run.exit_code, 0);
+    const auto err = lines(run.err);
+    ASSERT_EQ(err.size(), 1u) << "stderr:\n" << run.err;
     for (const auto& fragment : row.expect) {
       EXPECT_NE(err[0].find(fragment), std::string::npos) << "missing '" << fragment << "' in: " << err[0];
     }
@@ -110,20 +89,14 @@ TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
 }
 
 // A valid but slow config runs, with the core's warning on stderr (--duration 0: no step is taken).
-TEST(BadInputSimulate, SlowConfigRunsWithOneWarning) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "bad_input_simulate_slow";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+using SlowConfig = FolderTest;
+TEST_F(SlowConfig, RunsWithOneWarning) {
   const std::string yaml = "bodies: {rod: {type: rod, k: 1e9, mass: 1e-6}}";
-  std::ofstream(dir / "stiff.yaml") << yaml;
-  const std::string command = std::string(RBS_SIMULATE_EXE) + " " + (dir / "stiff.yaml").string() +
-                              " --duration 0 --out-dir " + dir.string() + " >/dev/null 2>" +
-                              (dir / "stderr").string();
-  const int status = std::system(command.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+  const ToolRun run =
+      simulate(write("stiff.yaml", yaml).string() + " --duration 0 --out-dir " + dir_.string());
+  EXPECT_EQ(run.exit_code, 0);
   const auto warnings = slowRunWarnings(parseWorldConfigText(yaml, "stiff"));
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(lines(slurp(dir / "stderr")), std::vector<std::string>{"simulate: warning: " + warnings[0]});
-  EXPECT_TRUE(fs::exists(dir / "rod.csv"));
+  EXPECT_EQ(lines(run.err), std::vector<std::string>{"simulate: warning: " + warnings[0]});
+  EXPECT_TRUE(fs::exists(dir_ / "rod.csv"));
 }

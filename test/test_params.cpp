@@ -7,6 +7,7 @@
 
 #include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/params.h"
+#include "test_util.h"
 
 using namespace rigid_body_sim;
 
@@ -22,13 +23,10 @@ XmlRpc::XmlRpcValue oneRod() {
 }
 
 std::string refusal(XmlRpc::XmlRpcValue params) {
-  try {
+  return test::refusalOf([&] {
     parseNodeOptions(params);
     parseNodeConfig(params);
-  } catch (const ConfigError& error) {
-    return error.what();
-  }
-  return "";
+  });
 }
 
 }  // namespace

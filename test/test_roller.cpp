@@ -604,6 +604,14 @@ TEST(RollerHorizontal, SlidingSphereSticksAtClosedFormTimeAndSpeed) {
 
 // ---- 13: reset, setInitial, mirror symmetry ----
 
+// The roller's state is exactly these initial conditions.
+void expectAt(const Roller& r, const RollerInitial& initial) {
+  EXPECT_EQ(r.state().x, initial.x0);
+  EXPECT_EQ(r.state().v, initial.v0);
+  EXPECT_EQ(r.state().theta, initial.theta0);
+  EXPECT_EQ(r.state().omega, initial.omega0);
+}
+
 TEST(RollerReset, ResetAndSetInitialRestoreStateAndMode) {
   const Slope s{0.349, 0.4, 0.3, 0.2};
   const RollerInitial sliding{0.5, 3.0, 0.2, 0.0};
@@ -611,10 +619,7 @@ TEST(RollerReset, ResetAndSetInitialRestoreStateAndMode) {
   for (int k = 0; k < 3000; ++k) r.step(kDt);  // sticks, and runs off the end at least once
   ASSERT_GE(r.laps(), 1);
   r.reset();
-  EXPECT_EQ(r.state().x, sliding.x0);
-  EXPECT_EQ(r.state().v, sliding.v0);
-  EXPECT_EQ(r.state().theta, sliding.theta0);
-  EXPECT_EQ(r.state().omega, sliding.omega0);
+  expectAt(r, sliding);
   EXPECT_EQ(r.mode(), RollMode::Slipping);
   EXPECT_LT(r.frictionForce(), 0.0);
   EXPECT_EQ(r.laps(), 0);
@@ -623,8 +628,7 @@ TEST(RollerReset, ResetAndSetInitialRestoreStateAndMode) {
   r.setInitial(topspin);
   EXPECT_EQ(r.initial().x0, topspin.x0);
   EXPECT_EQ(r.initial().omega0, topspin.omega0);
-  EXPECT_EQ(r.state().x, topspin.x0);
-  EXPECT_EQ(r.state().omega, topspin.omega0);
+  expectAt(r, topspin);
   EXPECT_EQ(r.mode(), RollMode::Slipping);
   EXPECT_GT(r.frictionForce(), 0.0);
 

@@ -1,79 +1,34 @@
 // `simulate` end to end, as a user runs it: command line, CSV header and sample times, exit codes.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/csv_writer.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
 
 namespace {
 
-struct ToolRun {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
+using SimulateTest = FolderTest;
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-class SimulateTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("simulate_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-
-  ToolRun simulate(const std::string& args) {
-    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" +
-                                (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-
-  std::string config(const std::string& name) { return std::string(RBS_CONFIG_DIR) + "/" + name; }
-
-  fs::path write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
-  }
-
-  std::vector<std::string> lines(const fs::path& path) {
-    std::vector<std::string> result;
-    std::ifstream in(path);
-    for (std::string line; std::getline(in, line);) result.push_back(line);
-    return result;
-  }
-
-  fs::path dir_;
-};
+std::vector<std::string> fileLines(const fs::path& path) { return lines(slurp(path)); }
 
 }  // namespace
 
 TEST_F(SimulateTest, WritesOneCsvPerBodyWithTheContractsColumns) {
-  const ToolRun run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
+  const auto run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(lines(dir_ / "rod.csv").at(0), "t,x,y,theta,vx,vy,omega,energy");
+  EXPECT_EQ(fileLines(dir_ / "rod.csv").at(0), "t,x,y,theta,vx,vy,omega,energy");
   for (const char* roller : {"sphere", "cylinder", "ring", "bowler"}) {
-    const auto rows = lines(dir_ / (std::string(roller) + ".csv"));
+    const auto rows = fileLines(dir_ / (std::string(roller) + ".csv"));
     ASSERT_FALSE(rows.empty()) << roller;
     EXPECT_EQ(rows.at(0), "t,x,v,theta,omega,mode,friction,normal,energy");
   }
@@ -81,10 +36,10 @@ TEST_F(SimulateTest, WritesOneCsvPerBodyWithTheContractsColumns) {
 }
 
 TEST_F(SimulateTest, SamplesAtWholeMultiplesOfTheSamplePeriodFromZero) {
-  const ToolRun run =
+  const auto run =
       simulate(config("rod.yaml") + " --duration 1.5 --sample-rate 20 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  const auto rows = lines(dir_ / "rod.csv");
+  const auto rows = fileLines(dir_ / "rod.csv");
   ASSERT_EQ(rows.size(), 1u + 31u);  // header, t = 0, 0.05, ..., 1.5
   for (std::size_t j = 1; j < rows.size(); ++j) {
     const double t = std::stod(rows[j].substr(0, rows[j].find(',')));
@@ -93,12 +48,12 @@ TEST_F(SimulateTest, SamplesAtWholeMultiplesOfTheSamplePeriodFromZero) {
 }
 
 TEST_F(SimulateTest, CsvRowsAreTheCoresStatesAtThoseTimes) {
-  const ToolRun run =
+  const auto run =
       simulate(config("demo.yaml") + " --duration 3 --sample-rate 100 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   World world(loadWorldConfigFile(config("demo.yaml")));
   std::vector<std::vector<std::string>> files;
-  for (const auto& body : world.bodies()) files.push_back(lines(dir_ / (body.name + ".csv")));
+  for (const auto& body : world.bodies()) files.push_back(fileLines(dir_ / (body.name + ".csv")));
   for (int j = 0; j <= 300; ++j) {
     for (std::size_t b = 0; b < world.bodies().size(); ++b) {
       ASSERT_EQ(files[b].at(1 + j), csvRow(world.time(), world.bodies()[b])) << world.bodies()[b].name;
@@ -108,15 +63,15 @@ TEST_F(SimulateTest, CsvRowsAreTheCoresStatesAtThoseTimes) {
 }
 
 TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
-  const ToolRun run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
+  const auto run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("bowler"), std::string::npos);
   EXPECT_NE(run.out.find("started rolling"), std::string::npos) << run.out;
 }
 
 TEST_F(SimulateTest, WritesABag) {
-  const ToolRun run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
-                               (dir_ / "run.bag").string());
+  const auto run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
+                            (dir_ / "run.bag").string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(fs::exists(dir_ / "run.bag"));
   EXPECT_FALSE(fs::exists(dir_ / "run.bag.active"));
@@ -125,7 +80,7 @@ TEST_F(SimulateTest, WritesABag) {
 
 TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   const fs::path bad = write("bad.yaml", "bodies: {rod: {type: rod, k: -1}}\n");
-  const ToolRun run = simulate(bad.string() + " --out-dir " + (dir_ / "out").string());
+  const auto run = simulate(bad.string() + " --out-dir " + (dir_ / "out").string());
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("body 'rod', key 'k': value -1"), std::string::npos) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -138,13 +93,13 @@ TEST_F(SimulateTest, BadOptionsAreRefused) {
   EXPECT_NE(simulate(config("rod.yaml") + " --duration abc").exit_code, 0);
   EXPECT_NE(simulate("/nonexistent.yaml").exit_code, 0);
   EXPECT_NE(simulate("").exit_code, 0);
-  const ToolRun run = simulate(config("rod.yaml") + " --sample-rate 300 --out-dir " + dir_.string());
+  const auto run = simulate(config("rod.yaml") + " --sample-rate 300 --out-dir " + dir_.string());
   EXPECT_NE(run.err.find("--sample-rate"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir_ / "rod.csv"));
 }
 
 TEST_F(SimulateTest, SummaryCountsTheRodsBouncesAsTheCoreDoes) {
-  const ToolRun run = simulate(config("rod.yaml") + " --out-dir " + dir_.string());
+  const auto run = simulate(config("rod.yaml") + " --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
   // Contacts begun, counted straight from the core's end heights at every step of the 10 s.
   World world(loadWorldConfigFile(config("rod.yaml")));

@@ -2,15 +2,10 @@
 // single runs of the same variants and the core stepped directly.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,29 +14,13 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/sweep.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
 
 namespace {
-
-std::string config(const std::string& name) { return std::string(RBS_CONFIG_DIR) + "/" + name; }
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(text);
-  while (std::getline(in, part, separator)) parts.push_back(part);
-  if (!text.empty() && text.back() == separator) parts.push_back("");
-  return parts;
-}
 
 // A CSV file as rows of column name -> text.
 std::vector<std::map<std::string, std::string>> readCsv(const fs::path& path) {
@@ -59,29 +38,7 @@ std::vector<std::map<std::string, std::string>> readCsv(const fs::path& path) {
   return rows;
 }
 
-class SweepTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("sweep_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-
-  struct Run {
-    int exit_code;
-    std::string out;
-    std::string err;
-  };
-  Run simulate(const std::string& args) {
-    const std::string command = std::string(RBS_SIMULATE_EXE) + " " + args + " >" +
-                                (dir_ / "stdout").string() + " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-
-  fs::path dir_;
-};
+using SweepTest = FolderTest;
 
 TEST(SweepAxis, ValuesAreEvenlySpacedWithBothEndsIncluded) {
   const WorldConfig base = loadWorldConfigFile(config("demo.yaml"));
@@ -182,7 +139,7 @@ int bouncesOf(const WorldConfig& config, const std::string& body, std::int64_t s
 }
 
 TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
-  const Run run =
+  const auto run =
       simulate(config("demo.yaml") + " --duration 3 --sweep rod.theta0=0:3:3 --sweep bowler.omega0=5:15:2" +
                " --jobs 2 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -199,7 +156,7 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
     const fs::path variant_dir = dir_ / ("variant" + std::to_string(v));
     fs::create_directories(variant_dir);
     std::ofstream(variant_dir / "variant.yaml") << yaml;
-    const Run single =
+    const auto single =
         simulate((variant_dir / "variant.yaml").string() + " --duration 3 --out-dir " + variant_dir.string());
     ASSERT_EQ(single.exit_code, 0) << single.err;
     for (const auto& body : base.bodies) {
@@ -237,7 +194,7 @@ TEST_F(SweepTest, ResultsDoNotDependOnTheNumberOfThreads) {
   const std::string sweep =
       config("demo.yaml") + " --duration 1 --sweep rod.theta0=0:6:7 --sweep sphere.mu_s=0.15:0.6:3";
   ASSERT_EQ(simulate(sweep + " --jobs 1 --out-dir " + (dir_ / "one").string()).exit_code, 0);
-  const Run three = simulate(sweep + " --jobs 3 --out-dir " + (dir_ / "three").string());
+  const auto three = simulate(sweep + " --jobs 3 --out-dir " + (dir_ / "three").string());
   ASSERT_EQ(three.exit_code, 0) << three.err;
   EXPECT_NE(three.out.find("on 3 threads"), std::string::npos) << three.out;
   const std::string one = slurp(dir_ / "one" / "sweep.csv");
@@ -251,7 +208,7 @@ TEST_F(SweepTest, ShardsConcatenateToTheWholeSweep) {
   ASSERT_EQ(simulate(sweep).exit_code, 0);
   std::string joined;
   for (int i = 1; i <= 4; ++i) {
-    const Run shard = simulate(sweep + " --shard " + std::to_string(i) + "/4");
+    const auto shard = simulate(sweep + " --shard " + std::to_string(i) + "/4");
     ASSERT_EQ(shard.exit_code, 0) << shard.err;
     joined += slurp(dir_ / ("sweep." + std::to_string(i) + "-of-4.csv"));
   }
@@ -259,7 +216,7 @@ TEST_F(SweepTest, ShardsConcatenateToTheWholeSweep) {
 }
 
 TEST_F(SweepTest, ABadSweptValueIsRefusedWithOneLineAndNoOutput) {
-  const Run run = simulate(config("rod.yaml") + " --sweep rod.k=-1000:1000:3 --out-dir " + dir_.string());
+  const auto run = simulate(config("rod.yaml") + " --sweep rod.k=-1000:1000:3 --out-dir " + dir_.string());
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("body 'rod', key 'k': value -1000 is not allowed (allowed:"), std::string::npos)
       << run.err;
@@ -267,7 +224,7 @@ TEST_F(SweepTest, ABadSweptValueIsRefusedWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir_ / "sweep.csv"));
   EXPECT_FALSE(fs::exists(dir_ / "sweep.csv.tmp"));
   // A relation between keys is checked per variant too: mu_d above a swept mu_s.
-  const Run relation =
+  const auto relation =
       simulate(config("incline.yaml") + " --sweep sphere.mu_s=0:0.3:4 --out-dir " + dir_.string());
   EXPECT_EQ(relation.exit_code, 1);
   EXPECT_NE(relation.err.find("body 'sphere', key 'mu_d'"), std::string::npos) << relation.err;
@@ -277,7 +234,7 @@ TEST_F(SweepTest, ABadSweptValueIsRefusedWithOneLineAndNoOutput) {
 TEST_F(SweepTest, OptionsThatNeedASweepOrExcludeOneAreRefused) {
   for (const std::string args : {" --jobs 2", " --shard 1/2", " --sweep rod.k=1:2:2 --bag x.bag",
                                  " --sweep rod.k=1:2:2 --jobs -1", " --sweep rod.k=1:2:2 --shard 3/2"}) {
-    const Run run = simulate(config("rod.yaml") + args + " --out-dir " + dir_.string());
+    const auto run = simulate(config("rod.yaml") + args + " --out-dir " + dir_.string());
     EXPECT_EQ(run.exit_code, 1) << args;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
   }
@@ -285,7 +242,7 @@ TEST_F(SweepTest, OptionsThatNeedASweepOrExcludeOneAreRefused) {
 }
 
 TEST_F(SweepTest, NoProgressBarWhenStderrIsNotATerminal) {
-  const Run run =
+  const auto run =
       simulate(config("rod.yaml") + " --sweep rod.theta0=0:1:4000 --duration 10 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0);
   EXPECT_EQ(run.err, "");

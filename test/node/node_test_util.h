@@ -5,11 +5,14 @@
 #include <cmath>
 #include <condition_variable>
 #include <functional>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <string>
+#include <tuple>
 #include <vector>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
@@ -30,27 +33,10 @@ class StateCollector {
   StateCollector(ros::NodeHandle& nh, const World& world, const std::string& ns = "/sim") {
     for (const auto& body : world.bodies()) {
       const std::string topic = ns + "/" + body.name + "/state";
-      const std::string name = body.name;
       if (std::holds_alternative<Rod>(body.model)) {
-        subs_.push_back(nh.subscribe<RodState>(
-            topic, 100000,
-            [this, name](const RodState::ConstPtr& msg) {
-              std::lock_guard<std::mutex> lock(mutex_);
-              rods_[name].push_back(*msg);
-              ++count_;
-              cv_.notify_all();
-            },
-            ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+        subscribe(nh, topic, rods_[body.name]);
       } else {
-        subs_.push_back(nh.subscribe<RollerState>(
-            topic, 100000,
-            [this, name](const RollerState::ConstPtr& msg) {
-              std::lock_guard<std::mutex> lock(mutex_);
-              rollers_[name].push_back(*msg);
-              ++count_;
-              cv_.notify_all();
-            },
-            ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+        subscribe(nh, topic, rollers_[body.name]);
       }
     }
   }
@@ -146,14 +132,29 @@ class StateCollector {
   std::map<std::string, std::vector<RollerState>>& rollersLocked() { return rollers_; }
   std::size_t countLocked() const { return count_; }
 
+  // Forgets every message received (the subscriptions' containers stay).
   void clear() {
     std::lock_guard<std::mutex> lock(mutex_);
-    rods_.clear();
-    rollers_.clear();
+    for (auto& [name, msgs] : rods_) msgs.clear();
+    for (auto& [name, msgs] : rollers_) msgs.clear();
     count_ = 0;
   }
 
  private:
+  // Appends every message of `topic` to `into` (a container of this collector's maps: it stays in place).
+  template <class Msg>
+  void subscribe(ros::NodeHandle& nh, const std::string& topic, std::vector<Msg>& into) {
+    subs_.push_back(nh.subscribe<Msg>(
+        topic, 100000,
+        [this, &into](const typename Msg::ConstPtr& msg) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          into.push_back(*msg);
+          ++count_;
+          cv_.notify_all();
+        },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+  }
+
   std::mutex mutex_;
   std::condition_variable cv_;
   std::vector<ros::Subscriber> subs_;
@@ -162,28 +163,18 @@ class StateCollector {
   std::size_t count_ = 0;
 };
 
-// Exact field-by-field comparison (header excluded).
-inline void expectSameState(const RodState& expected, const RodState& got, const std::string& what) {
-  EXPECT_EQ(expected.t, got.t) << what;
-  EXPECT_EQ(expected.x, got.x) << what;
-  EXPECT_EQ(expected.y, got.y) << what;
-  EXPECT_EQ(expected.theta, got.theta) << what;
-  EXPECT_EQ(expected.vx, got.vx) << what;
-  EXPECT_EQ(expected.vy, got.vy) << what;
-  EXPECT_EQ(expected.omega, got.omega) << what;
-  EXPECT_EQ(expected.energy, got.energy) << what;
+// Every field but the header, in the order of the message.
+inline auto fieldsOf(const RodState& m) {
+  return std::make_tuple(m.t, m.x, m.y, m.theta, m.vx, m.vy, m.omega, m.energy);
+}
+inline auto fieldsOf(const RollerState& m) {
+  return std::make_tuple(m.t, m.x, m.v, m.theta, m.omega, m.mode, m.friction, m.normal, m.energy);
 }
 
-inline void expectSameState(const RollerState& expected, const RollerState& got, const std::string& what) {
-  EXPECT_EQ(expected.t, got.t) << what;
-  EXPECT_EQ(expected.x, got.x) << what;
-  EXPECT_EQ(expected.v, got.v) << what;
-  EXPECT_EQ(expected.theta, got.theta) << what;
-  EXPECT_EQ(expected.omega, got.omega) << what;
-  EXPECT_EQ(expected.mode, got.mode) << what;
-  EXPECT_EQ(expected.friction, got.friction) << what;
-  EXPECT_EQ(expected.normal, got.normal) << what;
-  EXPECT_EQ(expected.energy, got.energy) << what;
+// Exact field-by-field comparison (header excluded).
+template <class Msg>
+void expectSameState(const Msg& expected, const Msg& got, const std::string& what) {
+  EXPECT_EQ(fieldsOf(expected), fieldsOf(got)) << what;
 }
 
 inline RodState expectedRod(const World& world, const std::string& name) {
@@ -215,6 +206,35 @@ inline Step callStep(std::uint32_t steps, bool* called = nullptr) {
 }
 
 inline std::int64_t stepIndex(double t, double rate) { return std::llround(t * rate); }
+
+// Asks the reconfigure server of `body` for these values; returns the values it shows afterwards.
+inline dynamic_reconfigure::Config callReconfigure(
+    const std::string& body, const std::vector<std::pair<std::string, double>>& doubles,
+    const std::vector<std::pair<std::string, std::string>>& texts, bool* called) {
+  dynamic_reconfigure::Reconfigure srv;
+  for (const auto& [key, value] : doubles) {
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = key;
+    p.value = value;
+    srv.request.config.doubles.push_back(p);
+  }
+  for (const auto& [key, value] : texts) {
+    dynamic_reconfigure::StrParameter p;
+    p.name = key;
+    p.value = value;
+    srv.request.config.strs.push_back(p);
+  }
+  *called = ros::service::call("/sim/" + body + "/set_parameters", srv);
+  return srv.response.config;
+}
+
+// The number `key` among the values a server shows (NaN when it shows none).
+inline double doubleOf(const dynamic_reconfigure::Config& config, const std::string& key) {
+  for (const auto& p : config.doubles) {
+    if (p.name == key) return p.value;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
 
 // main() for a rostest gtest node: ros::init, an AsyncSpinner, then the tests.
 #define RBS_ROSTEST_MAIN(node_name)       \

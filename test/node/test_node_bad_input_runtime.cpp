@@ -88,21 +88,7 @@ class ErrorLog {
 };
 
 dynamic_reconfigure::Config reconfigure(const BadRequest& row, bool* called) {
-  dynamic_reconfigure::Reconfigure srv;
-  for (const auto& [key, value] : row.doubles) {
-    dynamic_reconfigure::DoubleParameter p;
-    p.name = key;
-    p.value = value;
-    srv.request.config.doubles.push_back(p);
-  }
-  for (const auto& [key, value] : row.strings) {
-    dynamic_reconfigure::StrParameter p;
-    p.name = key;
-    p.value = value;
-    srv.request.config.strs.push_back(p);
-  }
-  *called = ros::service::call("/sim/" + row.body + "/set_parameters", srv);
-  return srv.response.config;
+  return callReconfigure(row.body, row.doubles, row.strings, called);
 }
 
 // The values a server shows, exactly (NaN never equals, so a NaN shown fails too).

@@ -11,9 +11,12 @@
 
 #include "node_test_util.h"
 #include "rigid_body_sim/ros/params.h"
+#include "test_util.h"
 
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;
+using test::nonEmptyLines;
+using test::slurp;
 
 namespace {
 
@@ -78,22 +81,6 @@ std::string loaderMessage(const std::string& ns) {
     return error.what();
   }
   return "";
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-std::vector<std::string> nonEmptyLines(const std::string& text) {
-  std::vector<std::string> result;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) result.push_back(line);
-  }
-  return result;
 }
 
 // The sim_node built beside this test; RBS_SIM_NODE_EXE in the environment overrides it (to try a fix).

@@ -1,7 +1,5 @@
 // sim_node's dynamic_reconfigure servers: accepted changes apply exactly as in the core World, refused
 // ones leave everything unchanged and the server shows the old values, new initial conditions restart.
-#include <dynamic_reconfigure/Reconfigure.h>
-
 #include "node_test_util.h"
 
 using namespace rigid_body_sim;
@@ -11,20 +9,15 @@ namespace {
 
 dynamic_reconfigure::Config setDouble(const std::string& body, const std::string& key, double value,
                                       bool* called) {
-  dynamic_reconfigure::Reconfigure srv;
-  dynamic_reconfigure::DoubleParameter p;
-  p.name = key;
-  p.value = value;
-  srv.request.config.doubles.push_back(p);
-  *called = ros::service::call("/sim/" + body + "/set_parameters", srv);
-  return srv.response.config;
+  return callReconfigure(body, {{key, value}}, {}, called);
 }
 
-double doubleOf(const dynamic_reconfigure::Config& config, const std::string& key) {
-  for (const auto& p : config.doubles)
-    if (p.name == key) return p.value;
-  ADD_FAILURE() << "no " << key << " in the returned config";
-  return NAN;
+// Sets one number of a body, which the server must accept and show.
+void setAccepted(const std::string& body, const std::string& key, double value) {
+  bool called = false;
+  const auto shown = setDouble(body, key, value, &called);
+  ASSERT_TRUE(called) << body << "." << key;
+  EXPECT_EQ(value, doubleOf(shown, key)) << body << "." << key;
 }
 
 Rod& rodOf(World& w, const std::string& name) { return std::get<Rod>(w.find(name)->model); }
@@ -110,24 +103,18 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
 
   // --- accepted: rod k = 2000, sphere mu_s = 0.16 (below what rolling on this slope needs)
   const World unchanged_before = world;
-  auto rod_cfg = setDouble("rod", "k", 2000.0, &called);
-  ASSERT_TRUE(called);
-  EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
+  setAccepted("rod", "k", 2000.0);
   RodParams rod_params = rodOf(world, "rod").params();
   rod_params.k = 2000.0;
   rodOf(world, "rod").setParams(rod_params);
 
-  auto sphere_cfg = setDouble("sphere", "mu_s", 0.16, &called);
-  ASSERT_TRUE(called);
-  EXPECT_EQ(0.16, doubleOf(sphere_cfg, "mu_s"));
+  setAccepted("sphere", "mu_s", 0.16);
   RollerParams sphere_params = rollerOf(world, "sphere").params();
   sphere_params.mu_s = 0.16;
   rollerOf(world, "sphere").setParams(sphere_params);
 
   // The cylinder slips on its slope; at 0.3 rad its slip decays and it rolls (tan 0.3 < mu_s (1 + c) / c).
-  auto cylinder_cfg = setDouble("cylinder", "incline_angle", 0.3, &called);
-  ASSERT_TRUE(called);
-  EXPECT_EQ(0.3, doubleOf(cylinder_cfg, "incline_angle"));
+  setAccepted("cylinder", "incline_angle", 0.3);
   RollerParams cylinder_params = rollerOf(world, "cylinder").params();
   cylinder_params.incline_angle = 0.3;
   rollerOf(world, "cylinder").setParams(cylinder_params);
@@ -147,10 +134,10 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   }
 
   // --- refused: k = 0 and mu_d > mu_s; the server shows the values in use, nothing changes
-  rod_cfg = setDouble("rod", "k", 0.0, &called);
+  auto rod_cfg = setDouble("rod", "k", 0.0, &called);
   ASSERT_TRUE(called) << "the node died on k = 0";
   EXPECT_EQ(2000.0, doubleOf(rod_cfg, "k"));
-  sphere_cfg = setDouble("sphere", "mu_d", 0.9, &called);
+  const auto sphere_cfg = setDouble("sphere", "mu_d", 0.9, &called);
   ASSERT_TRUE(called) << "the node died on mu_d > mu_s";
   EXPECT_EQ(rollerOf(world, "sphere").params().mu_d, doubleOf(sphere_cfg, "mu_d"));
   EXPECT_EQ(0.16, doubleOf(sphere_cfg, "mu_s"));
