@@ -27,7 +27,7 @@ build: deps
 demo: build
 	bash scripts/demo $(BUILD)
 
-test: build $(EXTRA_TESTS)
+test: lint build $(EXTRA_TESTS)
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
 	env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest --test-dir $(BUILD) --output-on-failure
 
@@ -35,8 +35,12 @@ check: build
 	cmake --build $(BUILD) --target unit_tests -j$(JOBS) -- --no-print-directory
 	ctest --test-dir $(BUILD) -L '^unit$$' --output-on-failure
 
+# The repository's root is the package: its folder is named after the clone, not the package.
 lint: deps
-	catkin_lint -W2 .
+	catkin_lint -W2 --strict --ignore package_path_name .
+	git ls-files '*.cpp' '*.h' | xargs clang-format --dry-run -Werror
+	flake8 scripts bench test
+	mypy
 
 clean:
 	rm -rf $(BUILD) build-*

@@ -8,6 +8,7 @@ test that checks the C++ rod against it). As in the text, theta0 is drawn at ran
   text_program.py                 one run, as the text does (what hyperfine times as a whole process)
   text_program.py --repeat N      N runs; prints the seconds each spent in the program (its stepping)
 """
+import argparse
 import json
 import os
 import sys
@@ -19,17 +20,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from text_program_reference import text_program  # noqa: E402  (the path above comes first)
 
 
-def main():
-    repeat = int(sys.argv[2]) if len(sys.argv) == 3 and sys.argv[1] == "--repeat" else 0
+def main() -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=0, help="runs, each timed; 0: one run, untimed")
+    args = parser.parse_args()
     seconds = []
-    for _ in range(max(repeat, 1)):
+    steps = 0
+    for _ in range(max(args.repeat, 1)):
         theta0 = 2 * pi * random.rand(1)[0]  # the text: theta[0] = 2*pi*random.rand(1)
         start = time.perf_counter()
-        n = text_program(theta0)[0]
+        steps = text_program(theta0)[0] - 1
         seconds.append(time.perf_counter() - start)
-    if repeat:
-        print(json.dumps({"steps": n - 1, "seconds": seconds}))
+    if args.repeat:
+        print(json.dumps({"steps": steps, "seconds": seconds}))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

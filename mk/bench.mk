@@ -1,6 +1,6 @@
-# make bench: builds in Release with the Google Benchmark suite (build-bench/) and prints one table of
-# every measurement of issue 4 (core cost, the text's program, the node, recording, sweeps); about 7 min.
-# BENCH_ARGS=--quick shortens the node runs to 12 s for a try-out.
+# make bench: builds in Release with the Google Benchmark suite (build-bench/), runs every measurement (core
+# cost, the text's program, the node, recording, sweeps; about 7 min) and writes one table into
+# docs/performance.md. BENCH_ARGS=--quick shortens the node runs to 12 s for a try-out.
 BENCH_BUILD ?= build-bench
 BENCH_ARGS ?=
 BENCH_JOBS ?= 2

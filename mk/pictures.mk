@@ -1,4 +1,4 @@
-# Pictures (issue 6), into docs/images (README, "Pictures"):
+# Pictures, into docs/images (README and docs/physics.md):
 #   make screenshot   rviz under Xvfb on config/demo.yaml, checked as the ctest pictures_rviz_screenshot checks it
 #   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy)
 #                     and incline.yaml (the race); the numbers behind them are printed

@@ -15,61 +15,56 @@ length, each roller's radius, shape and slope). Writes, for what the run holds:
 The slip-to-roll instant comes from the data alone: while a body slips its slip speed u = v + omega R
 is linear in time, so the line through the last two slipping samples crosses zero at the instant."""
 import argparse
+import io
 import json
 import math
 import os
 import sys
-from types import SimpleNamespace
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import matplotlib
+import numpy as np
+from numpy.typing import NDArray
+
+from sim_tools import (BodySpec, Config, RodSpec, RollerSpec, body_spec, load_config, read_states,
+                       rod_end_below_floor, state_fields)
+
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import yaml  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bag_summary import rod_ends_below_floor  # noqa: E402
+Array = NDArray[Any]
+Columns = Dict[str, Array]  # one body's samples: column -> values
+Run = Dict[str, Columns]  # body -> its samples
+Summary = Dict[str, Dict[str, Any]]
 
-ROD_FIELDS = ("t", "x", "y", "theta", "vx", "vy", "omega", "energy")
-ROLLER_FIELDS = ("t", "x", "v", "theta", "omega", "mode", "friction", "normal", "energy")
-INERTIA_FACTORS = {"sphere": 0.4, "cylinder": 0.5, "ring": 1.0, "spherical_shell": 2.0 / 3.0}
 ROD_EVERY = 0.1  # s between drawn rods
 COLOURS = {"sphere": "tab:red", "cylinder": "tab:green", "ring": "tab:orange", "spherical_shell": "tab:purple"}
 
 
 # --- reading a run ---------------------------------------------------------------------------------
-def load_csv_folder(folder):
-    """{body: {column: array}} from simulate's <body>.csv files."""
-    run = {}
+def load_csv_folder(folder: str) -> Run:
+    """{body: {column: array}} from simulate's <body>.csv files (their header starts with t; a sweep's
+    summary does not)."""
+    run: Run = {}
     for name in sorted(os.listdir(folder)):
         if not name.endswith(".csv"):
             continue
         with open(os.path.join(folder, name)) as f:
             header = f.readline().strip().split(",")
-        if tuple(header) not in (ROD_FIELDS, ROLLER_FIELDS):
-            continue  # another CSV (a sweep's summary...)
-        rows = np.genfromtxt(os.path.join(folder, name), delimiter=",", names=True, dtype=None, encoding="utf-8")
+        if header[0] != "t":
+            continue
+        rows: Any = np.genfromtxt(os.path.join(folder, name), delimiter=",", names=True, dtype=None, encoding="utf-8")
         run[name[:-4]] = {k: np.atleast_1d(rows[k]) for k in header}
     return run
 
 
-def load_bag(path):
+def load_bag(path: str) -> Run:
     """{body: {field: array}} from the state messages /sim/<body>/state of a bag."""
-    import rosbag
-    rows = {}
-    with rosbag.Bag(path) as bag:
-        for topic, msg, _ in bag.read_messages():
-            parts = topic.strip("/").split("/")
-            if len(parts) == 3 and parts[0] == "sim" and parts[2] == "state":
-                rows.setdefault(parts[1], []).append(msg)
-    run = {}
-    for name, msgs in rows.items():
-        fields = ROLLER_FIELDS if hasattr(msgs[0], "mode") else ROD_FIELDS
-        run[name] = {k: np.array([getattr(m, k) for m in msgs]) for k in fields}
-    return run
+    return {name: {k: np.array([getattr(m, k) for m in msgs]) for k in state_fields(msgs[0])}
+            for name, msgs in read_states(path).items()}
 
 
-def load_run(path, config):
+def load_run(path: str, config: Config) -> Run:
     """The run's bodies in the config's order."""
     run = load_bag(path) if path.endswith(".bag") else load_csv_folder(path)
     if not run:
@@ -80,20 +75,11 @@ def load_run(path, config):
     return {name: run[name] for name in config["bodies"] if name in run}
 
 
-def body_params(config, name):
-    """The config's values of one body, with the documented defaults where a key is missing."""
-    body = config["bodies"][name]
-    if body.get("type") == "rod":
-        return SimpleNamespace(kind="rod", length=body.get("length", 1.0), k=body.get("k", 1000.0))
-    shape = body.get("shape", "sphere" if "inertia_factor" not in body else "custom")
-    return SimpleNamespace(kind="roller", shape=shape, c=body.get("inertia_factor", INERTIA_FACTORS.get(shape)),
-                           radius=body.get("radius", 0.1), angle=body.get("incline_angle", 0.349),
-                           slope=body.get("incline_length", 5.0), mu_s=body.get("mu_s", 0.3),
-                           mu_d=body.get("mu_d", 0.2))
-
-
 # --- analysis --------------------------------------------------------------------------------------
-def laps(t, x, v):
+Event = Dict[str, Any]
+
+
+def laps(t: Array, x: Array, v: Array) -> List[Tuple[int, int]]:
     """Index ranges [start, end) between restarts: a restart is a jump of x that the speed cannot explain
     (between events the acceleration is constant, so dx = (v0 + v1) dt / 2)."""
     dx = np.diff(x)
@@ -103,7 +89,7 @@ def laps(t, x, v):
     return list(zip(edges[:-1], edges[1:]))
 
 
-def slip_to_roll(data, radius):
+def slip_to_roll(data: Columns, radius: float) -> List[Event]:
     """Instants at which a slipping body starts to roll: for each mode change slipping -> rolling, the
     zero of the line through the last two slipping samples of u = v + omega R (exact: u is linear while
     slipping). With a single slipping sample, the first rolling sample's time (approximate)."""
@@ -123,7 +109,7 @@ def slip_to_roll(data, radius):
     return found
 
 
-def finish_times(data, slope):
+def finish_times(data: Columns, slope: float) -> List[float]:
     """For each lap that ends off the slope: when the centre crossed x = slope (or 0 going uphill),
     from the last sample of the lap and its constant acceleration."""
     t, x, v = data["t"], data["x"], data["v"]
@@ -142,26 +128,25 @@ def finish_times(data, slope):
     return times
 
 
-def critical_angle(p):
+def critical_angle(p: RollerSpec) -> Dict[str, Any]:
     """tan(phi_c) = mu_s (1 + c) / c: the steepest slope on which the body can roll without slipping."""
-    tan_c = p.mu_s * (1 + p.c) / p.c
+    tan_c = p.tan_critical()
     return {"shape": p.shape, "c": p.c, "mu_s": p.mu_s, "tan_phi_c": tan_c, "phi_c_deg": math.degrees(math.atan(tan_c)),
-            "slope_deg": math.degrees(p.angle), "rolls": math.tan(p.angle) <= tan_c}
+            "slope_deg": math.degrees(p.angle), "rolls": p.rolls()}
 
 
-def rod_contacts(data, length):
+def rod_contacts(data: Columns, length: float) -> Array:
     """Boolean per sample: an end below the floor."""
-    return np.array([rod_ends_below_floor(SimpleNamespace(y=y, theta=th), length)
-                     for y, th in zip(data["y"], data["theta"])])
+    return np.array([rod_end_below_floor(y, theta, length) for y, theta in zip(data["y"], data["theta"])])
 
 
-def contact_runs(contact):
+def contact_runs(contact: Array) -> List[Tuple[int, int]]:
     """(start, end) index ranges of consecutive contact samples."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], contact.astype(int), [0]])))
     return list(zip(edges[::2], edges[1::2]))
 
 
-def rod_energy_swing(data, length):
+def rod_energy_swing(data: Columns, length: float) -> Dict[str, Any]:
     """The largest swing of the energy inside one contact, relative to the energy just before it, and the
     energy change over the whole run."""
     e, contact = data["energy"], rod_contacts(data, length)
@@ -177,9 +162,11 @@ def rod_energy_swing(data, length):
 
 
 # --- figures ---------------------------------------------------------------------------------------
-def save(fig, path):
+Specs = Dict[str, BodySpec]
+
+
+def save(fig: Any, path: str) -> None:
     """A small PNG: 80 dpi, 128 colours (plots have few), so that the README's copies stay light."""
-    import io
     from PIL import Image
     buffer = io.BytesIO()
     fig.savefig(buffer, dpi=80, format="png")
@@ -188,11 +175,19 @@ def save(fig, path):
     Image.open(buffer).convert("RGB").quantize(colors=128).save(path, optimize=True)
 
 
-def plot_rods(run, config, path):
-    rods = [n for n in run if body_params(config, n).kind == "rod"]
+def rods_of(run: Run, specs: Specs) -> List[Tuple[str, RodSpec]]:
+    return [(name, spec) for name, spec in specs.items() if name in run and isinstance(spec, RodSpec)]
+
+
+def rollers_of(run: Run, specs: Specs) -> List[Tuple[str, RollerSpec]]:
+    return [(name, spec) for name, spec in specs.items() if name in run and isinstance(spec, RollerSpec)]
+
+
+def plot_rods(run: Run, specs: Specs, path: str) -> None:
+    rods = rods_of(run, specs)
     fig, axes = plt.subplots(len(rods), 1, figsize=(10, 3.2 * len(rods)), squeeze=False)
-    for ax, name in zip(axes[:, 0], rods):
-        d, p = run[name], body_params(config, name)
+    for ax, (name, p) in zip(axes[:, 0], rods):
+        d = run[name]
         contact = rod_contacts(d, p.length)
         step = max(1, int(round(ROD_EVERY / np.median(np.diff(d["t"])))))
         for i in range(0, len(d["t"]), step):
@@ -211,23 +206,23 @@ def plot_rods(run, config, path):
     save(fig, path)
 
 
-def broken_at_restarts(d, key):
+def broken_at_restarts(d: Columns, key: str) -> Array:
     """A column with NaN between laps, so that a restart is not drawn as a line back to the top."""
     parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], d["x"], d["v"])]
     return np.concatenate([np.append(part, np.nan) for part in parts])[:-1]
 
 
-def shade_slipping(ax, t, mode):
+def shade_slipping(ax: Any, t: Array, mode: Array) -> None:
     slipping = np.asarray(mode) == "slipping"
     for start, end in contact_runs(slipping):
         ax.axvspan(t[start], t[min(end, len(t) - 1)], color="0.9", lw=0)
 
 
-def plot_rollers(run, config, path, summary):
-    rollers = [n for n in run if body_params(config, n).kind == "roller"]
+def plot_rollers(run: Run, specs: Specs, path: str, summary: Summary) -> None:
+    rollers = rollers_of(run, specs)
     fig, axes = plt.subplots(len(rollers), 1, figsize=(9, 2.4 * len(rollers)), sharex=True, squeeze=False)
-    for ax, name in zip(axes[:, 0], rollers):
-        d, p = run[name], body_params(config, name)
+    for ax, (name, p) in zip(axes[:, 0], rollers):
+        d = run[name]
         shade_slipping(ax, d["t"], d["mode"])
         t, x, v, w = (broken_at_restarts(d, k) for k in ("t", "x", "v", "omega"))
         ax.plot(t, v, color="tab:blue", lw=1.2, label="v")
@@ -250,25 +245,23 @@ def plot_rollers(run, config, path, summary):
     save(fig, path)
 
 
-def slope_groups(run, config):
+def slope_groups(run: Run, specs: Specs) -> List[List[Tuple[str, RollerSpec]]]:
     """Rollers that share a slope (angle and length), two or more to a group."""
-    groups = {}
-    for name in run:
-        p = body_params(config, name)
-        if p.kind == "roller":
-            groups.setdefault((p.angle, p.slope), []).append(name)
-    return [names for names in groups.values() if len(names) > 1]
+    groups: Dict[Tuple[float, float], List[Tuple[str, RollerSpec]]] = {}
+    for name, p in rollers_of(run, specs):
+        groups.setdefault((p.angle, p.slope), []).append((name, p))
+    return [group for group in groups.values() if len(group) > 1]
 
 
-def plot_race(run, config, path, summary):
-    groups = slope_groups(run, config)
+def plot_race(run: Run, specs: Specs, path: str, summary: Summary) -> None:
+    groups = slope_groups(run, specs)
     fig, axes = plt.subplots(2, len(groups), figsize=(9, 6), sharex="col", squeeze=False)
-    for col, names in enumerate(groups):
+    for col, group in enumerate(groups):
         top, bottom = axes[0, col], axes[1, col]
-        for rank, name in enumerate(names):
-            d, p = run[name], body_params(config, name)
+        for rank, (name, p) in enumerate(group):
+            d = run[name]
             start, end = laps(d["t"], d["x"], d["v"])[0]
-            width = 1.0 + 1.5 * (len(names) - 1 - rank)  # wider first: equal curves (two slipping shapes) both show
+            width = 1.0 + 1.5 * (len(group) - 1 - rank)  # wider first: equal curves (two slipping shapes) both show
             colour = COLOURS.get(p.shape, "tab:gray")
             finish = summary["rollers"][name]["finish_times"]
             crit = summary["rollers"][name]["critical_angle"]
@@ -280,7 +273,7 @@ def plot_race(run, config, path, summary):
                         label=f"{name}: -ωR")
             if finish:
                 top.plot(finish[0], p.slope, "o", color=colour)
-        p = body_params(config, names[0])
+        p = group[0][1]
         top.axhline(p.slope, color="saddlebrown", lw=1)
         top.set_ylabel("x along the slope (m)")
         top.set_title(f"Down the same slope: {math.degrees(p.angle):.1f}° (tan = {math.tan(p.angle):.3f}), "
@@ -293,7 +286,7 @@ def plot_race(run, config, path, summary):
     save(fig, path)
 
 
-def zoom_on_contact(ax, d, swing, colour):
+def zoom_on_contact(ax: Any, d: Columns, swing: Optional[Event], colour: str) -> None:
     """An inset with the energy through the contact of the largest swing."""
     if not swing:
         return
@@ -306,29 +299,28 @@ def zoom_on_contact(ax, d, swing, colour):
     inset.tick_params(labelsize=6)
 
 
-def plot_energy(run, config, path):
+def plot_energy(run: Run, specs: Specs, path: str) -> None:
     names = list(run)
-    heights = [2 if body_params(config, n).kind == "rod" else 1 for n in names]
+    heights = [2 if isinstance(specs[n], RodSpec) else 1 for n in names]
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.6 * sum(heights) + 0.4), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": heights})
     for ax, name in zip(axes[:, 0], names):
-        d, p = run[name], body_params(config, name)
-        if p.kind == "rod":
-            contact = rod_contacts(d, p.length)
-            for start, end in contact_runs(contact):
+        d, p = run[name], specs[name]
+        if isinstance(p, RodSpec):
+            for start, end in contact_runs(rod_contacts(d, p.length)):
                 ax.axvspan(d["t"][start], d["t"][min(end, len(d["t"]) - 1)], color="lightcoral", alpha=0.4, lw=0)
+            colour, shaded = "tab:blue", "an end in the floor"
         else:
             shade_slipping(ax, d["t"], d["mode"])
-        colour = COLOURS.get(getattr(p, "shape", ""), "tab:blue")
+            colour, shaded = COLOURS.get(p.shape, "tab:blue"), "slipping"
         ax.plot(d["t"], d["energy"], color=colour, lw=1.0)
         ax.set_ylabel("E (J)")
-        shaded = "an end in the floor" if p.kind == "rod" else "slipping"
         spread = float(np.ptp(d["energy"]))
         if spread < 1e-6:  # constant to rounding: show it flat rather than magnify the rounding
             ax.set_ylim(d["energy"].mean() - 1, d["energy"].mean() + 1)
             shaded += f"; constant to {spread:.1e} J"
         ax.set_title(f"{name}: energy (shaded: {shaded})", fontsize=9)
-        if p.kind == "rod":
+        if isinstance(p, RodSpec):
             zoom_on_contact(ax, d, rod_energy_swing(d, p.length)["largest_swing"], colour)
     axes[-1, 0].set_xlabel("t (s)")
     fig.tight_layout()
@@ -336,15 +328,15 @@ def plot_energy(run, config, path):
 
 
 # --- main ------------------------------------------------------------------------------------------
-def summarise(run, config):
-    summary = {"rods": {}, "rollers": {}}
+def summarise(run: Run, specs: Specs) -> Summary:
+    summary: Summary = {"rods": {}, "rollers": {}}
     for name, d in run.items():
         steps = np.diff(d["t"])
         gaps = int((steps > 1.5 * np.median(steps)).sum()) if len(steps) else 0
         if gaps:  # e.g. rosbag record dropping messages of a node run as fast as possible
             print(f"plot_run: warning: {name}: {gaps} gaps in the samples", file=sys.stderr)
-        p = body_params(config, name)
-        if p.kind == "rod":
+        p = specs[name]
+        if isinstance(p, RodSpec):
             summary["rods"][name] = rod_energy_swing(d, p.length)
         else:
             summary["rollers"][name] = {"critical_angle": critical_angle(p), "slip_to_roll": slip_to_roll(d, p.radius),
@@ -352,7 +344,7 @@ def summarise(run, config):
     return summary
 
 
-def print_summary(summary):
+def print_summary(summary: Summary) -> None:
     for name, s in summary["rods"].items():
         big = s["largest_swing"]
         line = f"{name}: {s['contacts']} contacts, energy {s['energy_first']:.4f} -> {s['energy_last']:.4f} J"
@@ -362,13 +354,13 @@ def print_summary(summary):
     for name, s in summary["rollers"].items():
         c = s["critical_angle"]
         rolls = ", ".join(f"{e['t']:.6f}" + ("" if e["exact"] else " (approx.)") for e in s["slip_to_roll"])
-        print(f"{name}: {c['shape']}, tan(phi_c) = mu_s (1+c)/c = {c['tan_phi_c']:.3f} ({c['phi_c_deg']:.1f} deg) on "
-              f"{c['slope_deg']:.1f} deg: {'rolls' if c['rolls'] else 'slips'}; slip-to-roll at t = {rolls or 'never'}; "
-              f"off the slope at t = {', '.join(f'{t:.4f}' for t in s['finish_times']) or 'never'}")
+        print(f"{name}: {c['shape']}, tan(phi_c) = mu_s (1+c)/c = {c['tan_phi_c']:.3f} ({c['phi_c_deg']:.1f} deg) "
+              f"on {c['slope_deg']:.1f} deg: {'rolls' if c['rolls'] else 'slips'}; slip-to-roll at t = "
+              f"{rolls or 'never'}; off the slope at t = {', '.join(f'{t:.4f}' for t in s['finish_times']) or 'never'}")
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0],
+def main(argv: Optional[List[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
     parser.add_argument("config", help="the run's YAML config")
     parser.add_argument("run", help="a .bag (node or simulate --bag) or a folder of simulate's CSV files")
@@ -376,23 +368,22 @@ def main(argv=None):
     parser.add_argument("--prefix", default="")
     parser.add_argument("--figures", default="rod,rollers,race,energy", help="comma-separated subset")
     args = parser.parse_args(argv)
-    with open(args.config) as f:
-        config = yaml.safe_load(f)
+    config = load_config(args.config)
     run = load_run(args.run, config)
+    specs = {name: body_spec(config, name) for name in run}
     os.makedirs(args.out_dir, exist_ok=True)
-    summary = summarise(run, config)
-    out = lambda name: os.path.join(args.out_dir, f"{args.prefix}{name}")  # noqa: E731
+    summary = summarise(run, specs)
     wanted = set(args.figures.split(","))
-    kinds = {body_params(config, n).kind for n in run}
-    if "rod" in wanted and "rod" in kinds:
-        plot_rods(run, config, out("rod.png"))
-    if "rollers" in wanted and "roller" in kinds:
-        plot_rollers(run, config, out("rollers.png"), summary)
-    if "race" in wanted and slope_groups(run, config):
-        plot_race(run, config, out("race.png"), summary)
-    if "energy" in wanted:
-        plot_energy(run, config, out("energy.png"))
-    with open(out("summary.json"), "w") as f:
+    figures: Dict[str, Tuple[bool, Callable[[str], None]]] = {
+        "rod": (bool(rods_of(run, specs)), lambda path: plot_rods(run, specs, path)),
+        "rollers": (bool(rollers_of(run, specs)), lambda path: plot_rollers(run, specs, path, summary)),
+        "race": (bool(slope_groups(run, specs)), lambda path: plot_race(run, specs, path, summary)),
+        "energy": (True, lambda path: plot_energy(run, specs, path)),
+    }
+    for name, (drawable, plot) in figures.items():
+        if name in wanted and drawable:
+            plot(os.path.join(args.out_dir, f"{args.prefix}{name}.png"))
+    with open(os.path.join(args.out_dir, f"{args.prefix}summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
     print_summary(summary)
     return 0

@@ -9,27 +9,15 @@ import random
 import sys
 import threading
 import time
+from typing import Any, Dict, List, Optional, Tuple
 
-import rosgraph
 import rospy
-import yaml
 from dynamic_reconfigure.client import Client
 from rigid_body_sim.msg import RodState, RollerState
 from rigid_body_sim.srv import Step
 from std_srvs.srv import Empty
-from xmlrpc.client import ServerProxy
 
-
-def rss_kib(pid):
-    with open(f"/proc/{pid}/status") as status:
-        for line in status:
-            if line.startswith("VmRSS:"):
-                return int(line.split()[1])
-    return -1
-
-
-def node_pid(name):
-    return ServerProxy(rosgraph.Master("/soak").lookupNode(name)).getPid("/soak")[2]
+from sim_tools import BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, wait_for, world_value
 
 
 class Body:
@@ -37,30 +25,30 @@ class Body:
     and for a roller also between two laps (it restarts where it leaves the slope). A rod's energy swings
     inside a contact (Euler-Cromer); a roller's is conserved while it rolls and only falls while it slips."""
 
-    def __init__(self, name, spec, dt):
-        self.name, self.spec, self.dt = name, spec, dt
-        self.rod = spec["type"] == "rod"
+    def __init__(self, spec: BodySpec, dt: float) -> None:
+        self.spec, self.name, self.dt = spec, spec.name, dt
+        self.rod = isinstance(spec, RodSpec)
         self.count = 0
         self.last_t = -1.0
-        self.prev = None
-        self.ref = None           # energy at the first sample of the segment
-        self.roll_ref = None      # rollers: energy at the first sample of the current rolling stretch
-        self.max_drift = 0.0      # J, over all segments
-        self.max_rel = 0.0        # rods: drift / energy at the segment's start
-        self.max_gain = -math.inf  # rollers: the largest energy increase over a segment
-        self.max_roll = 0.0       # rollers: the largest |drift| while rolling
+        self.prev: Any = None
+        self.ref: Optional[float] = None       # energy at the first sample of the segment
+        self.roll_ref: Optional[float] = None  # rollers: energy at the first sample of the current rolling stretch
+        self.max_drift = 0.0                   # J, over all segments
+        self.max_rel = 0.0                     # rods: drift / energy at the segment's start
+        self.max_gain = -math.inf              # rollers: the largest energy increase over a segment
+        self.max_roll = 0.0                    # rollers: the largest |drift| while rolling
         self.nonfinite = 0
 
-    def new_segment(self):
+    def new_segment(self) -> None:
         self.ref = self.roll_ref = self.prev = None
 
-    def restarted(self, msg):
+    def restarted(self, msg: Any) -> bool:
         """A lap: x moved otherwise than the mean velocity allows between two samples."""
         if self.rod or self.prev is None:
             return False
         return abs(msg.x - self.prev.x - 0.5 * (msg.v + self.prev.v) * self.dt) > 0.01
 
-    def on_state(self, msg):
+    def on_state(self, msg: Any) -> None:
         self.count += 1
         self.last_t = msg.t
         values = [msg.x, msg.theta, msg.omega, msg.energy] + ([msg.y, msg.vx, msg.vy] if self.rod else [msg.v])
@@ -87,19 +75,92 @@ class Body:
         self.max_roll = max(self.max_roll, abs(msg.energy - self.roll_ref))
 
 
-def random_change(rng, body):
+def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
     """A random, valid reconfigure of one body: k or mu, and new initial conditions."""
-    if body.rod:
+    if isinstance(spec, RodSpec):
         return {"k": 10 ** rng.uniform(2, 5), "x0": rng.uniform(-1, 1), "y0": rng.uniform(0.5, 5),
                 "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
                 "omega0": rng.uniform(-10, 10)}
     mu_s = rng.uniform(0, 1)
-    length = float(body.spec.get("incline_length", 5.0))
-    return {"mu_s": mu_s, "mu_d": rng.uniform(0, mu_s), "x0": rng.uniform(0, length / 2),
+    return {"mu_s": mu_s, "mu_d": rng.uniform(0, mu_s), "x0": rng.uniform(0, spec.slope / 2),
             "v0": rng.uniform(-2, 4), "theta0": 0.0, "omega0": rng.uniform(-30, 30)}
 
 
-def main():
+class Driver:
+    """The node held paused and advanced a second at a time, every body reconfigured before each second."""
+
+    def __init__(self, config_path: str, seed: int, max_speed: float) -> None:
+        config = load_config(config_path)
+        self.steps = round(float(world_value(config, "rate")))
+        self.samples = round(float(world_value(config, "publish_rate")))
+        self.bodies = [Body(spec, 1.0 / self.samples) for spec in body_specs(config)]
+        self.rng = random.Random(seed)
+        self.max_speed = max_speed
+        self.lock = threading.Lock()
+        self.subscribers = [self.subscribe(body) for body in self.bodies]
+        rospy.wait_for_service("/sim/pause", timeout=60)
+        rospy.ServiceProxy("/sim/pause", Empty)()
+        self.step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
+        self.clients = {b.name: Client(f"/sim/{b.name}", timeout=30) for b in self.bodies}
+        # The node publishes t = 0 once its start_delay is over; the run starts from there.
+        try:
+            self.wait_until_every_body_at(0.0, exactly=True)
+        except TimeoutError:
+            sys.exit("soak: no state at t = 0 (the driver subscribed too late, or the node did not start)")
+
+    def subscribe(self, body: Body) -> Any:
+        def on_state(msg: Any) -> None:
+            with self.lock:
+                body.on_state(msg)
+        return rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, on_state,
+                                queue_size=None, tcp_nodelay=True)
+
+    def wait_until_every_body_at(self, t: float, exactly: bool = False) -> None:
+        """Until every body's state at t has arrived (a segment's drift is measured before the next change)."""
+        def arrived() -> bool:
+            with self.lock:
+                return all(b.last_t == t if exactly else b.last_t >= t for b in self.bodies)
+        wait_for(f"the states of t = {t}", arrived, 60.0, period=0.0005)
+
+    def second(self, second: int, wall0: float) -> None:
+        """Reconfigures every body at random, then steps a simulated second."""
+        with self.lock:
+            for body in self.bodies:
+                body.new_segment()
+        for body in self.bodies:
+            self.clients[body.name].update_configuration(random_change(self.rng, body.spec))
+        # A tenth of a second per ~step call, each time until this driver has the last sample: bursts of
+        # 5 samples a topic, well inside the recorder's subscriber queue of 100 messages.
+        calls = 10 if self.steps % 10 == 0 and self.samples % 10 == 0 else 1
+        for _ in range(calls):
+            reply = self.step(self.steps // calls)
+            if not reply.success:
+                sys.exit(f"soak: ~step refused at t = {second}: {reply.message}")
+            self.wait_until_every_body_at(reply.t)
+            if self.max_speed > 0:
+                time.sleep(max(0.0, wall0 + reply.t / self.max_speed - time.time()))
+        if reply.t != second + 1:
+            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
+                     "paused it (raise start_delay in scripts/soak.launch)")
+
+    def report(self, duration: int, seed: int, wall: float, rss: List[Tuple[int, int, int]]) -> None:
+        expected = 1 + duration * self.samples
+        print(f"\nsoak: seed {seed}, {duration} simulated s, {len(self.bodies)} bodies, reconfigured every "
+              f"simulated second; {wall:.1f} s wall ({duration / wall:.1f} x real time)")
+        print(f"RSS sim_node: {rss[0][1]} kB at t = {rss[0][0]} s, {rss[-1][1]} kB at t = {rss[-1][0]} s "
+              f"(change {rss[-1][1] - rss[0][1]:+d} kB); recorder {rss[0][2]} -> {rss[-1][2]} kB")
+        print("body      type    states received/expected  non-finite  max |dE| in a segment   notes")
+        for b in self.bodies:
+            note = (f"max |dE|/E0 = {b.max_rel:.3g}" if b.rod else
+                    f"largest gain {b.max_gain:.3g} J; max |dE| while rolling {b.max_roll:.3g} J")
+            print(f"{b.name:9s} {'rod' if b.rod else 'roller':7s} {b.count:8d}/{expected:<8d}          "
+                  f"{b.nonfinite:4d}        {b.max_drift:12.6g} J    {note}")
+        bad = [b.name for b in self.bodies if b.count != expected or b.nonfinite]
+        if bad:
+            sys.exit(f"soak: FAILED for {', '.join(bad)}")
+
+
+def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("config")
     parser.add_argument("--seed", type=int, default=1)
@@ -107,91 +168,20 @@ def main():
     parser.add_argument("--max-speed", type=float, default=0.0,
                         help="at most this many simulated seconds per wall second (0: as fast as possible)")
     args = parser.parse_args(rospy.myargv()[1:])
-    with open(args.config) as f:
-        config = yaml.safe_load(f)
-    rate, publish_rate = float(config.get("rate", 1000)), float(config.get("publish_rate", 50))
-    bodies = [Body(name, spec, 1.0 / publish_rate) for name, spec in config["bodies"].items()]
-    rng = random.Random(args.seed)
-
     rospy.init_node("soak", disable_signals=True)
-    lock = threading.Lock()
-    subs = []
-    for body in bodies:
-        def callback(msg, body=body):
-            with lock:
-                body.on_state(msg)
-        subs.append(rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, callback,
-                                     queue_size=None, tcp_nodelay=True))
-    rospy.wait_for_service("/sim/pause", timeout=60)
-    rospy.ServiceProxy("/sim/pause", Empty)()
-    step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
-    clients = {b.name: Client(f"/sim/{b.name}", timeout=30) for b in bodies}
-    # The node publishes t = 0 once its start_delay is over; the run starts from there.
-    deadline = time.time() + 60
-    while time.time() < deadline:
-        with lock:
-            if all(b.last_t == 0.0 for b in bodies):
-                break
-        time.sleep(0.1)
-    else:
-        sys.exit("soak: no state at t = 0 (the driver subscribed too late, or the node did not start)")
-
-    sim_pid, rec_pid = node_pid("/sim"), node_pid("/record")
-    steps = int(round(rate))
-    samples = int(round(publish_rate))
-    calls_per_second = 10 if steps % 10 == 0 and samples % 10 == 0 else 1
-
-    def wait_for_samples(t):
-        """Until every body's state at t has arrived (the segment's drift is measured before the next change)."""
-        end = time.time() + 60
-        while time.time() < end:
-            with lock:
-                if all(b.last_t >= t for b in bodies):
-                    return
-            time.sleep(0.0005)
-        sys.exit(f"soak: the states of t = {t} did not arrive")
-
+    driver = Driver(args.config, args.seed, args.max_speed)
+    sim_pid, rec_pid = node_pid("/sim", "/soak"), node_pid("/record", "/soak")
     wall0 = time.time()
     rss = []  # (t, sim_node kB, recorder kB)
     for second in range(args.duration):
-        with lock:
-            for body in bodies:
-                body.new_segment()
-        for body in bodies:
-            clients[body.name].update_configuration(random_change(rng, body))
-        # A tenth of a second per ~step call, each time until this driver has the last sample: bursts of
-        # 5 samples a topic, well inside the recorder's subscriber queue of 100 messages.
-        for chunk in range(calls_per_second):
-            reply = step(steps // calls_per_second)
-            if not reply.success:
-                sys.exit(f"soak: ~step refused at t = {second}: {reply.message}")
-            wait_for_samples(reply.t)
-            if args.max_speed > 0:
-                time.sleep(max(0.0, wall0 + reply.t / args.max_speed - time.time()))
-        if reply.t != second + 1:
-            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
-                     "paused it (raise start_delay in scripts/soak.launch)")
+        driver.second(second, wall0)
         if second == 0 or (second + 1) % 300 == 0 or second + 1 == args.duration:
-            rss.append((second + 1, rss_kib(sim_pid), rss_kib(rec_pid)))
+            rss.append((second + 1, resident_kib(sim_pid), resident_kib(rec_pid)))
             print(f"t = {second + 1:5d} s  wall {time.time() - wall0:7.1f} s  RSS sim_node {rss[-1][1]} kB, "
                   f"recorder {rss[-1][2]} kB", flush=True)
-    wall = time.time() - wall0
-
-    expected = 1 + args.duration * samples
-    print(f"\nsoak: seed {args.seed}, {args.duration} simulated s, {len(bodies)} bodies, reconfigured every "
-          f"simulated second; {wall:.1f} s wall ({args.duration / wall:.1f} x real time)")
-    print(f"RSS sim_node: {rss[0][1]} kB at t = {rss[0][0]} s, {rss[-1][1]} kB at t = {rss[-1][0]} s "
-          f"(change {rss[-1][1] - rss[0][1]:+d} kB); recorder {rss[0][2]} -> {rss[-1][2]} kB")
-    print("body      type    states received/expected  non-finite  max |dE| in a segment   notes")
-    for b in bodies:
-        note = (f"max |dE|/E0 = {b.max_rel:.3g}" if b.rod else
-                f"largest gain {b.max_gain:.3g} J; max |dE| while rolling {b.max_roll:.3g} J")
-        print(f"{b.name:9s} {'rod' if b.rod else 'roller':7s} {b.count:8d}/{expected:<8d}          {b.nonfinite:4d}"
-              f"        {b.max_drift:12.6g} J    {note}")
-    bad = [b.name for b in bodies if b.count != expected or b.nonfinite]
-    if bad:
-        sys.exit(f"soak: FAILED for {', '.join(bad)}")
+    driver.report(args.duration, args.seed, time.time() - wall0, rss)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

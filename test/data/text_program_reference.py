@@ -12,12 +12,16 @@ round-trip form (repr), so strtod reads back the exact double.
 Run: /usr/bin/python3 test/data/text_program_reference.py
 """
 import os
+from typing import Any, Tuple
+
 from numpy import array, cos, cross, pi, sin, zeros
 
 THETA0S = [0.0, 0.3, 1.0, pi / 2, 2.5, 4.0, 5.5]
 
 
-def text_program(theta0):
+# The text's own layout (several statements a line, its names), kept so that it reads against the text:
+# flake8 leaves this file's layout alone (setup.cfg).
+def text_program(theta0: float) -> Tuple[int, Any, Any, Any, Any, Any]:
     m = 0.5; g = 9.8; h0 = 4.0; L = 1.0; time = 10.0; dt = 0.001; k = 1000.0; v0 = 2.0
     I = (1.0/12.0)*m*L**2
     n = int(round(time/dt))
@@ -43,18 +47,18 @@ def text_program(theta0):
         a = fnet/m
         v[i+1] = v[i] + a*dt
         r[i+1] = r[i] + v[i+1]*dt
-        alphaz = tnet[2]/I
+        alphaz = tnet[2]/I  # type: ignore[index]  # tnet: 0.0 plus arrays, as in the text
         omega[i+1] = omega[i] + alphaz*dt
         theta[i+1] = theta[i] + omega[i+1]*dt
         t[i+1] = t[i] + dt
     return n, t, r, v, theta, omega
 
 
-def kept(i, n):
+def kept(i: int, n: int) -> bool:
     return (i % 20 == 0 and i <= 3000) or i % 100 == 0 or i == n - 1
 
 
-def main():
+def main() -> None:
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "text_program_reference.csv")
     with open(path, "w") as out:
         out.write("theta0,i,t,x,y,theta,vx,vy,omega\n")

@@ -6,13 +6,18 @@ OrbitViewController (camera at focal + distance (cos yaw cos pitch, sin yaw cos 
 z up, vertical field of view), and colours are told apart by hue and saturation, which rviz's
 lighting (a white light scaling each colour) leaves unchanged."""
 from dataclasses import dataclass
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+from numpy.typing import NDArray
+
+Array = NDArray[Any]
+Pixel = Tuple[float, float]
 
 # Colour classes: (hue range in degrees, saturation range, minimum value). The marker colours are those
-# of src/adapters/ros_conversions.cpp: rod (0.1, 0.3, 0.9), sphere (0.9, 0.1, 0.1), cylinder
+# of src/ros/scene.cpp: rod (0.1, 0.3, 0.9), sphere (0.9, 0.1, 0.1), cylinder
 # (0.1, 0.8, 0.1), ring (1, 0.6, 0), shell (0.7, 0.1, 0.9), slope (0.55, 0.4, 0.25), floor grey 0.75.
-COLOUR_CLASSES = {
+COLOUR_CLASSES: Dict[str, Tuple[Tuple[float, float], Tuple[float, float], float]] = {
     "blue": ((212, 236), (0.6, 1.0), 0.25),      # rod, hue 225 (TF's z axis is 240: outside)
     "red": ((346, 14), (0.6, 1.0), 0.25),        # sphere (a range through 0)
     "green": ((105, 135), (0.6, 1.0), 0.25),     # cylinder
@@ -24,7 +29,7 @@ COLOUR_CLASSES = {
 SHAPE_CLASS = {"sphere": "red", "cylinder": "green", "ring": "orange", "spherical_shell": "purple"}
 
 
-def hsv(image):
+def hsv(image: Array) -> Tuple[Array, Array, Array]:
     """Hue in degrees [0, 360), saturation and value in [0, 1] of an RGB(A) float image."""
     rgb = image[..., :3].astype(float)
     if rgb.max() > 1.0:
@@ -39,7 +44,7 @@ def hsv(image):
     return hue, saturation, top
 
 
-def colour_mask(image, name):
+def colour_mask(image: Array, name: str) -> Array:
     (h0, h1), (s0, s1), v0 = COLOUR_CLASSES[name]
     hue, sat, val = hsv(image)
     in_hue = (hue >= h0) & (hue <= h1) if h0 <= h1 else (hue >= h0) | (hue <= h1)
@@ -60,12 +65,12 @@ class Camera:
     height: int
 
     @classmethod
-    def from_rviz(cls, view, window):
+    def from_rviz(cls, view: Dict[str, Any], window: Tuple[int, int, int, int]) -> "Camera":
         focal = np.array([view["Focal Point"][k] for k in "XYZ"], dtype=float)
         return cls(focal, float(view["Distance"]), float(view["Pitch"]), float(view["Yaw"]),
                    float(view.get("Field of View", 0.785398)), *window)
 
-    def basis(self):
+    def basis(self) -> Tuple[Array, Array, Array, Array]:
         cp = np.cos(self.pitch)
         eye = self.focal + self.distance * np.array(
             [np.cos(self.yaw) * cp, np.sin(self.yaw) * cp, np.sin(self.pitch)])
@@ -74,10 +79,10 @@ class Camera:
         right /= np.linalg.norm(right)
         return eye, forward, right, np.cross(right, forward)
 
-    def pixels_per_metre_at(self, depth):
+    def pixels_per_metre_at(self, depth: Any) -> Any:
         return 0.5 * self.height / np.tan(0.5 * self.fov) / depth
 
-    def project(self, points):
+    def project(self, points: Any) -> Tuple[Array, Array]:
         """Screen pixels (column, row) and depth of world points, shape (n, 3)."""
         eye, forward, right, up = self.basis()
         rel = np.atleast_2d(points) - eye
@@ -88,7 +93,7 @@ class Camera:
         return np.stack([col, row], axis=1), depth
 
 
-def quaternion_matrix(q):
+def quaternion_matrix(q: Sequence[float]) -> Array:
     x, y, z, w = q
     return np.array([
         [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
@@ -96,18 +101,22 @@ def quaternion_matrix(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def box_corners(rotation, centre, scale):
+def box_corners(rotation: Array, centre: Array, scale: Any) -> Array:
     """The 8 corners of a box of size `scale` centred at `centre`, axes `rotation` (world)."""
     signs = np.array([[sx, sy, sz] for sx in (-.5, .5) for sy in (-.5, .5) for sz in (-.5, .5)])
     return centre + (signs * scale) @ rotation.T
 
 
-def polygon_mask(shape, polygon):
-    """Pixels inside a convex polygon (vertices in order, (col, row))."""
+def polygon_mask(shape: Tuple[int, int], polygon: Optional[Sequence[Pixel]]) -> Array:
+    """Pixels inside a convex polygon (vertices in order, (col, row)); none without a polygon (a shape behind
+    the camera has none)."""
+    if polygon is None:
+        return np.zeros(shape, dtype=bool)
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
     inside = np.ones(shape, dtype=bool)
     n = len(polygon)
-    area = sum(polygon[i][0] * polygon[(i + 1) % n][1] - polygon[(i + 1) % n][0] * polygon[i][1] for i in range(n))
+    area: float = sum(polygon[i][0] * polygon[(i + 1) % n][1] - polygon[(i + 1) % n][0] * polygon[i][1]
+                      for i in range(n))
     for i in range(n):
         (x0, y0), (x1, y1) = polygon[i], polygon[(i + 1) % n]
         cross = (x1 - x0) * (rows - y0) - (y1 - y0) * (cols - x0)
@@ -115,12 +124,12 @@ def polygon_mask(shape, polygon):
     return inside
 
 
-def convex_hull(points):
+def convex_hull(points: Any) -> List[Pixel]:
     """Andrew's monotone chain; points (n, 2)."""
     pts = sorted(map(tuple, np.asarray(points)))
 
-    def half(seq):
-        out = []
+    def half(seq: Any) -> List[Pixel]:
+        out: List[Pixel] = []
         for p in seq:
             while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (p[1] - out[-2][1]) -
                                      (out[-1][1] - out[-2][1]) * (p[0] - out[-2][0])) <= 0:
@@ -130,19 +139,19 @@ def convex_hull(points):
     return half(pts) + half(reversed(pts))
 
 
-def disc_mask(shape, centre, radius):
+def disc_mask(shape: Tuple[int, int], centre: Any, radius: float) -> Array:
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
     return (cols - centre[0]) ** 2 + (rows - centre[1]) ** 2 <= radius ** 2
 
 
-def segment_mask(shape, a, b, half_width):
+def segment_mask(shape: Tuple[int, int], a: Array, b: Array, half_width: float) -> Array:
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
     d = np.asarray(b, float) - a
     t = np.clip(((cols - a[0]) * d[0] + (rows - a[1]) * d[1]) / max(d @ d, 1e-9), 0, 1)
     return (cols - a[0] - t * d[0]) ** 2 + (rows - a[1] - t * d[1]) ** 2 <= half_width ** 2
 
 
-def quadrants_with(image, region, centre, colour):
+def quadrants_with(image: Array, region: Array, centre: Any, colour: str) -> int:
     """How many of the four quadrants about `centre` hold pixels of `colour` inside `region`."""
     rows, cols = np.mgrid[0:image.shape[0], 0:image.shape[1]]
     found = colour_mask(image, colour) & region
@@ -159,16 +168,16 @@ class Finding:
     needed_px: int
 
     @property
-    def ok(self):
+    def ok(self) -> bool:
         return self.region_px > 0 and self.colour_px >= self.needed_px
 
-    def line(self):
+    def line(self) -> str:
         share = self.colour_px / self.region_px if self.region_px else 0.0
         return (f"{'ok  ' if self.ok else 'FAIL'} {self.what:28s} {self.colour:7s} {self.colour_px:6d} of "
                 f"{self.region_px:6d} px ({100 * share:5.1f} %), needed {self.needed_px}")
 
 
-def count(image, region, colour, what, share):
+def count(image: Array, region: Array, colour: str, what: str, share: float) -> Finding:
     """A finding: pixels of `colour` in `region`, at least `share` of the region needed."""
     n = int(region.sum())
     return Finding(what, colour, n, int((colour_mask(image, colour) & region).sum()), max(1, int(np.ceil(share * n))))

@@ -10,48 +10,50 @@ OUT's stem + ".txt" (the findings)."""
 import argparse
 import os
 import re
-import socket
 import subprocess
 import sys
 import time
 import xmlrpc.client
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 import yaml
 
 import picture_check as pc
+from picture_check import Array, Finding, Pixel
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
+from sim_tools import Config, RodSpec, RollerSpec, body_spec, free_port, load_config, wait_for  # noqa: E402
+
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
+Outline = Tuple[str, Any]
+Disc = Tuple[Array, Any, float]  # mask, centre pixel, radius in pixels
 
 
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def wait_for(what, predicate, timeout, launch, period=0.25):
+def wait_while_running(what: str, predicate: Callable[[], bool], timeout: float, launch: Any,
+                       period: float = 0.25) -> None:
     """Until predicate() holds; an error at the timeout, or at once if roslaunch has ended."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
+    def ready() -> bool:
         if predicate():
-            return
+            return True
         if launch.poll() is not None:
             raise RuntimeError(f"roslaunch ended (status {launch.returncode}) while waiting for {what}: see its log")
-        time.sleep(period)
-    raise TimeoutError(f"timed out after {timeout:g} s waiting for {what}")
+        return False
+    wait_for(what, ready, timeout, period)
 
 
 class Scene:
     """What the node published: world poses of every frame, markers by (ns, id), latest states."""
 
-    def __init__(self, rospy, config):
+    def __init__(self, rospy: Any, config: Config) -> None:
         from rigid_body_sim.msg import RodState, RollerState
         from tf2_msgs.msg import TFMessage
         from visualization_msgs.msg import MarkerArray
-        self.frames, self.markers, self.t = {}, {}, None
+        self.frames: Dict[str, Tuple[Array, Array]] = {}
+        self.markers: Dict[Tuple[str, int], Any] = {}
+        self.t: Optional[float] = None
         name, body = next(iter(config["bodies"].items()))  # its state gives the simulated time
         self.subscribers = [
             rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=100),
@@ -60,12 +62,12 @@ class Scene:
             rospy.Subscriber(f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
                              lambda msg: setattr(self, "t", msg.t), queue_size=100)]
 
-    def on_tf(self, msg):
+    def on_tf(self, msg: Any) -> None:
         for t in msg.transforms:
             r, q = t.transform.translation, t.transform.rotation
             self.frames[t.child_frame_id] = (pc.quaternion_matrix([q.x, q.y, q.z, q.w]), np.array([r.x, r.y, r.z]))
 
-    def on_markers(self, msg):
+    def on_markers(self, msg: Any) -> None:
         for m in msg.markers:
             if m.action == m.DELETEALL:
                 self.markers.clear()
@@ -74,14 +76,14 @@ class Scene:
             else:
                 self.markers[(m.ns, m.id)] = m
 
-    def world_pose(self, frame_id, pose):
+    def world_pose(self, frame_id: str, pose: Any) -> Tuple[Array, Array]:
         """Rotation and position in the world of a marker's pose in `frame_id` (a child of the world)."""
         rotation, origin = self.frames.get(frame_id, (np.eye(3), np.zeros(3)))
         q, p = pose.orientation, pose.position
         return rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w]), origin + rotation @ [p.x, p.y, p.z]
 
 
-def rviz_status_pixels(image, render):
+def rviz_status_pixels(image: Array, render: Tuple[int, int, int, int]) -> Dict[str, int]:
     """Pixels in the text of rviz's display tree (left of the render view) drawn in the colour of a
     warning or an error: rviz paints a display's name so when its status is not Ok."""
     left, top, _, height = render
@@ -89,10 +91,10 @@ def rviz_status_pixels(image, render):
     return {name: int((np.abs(panel - colour).max(axis=-1) <= 24).sum()) for name, colour in STATUS_COLOURS.items()}
 
 
-def render_window():
+def render_window() -> Tuple[int, int, int, int]:
     """(left, top, width, height) of rviz's 3-D view: the largest unnamed X window (Ogre's)."""
     tree = subprocess.run(["xwininfo", "-root", "-tree"], capture_output=True, text=True, check=True).stdout
-    best = None
+    best: Optional[Tuple[int, int, int, int]] = None
     for m in re.finditer(r"\(has no name\): \(\)\s+(\d+)x(\d+)\+-?\d+\+-?\d+\s+\+(-?\d+)\+(-?\d+)", tree):
         w, h, x, y = map(int, m.groups())
         if best is None or w * h > best[2] * best[3]:
@@ -106,25 +108,26 @@ class Checker:
     """The checks of one picture. Regions are projected from the published scene and clipped to the
     3-D view; `findings` collects the results, `outlines` the regions (for rviz_regions.png)."""
 
-    def __init__(self, image, scene, camera):
+    def __init__(self, image: Array, scene: Scene, camera: pc.Camera) -> None:
         self.image, self.scene, self.camera = image, scene, camera
-        self.shape = image.shape[:2]
+        self.shape: Tuple[int, int] = (image.shape[0], image.shape[1])
         self.view = np.zeros(self.shape, dtype=bool)
         self.view[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = True
-        self.findings, self.outlines = [], []
+        self.findings: List[Finding] = []
+        self.outlines: List[Outline] = []
 
-    def hull_of(self, corners):
+    def hull_of(self, corners: Array) -> Optional[List[Pixel]]:
         pixels, depth = self.camera.project(corners)
         return pc.convex_hull(pixels) if (depth > 0).all() else None
 
-    def in_view(self, what, region):
+    def in_view(self, what: str, region: Array) -> Array:
         """The region clipped to the view; a finding when a tenth of it or more lies outside."""
         total, inside = int(region.sum()), int((region & self.view).sum())
         if inside < 0.9 * max(1, total):
             self.findings.append(pc.Finding(what + " inside the view", "-", total, inside, int(np.ceil(0.9 * total))))
         return region & self.view
 
-    def slopes(self):
+    def slopes(self) -> Dict[str, Tuple[Array, Array]]:
         """{roller: (mask of the whole slope box, mask of its top face)}."""
         found = {}
         for (ns, _), m in self.scene.markers.items():
@@ -140,19 +143,20 @@ class Checker:
             self.outlines.append(("brown", top))
         return found
 
-    def discs(self, bodies):
+    def discs(self, rollers: Sequence[RollerSpec]) -> Dict[str, Disc]:
         """{roller: (disc mask, centre pixel, radius in pixels)} at each roller's last published pose."""
         found = {}
-        for name, body in bodies.items():
-            if body["type"] != "roller" or name not in self.scene.frames:
+        for roller in rollers:
+            name = roller.name
+            if name not in self.scene.frames:
                 continue
             (pixel,), (depth,) = self.camera.project(self.scene.frames[name][1])
-            radius = body.get("radius", 0.1) * self.camera.pixels_per_metre_at(depth)
+            radius = roller.radius * self.camera.pixels_per_metre_at(depth)
             found[name] = (pc.disc_mask(self.shape, pixel, radius + 1.0), pixel, radius)
             self.outlines.append(("circle", (pixel, radius + 1.0)))
         return found
 
-    def floor(self, covered):
+    def floor(self, covered: Array) -> None:
         floor = next((m for (ns, _), m in self.scene.markers.items() if ns == "floor"), None)
         if floor is None:
             self.findings.append(flag("floor marker received", False))
@@ -163,7 +167,7 @@ class Checker:
         region = pc.polygon_mask(self.shape, hull) & self.view & ~covered  # it runs out of the view: fine
         self.findings.append(pc.count(self.image, region, "grey", "floor", 0.6))
 
-    def slope(self, name, slopes, covered):
+    def slope(self, name: str, slopes: Dict[str, Tuple[Array, Array]], covered: Array) -> None:
         """The top of a roller's slope, less what other slopes and the bodies may hide, brown."""
         if name not in slopes:
             self.findings.append(flag(f"{name}'s slope marker received", False))
@@ -174,7 +178,7 @@ class Checker:
                 own &= ~box
         self.findings.append(pc.count(self.image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
 
-    def roller(self, name, shape_name, disc):
+    def roller(self, name: str, shape_name: str, disc: Optional[Disc]) -> None:
         if disc is None:
             self.findings.append(flag(f"{name}'s pose received", False))
             return
@@ -188,7 +192,7 @@ class Checker:
         quarters = pc.quadrants_with(self.image, mask, centre, colour)
         self.findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
 
-    def rod(self, name, length):
+    def rod(self, name: str, length: float) -> None:
         """Blue along the rod's whole length (each quarter), not only somewhere near its centre."""
         if name not in self.scene.frames:
             self.findings.append(flag(f"{name}'s pose received", False))
@@ -203,11 +207,13 @@ class Checker:
             self.findings.append(pc.count(self.image, region, "blue", f"{name} (rod), quarter {k + 1}", 0.25))
 
 
-def check_picture(image, scene, camera, config):
+def check_picture(image: Array, scene: Scene, camera: pc.Camera, config: Config) -> Tuple[List[Finding],
+                                                                                          List[Outline]]:
     """Every finding (floor, each slope, each roller, each rod) and the outlines of the regions."""
     checker = Checker(image, scene, camera)
-    bodies = config["bodies"]
-    slopes, discs = checker.slopes(), checker.discs(bodies)
+    specs = [body_spec(config, name) for name in config["bodies"]]
+    slopes = checker.slopes()
+    discs = checker.discs([spec for spec in specs if isinstance(spec, RollerSpec)])
     covered = np.zeros(image.shape[:2], dtype=bool)
     for mask in [box for box, _ in slopes.values()] + [disc[0] for disc in discs.values()]:
         covered |= mask
@@ -215,16 +221,16 @@ def check_picture(image, scene, camera, config):
     bodies_only = np.zeros_like(covered)
     for disc in discs.values():
         bodies_only |= disc[0]
-    for name, body in bodies.items():
-        if body["type"] == "rod":
-            checker.rod(name, body.get("length", 1.0))
+    for spec in specs:
+        if isinstance(spec, RodSpec):
+            checker.rod(spec.name, spec.length)
         else:
-            checker.slope(name, slopes, bodies_only)
-            checker.roller(name, body.get("shape", "sphere"), discs.get(name))
+            checker.slope(spec.name, slopes, bodies_only)
+            checker.roller(spec.name, spec.shape, discs.get(spec.name))
     return checker.findings, checker.outlines
 
 
-def save_outlined(image, outlines, path):
+def save_outlined(image: Array, outlines: List[Outline], path: str) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -246,7 +252,7 @@ def save_outlined(image, outlines, path):
     plt.close(fig)
 
 
-def main():
+def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--config", default=os.path.join(PACKAGE, "config", "demo.yaml"))
     parser.add_argument("--out", required=True, help="the screenshot (PNG)")
@@ -273,41 +279,42 @@ def main():
         log.close()
 
 
-def run(args, start, stem, launch):
+def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     import rosgraph
     import rospy
     from rosgraph_msgs.msg import Log
     from std_srvs.srv import Empty
 
-    def left():
+    def left() -> float:
         return max(1.0, args.timeout - (time.monotonic() - start))
 
-    with open(args.config) as f:
-        config = yaml.safe_load(f)
+    config = load_config(args.config)
     master = rosgraph.Master("/rviz_screenshot")
-    wait_for("the ROS master", master.is_online, left(), launch)
+    wait_while_running("the ROS master", master.is_online, left(), launch)
     rospy.init_node("rviz_screenshot", disable_signals=True)
     scene = Scene(rospy, config)
-    rviz_errors = []
+    rviz_errors: List[str] = []
     rospy.Subscriber("/rosout_agg", Log, lambda m: rviz_errors.append(m.msg)
                      if m.name == "/rviz" and m.level >= Log.ERROR else None, queue_size=100)
 
-    def rviz_connected():
+    def rviz_connected() -> bool:
         # The node's own view of its connections: rviz has subscribed to the markers and TF.
         try:
-            info = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")[2]
+            reply: Any = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")
+            info = reply[2]
         except Exception:
             return False
         return {(c[1], c[4]) for c in info if c[2] == "o"} >= {("/rviz", "/sim/markers"), ("/rviz", "/tf")}
-    wait_for("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
-    wait_for("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
+    wait_while_running("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
+    wait_while_running("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
 
     # rviz subscribed after the node started: the floor and slopes must come with the markers it publishes
     # from now on (every marker array carries them).
     scene.t = None
-    wait_for("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
-    t_connected = scene.t
-    wait_for(f"{args.settle:g} simulated seconds", lambda: scene.t >= t_connected + args.settle, left(), launch)
+    wait_while_running("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
+    t_connected: float = scene.t or 0.0
+    wait_while_running(f"{args.settle:g} simulated seconds", lambda: (scene.t or 0.0) >= t_connected + args.settle,
+                       left(), launch)
     rospy.ServiceProxy("/sim/pause", Empty)()
     time.sleep(1.0)  # the last messages reach rviz and this node
 
@@ -341,32 +348,32 @@ def run(args, start, stem, launch):
     return 0 if all(f.ok for f in findings) else 1
 
 
-def control(image, scene, camera, config, background):
+def control(image: Array, scene: Scene, camera: pc.Camera, config: Config, background: List[int]) -> Finding:
     """The checks must be able to fail: on this picture with its 3-D view emptied (rviz's background
     colour everywhere), every check of a marker fails."""
     empty = image.copy()
     empty[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = background
     passed = [f.what for f in check_picture(empty, scene, camera, config)[0] if f.ok and f.colour != "-"]
-    return flag("control: an empty view fails every marker check" + (f" (passed: {', '.join(passed)})" if passed else ""),
-                not passed)
+    return flag("control: an empty view fails every marker check" +
+                (f" (passed: {', '.join(passed)})" if passed else ""), not passed)
 
 
-def try_render_window():
+def try_render_window() -> Optional[Tuple[int, int, int, int]]:
     try:
         return render_window()
     except (RuntimeError, subprocess.CalledProcessError):
         return None
 
 
-def flag(what, ok):
+def flag(what: str, ok: bool) -> Finding:
     """A yes/no finding."""
     return pc.Finding(what, "-", 1, int(ok), 1)
 
 
-def rviz_error_lines():
+def rviz_error_lines() -> List[str]:
     """ERROR lines of rviz's own output (roslaunch keeps it under $ROS_HOME/log/latest)."""
     folder = os.path.join(os.environ.get("ROS_HOME", os.path.expanduser("~/.ros")), "log", "latest")
-    lines = []
+    lines: List[str] = []
     for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
         if name.startswith("rviz"):
             with open(os.path.join(folder, name), errors="replace") as f:
@@ -374,7 +381,7 @@ def rviz_error_lines():
     return lines
 
 
-def read_png(path):
+def read_png(path: str) -> Array:
     import matplotlib.image
     image = matplotlib.image.imread(path)
     return (image[..., :3] * 255).round().astype(np.uint8) if image.dtype != np.uint8 else image[..., :3]

@@ -7,31 +7,34 @@ import csv
 import json
 import math
 import os
-import socket
 import subprocess
 import sys
 import tempfile
 import unittest
-
-import yaml
+from typing import Any, Dict, List
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
+from sim_tools import free_port, load_config  # noqa: E402  (the path above first)
+
 PLOT = os.path.join(PACKAGE, "scripts", "plot_run.py")
 CONFIG = os.path.join(PACKAGE, "config", "demo.yaml")
 FIGURES = ("rod.png", "rollers.png", "race.png", "energy.png")
+# The closed forms' values, written out as the text gives them (independently of plot_run's own).
 G = 9.8
 C = {"sphere": 0.4, "cylinder": 0.5, "ring": 1.0}
+Body = Dict[str, Any]
 
 
-def closed_form_slip_to_roll(b):
+def closed_form_slip_to_roll(b: Body) -> float:
     """Launched sliding with backspin: u = v + omega R falls at g sin(phi) - mu_d g cos(phi) (1 + c)/c."""
     c, phi = C[b["shape"]], b["incline_angle"]
     u0 = b["v0"] + b["omega0"] * b["radius"]
     return u0 / -(G * math.sin(phi) - b["mu_d"] * G * math.cos(phi) * (1 + c) / c)
 
 
-def closed_form_down(b):
+def closed_form_down(b: Body) -> float:
     """From rest: rolling, a = g sin(phi)/(1 + c); slipping, a = g (sin(phi) - mu_d cos(phi))."""
     c, phi = C[b["shape"]], b["incline_angle"]
     rolls = math.tan(phi) <= b["mu_s"] * (1 + c) / c
@@ -40,8 +43,13 @@ def closed_form_down(b):
 
 
 class PlotRunTest(unittest.TestCase):
+    tmp: "tempfile.TemporaryDirectory[str]"
+    run_dir: str
+    summaries: Dict[str, Any]
+    bodies: Dict[str, Body]
+
     @classmethod
-    def setUpClass(cls):
+    def setUpClass(cls) -> None:
         cls.tmp = tempfile.TemporaryDirectory()
         cls.run_dir = os.path.join(cls.tmp.name, "run")
         bag = os.path.join(cls.tmp.name, "run.bag")
@@ -54,18 +62,17 @@ class PlotRunTest(unittest.TestCase):
                            stdout=subprocess.DEVNULL)
             with open(os.path.join(out, "summary.json")) as f:
                 cls.summaries[source] = json.load(f)
-        with open(CONFIG) as f:
-            cls.bodies = yaml.safe_load(f)["bodies"]
+        cls.bodies = load_config(CONFIG)["bodies"]
 
     @classmethod
-    def tearDownClass(cls):
+    def tearDownClass(cls) -> None:
         cls.tmp.cleanup()
 
-    def csv_rows(self, name):
+    def csv_rows(self, name: str) -> List[Dict[str, str]]:
         with open(os.path.join(self.run_dir, name + ".csv")) as f:
             return list(csv.DictReader(f))
 
-    def test_every_figure_is_a_png_of_some_substance(self):
+    def test_every_figure_is_a_png_of_some_substance(self) -> None:
         for source in ("csv", "bag"):
             for figure in FIGURES:
                 path = os.path.join(self.tmp.name, source, figure)
@@ -73,34 +80,35 @@ class PlotRunTest(unittest.TestCase):
                     self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", path)
                 self.assertGreater(os.path.getsize(path), 10000, path)
 
-    def test_slip_to_roll_instant_is_the_closed_form(self):
+    def test_slip_to_roll_instant_is_the_closed_form(self) -> None:
         bowler = self.bodies["bowler"]
         events = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"]
         self.assertGreaterEqual(len(events), 1)
         self.assertTrue(events[0]["exact"])
         self.assertAlmostEqual(events[0]["t"], closed_form_slip_to_roll(bowler), delta=1e-9)
 
-    def test_slip_to_roll_instant_lies_at_the_csv_mode_change(self):
+    def test_slip_to_roll_instant_lies_at_the_csv_mode_change(self) -> None:
         rows = self.csv_rows("bowler")
-        change = next(i for i in range(1, len(rows)) if rows[i - 1]["mode"] == "slipping" and rows[i]["mode"] == "rolling")
+        change = next(i for i in range(1, len(rows))
+                      if rows[i - 1]["mode"] == "slipping" and rows[i]["mode"] == "rolling")
         marked = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"][0]["t"]
         self.assertLess(float(rows[change - 1]["t"]), marked)
         self.assertLessEqual(marked, float(rows[change]["t"]))
 
-    def test_race_times_are_the_closed_forms(self):
+    def test_race_times_are_the_closed_forms(self) -> None:
         for name in ("sphere", "cylinder", "ring"):
             finish = self.summaries["csv"]["rollers"][name]["finish_times"]
             self.assertGreaterEqual(len(finish), 1, name)
             self.assertAlmostEqual(finish[0], closed_form_down(self.bodies[name]), delta=1e-9, msg=name)
 
-    def test_critical_angle_verdict_matches_the_run(self):
+    def test_critical_angle_verdict_matches_the_run(self) -> None:
         # The verdict comes from tan(phi_c) = mu_s (1 + c)/c; the modes from the simulation itself.
         for name in ("sphere", "cylinder", "ring"):
             rolls = self.summaries["csv"]["rollers"][name]["critical_angle"]["rolls"]
             modes = {row["mode"] for row in self.csv_rows(name)}
             self.assertEqual(modes, {"rolling"} if rolls else {"slipping"}, name)
 
-    def test_rod_energy_starts_at_its_closed_form_and_swings_in_contact(self):
+    def test_rod_energy_starts_at_its_closed_form_and_swings_in_contact(self) -> None:
         rod = self.bodies["rod"]
         summary = self.summaries["csv"]["rods"]["rod"]
         expected = rod["mass"] * G * rod["y0"] + 0.5 * rod["mass"] * rod["vx0"] ** 2
@@ -109,11 +117,11 @@ class PlotRunTest(unittest.TestCase):
         self.assertGreater(summary["largest_swing"]["swing"], 0.0)
         self.assertLess(summary["largest_swing"]["swing"], 0.2)  # Euler-Cromer at omega_c dt = 0.089
 
-    def test_bag_and_csv_give_the_same_numbers(self):
+    def test_bag_and_csv_give_the_same_numbers(self) -> None:
         self.assertEqual(json.dumps(self.summaries["bag"], sort_keys=True),
                          json.dumps(self.summaries["csv"], sort_keys=True))
 
-    def test_a_folder_without_states_is_refused_in_one_line(self):
+    def test_a_folder_without_states_is_refused_in_one_line(self) -> None:
         with tempfile.TemporaryDirectory() as empty:
             result = subprocess.run([sys.executable, PLOT, CONFIG, empty, "--out-dir", empty],
                                     capture_output=True, text=True)
@@ -122,10 +130,8 @@ class PlotRunTest(unittest.TestCase):
 
 
 class NodeBagTest(unittest.TestCase):
-    def test_a_bag_recorded_from_the_node(self):
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            port = s.getsockname()[1]
+    def test_a_bag_recorded_from_the_node(self) -> None:
+        port = free_port()
         with tempfile.TemporaryDirectory() as tmp:
             bag = os.path.join(tmp, "node.bag")
             env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1", ROS_HOME=tmp,
@@ -140,8 +146,7 @@ class NodeBagTest(unittest.TestCase):
                 self.assertTrue(os.path.isfile(os.path.join(out, figure)), figure)
             with open(os.path.join(out, "summary.json")) as f:
                 events = json.load(f)["rollers"]["bowler"]["slip_to_roll"]
-        with open(CONFIG) as f:
-            bowler = yaml.safe_load(f)["bodies"]["bowler"]
+        bowler = load_config(CONFIG)["bodies"]["bowler"]
         # Any two slipping samples give the exact instant: a message the recorder missed does not matter.
         self.assertAlmostEqual(events[0]["t"], closed_form_slip_to_roll(bowler), delta=1e-9)
 

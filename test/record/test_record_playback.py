@@ -10,44 +10,44 @@
 
 Usage: test_record_playback.py SIMULATE_EXE SIM_NODE_EXE CONFIG.yaml   (with the package's devel space sourced)
 """
+import argparse
 import csv
 import math
 import os
-import socket
 import subprocess
 import sys
 import tempfile
 import time
 import unittest
+from dataclasses import dataclass
+from typing import Any, Dict, List, Tuple
 
 import rosbag
 import rosgraph
 import rospy
-import yaml
 from rosgraph_msgs.msg import Clock
 from rigid_body_sim.msg import RodState, RollerState
 
-SIMULATE, SIM_NODE, CONFIG = None, None, None
-ROD_FIELDS = ["t", "x", "y", "theta", "vx", "vy", "omega", "energy"]
-ROLLER_FIELDS = ["t", "x", "v", "theta", "omega", "mode", "friction", "normal", "energy"]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from sim_tools import Config, free_port, load_config, state_fields, wait_for, world_value  # noqa: E402
+
+States = Dict[str, List[Any]]
 
 
-def free_port():
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+@dataclass(frozen=True)
+class Tools:
+    """What the tests run, from the command line."""
+    simulate: str
+    sim_node: str
+    config: str
 
 
-def fields_of(msg):
-    return ROD_FIELDS if msg._type == "rigid_body_sim/RodState" else ROLLER_FIELDS
-
-
-def as_row(msg):
+def as_row(msg: Any) -> List[Any]:
     """A state message as the values of simulate's CSV row (numbers as floats, mode as text)."""
-    return [getattr(msg, f) for f in fields_of(msg)]
+    return [getattr(msg, f) for f in state_fields(msg)]
 
 
-def sim_stamp(t):
+def sim_stamp(t: float) -> Any:
     """The node's stamp for simulated time t: 1 ns + ros::Duration(t) (which rounds to the nearest ns)."""
     sec = math.floor(t)
     return rospy.Time(0, 1) + rospy.Duration(int(sec), int(math.floor((t - sec) * 1e9 + 0.5)))
@@ -56,25 +56,21 @@ def sim_stamp(t):
 class Master:
     """A roscore of its own on a free port, and this process as a rospy node on it."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.port = free_port()
         self.env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{self.port}")
         self.process = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env,
                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         os.environ["ROS_MASTER_URI"] = self.env["ROS_MASTER_URI"]
-        deadline = time.time() + 30
-        while not rosgraph.Master("/listener").is_online():
-            if time.time() > deadline:
-                raise RuntimeError("roscore did not come up")
-            time.sleep(0.2)
+        wait_for("roscore", rosgraph.Master("/listener").is_online, 30.0, period=0.2)
         if not rospy.core.is_initialized():
             rospy.init_node("listener", anonymous=True, disable_signals=True)
 
-    def run(self, args, timeout=120):
+    def run(self, args: List[str], timeout: float = 120) -> "subprocess.CompletedProcess[str]":
         return subprocess.run(args, env=self.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                               timeout=timeout)
 
-    def stop(self):
+    def stop(self) -> None:
         self.process.terminate()
         self.process.wait(timeout=20)
 
@@ -82,35 +78,38 @@ class Master:
 class Listener:
     """Every state message of every body, in arrival order (unbounded queues: nothing dropped here)."""
 
-    def __init__(self, config):
-        self.states = {name: [] for name in config["bodies"]}
+    def __init__(self, config: Config) -> None:
+        self.states: States = {name: [] for name in config["bodies"]}
         self.subs = [rospy.Subscriber(f"/sim/{name}/state",
                                       RodState if body["type"] == "rod" else RollerState,
                                       lambda msg, name=name: self.states[name].append(msg), queue_size=None)
                      for name, body in config["bodies"].items()]
 
-    def wait_connected(self, timeout=20):
-        deadline = time.time() + timeout
-        while any(sub.get_num_connections() == 0 for sub in self.subs):
-            if time.time() > deadline:
-                raise RuntimeError("no publisher of the state topics")
-            time.sleep(0.05)
+    def wait_connected(self, timeout: float = 20) -> None:
+        wait_for("a publisher of the state topics", lambda: all(sub.get_num_connections() for sub in self.subs),
+                 timeout)
 
-    def close(self):
+    def close(self) -> None:
         time.sleep(1.0)  # the last messages in flight
         for sub in self.subs:
             sub.unregister()
 
 
 class NodeOutput(unittest.TestCase):
+    tools: Tools  # set by main()
+    config: Config
+    publish_rate: float
+    tmp: str
+    csv: Dict[str, Tuple[List[str], List[List[Any]]]]
+    master: Master
+
     @classmethod
-    def setUpClass(cls):
-        with open(CONFIG) as f:
-            cls.config = yaml.safe_load(f)
-        cls.publish_rate = float(cls.config.get("publish_rate", 50.0))
+    def setUpClass(cls) -> None:
+        cls.config = load_config(cls.tools.config)
+        cls.publish_rate = float(world_value(cls.config, "publish_rate"))
         cls.tmp = tempfile.mkdtemp(prefix="rbs_record_")
         out = os.path.join(cls.tmp, "csv")
-        subprocess.run([SIMULATE, CONFIG, "--duration", "60", "--out-dir", out], check=True,
+        subprocess.run([cls.tools.simulate, cls.tools.config, "--duration", "60", "--out-dir", out], check=True,
                        stdout=subprocess.DEVNULL)
         cls.csv = {}
         for name in cls.config["bodies"]:
@@ -122,10 +121,10 @@ class NodeOutput(unittest.TestCase):
         cls.master = Master()
 
     @classmethod
-    def tearDownClass(cls):
+    def tearDownClass(cls) -> None:
         cls.master.stop()
 
-    def expect_every_sample(self, states, duration, what):
+    def expect_every_sample(self, states: States, duration: float, what: str) -> None:
         """Each body's states: every publishing instant up to duration exactly once, each equal to the CSV."""
         samples = int(round(duration * self.publish_rate))
         for name, msgs in states.items():
@@ -134,20 +133,20 @@ class NodeOutput(unittest.TestCase):
             self.assertEqual(ts, [j / self.publish_rate for j in range(samples + 1)], f"{what}: {name}")
             header, rows = self.csv[name]
             for row, msg in zip(rows, msgs):
-                self.assertEqual(header, fields_of(msg), name)
+                self.assertEqual(header, state_fields(msg), name)
                 self.assertEqual(row, as_row(msg), f"{what}: {name} at t = {msg.t}")
 
-    def test_as_fast_as_possible_every_state_once(self):
+    def test_as_fast_as_possible_every_state_once(self) -> None:
         listener = Listener(self.config)
-        clocks = []
+        clocks: List[Any] = []
         clock_sub = rospy.Subscriber("/clock", Clock, lambda msg: clocks.append(msg.clock), queue_size=None)
-        self.master.run(["rosparam", "load", CONFIG, "/sim"])
-        node = subprocess.Popen([SIM_NODE, "__name:=sim", "_real_time_factor:=0", "_duration:=60", "_start_delay:=2",
-                                 "_publish_clock:=true"],
+        self.master.run(["rosparam", "load", self.tools.config, "/sim"])
+        node = subprocess.Popen([self.tools.sim_node, "__name:=sim", "_real_time_factor:=0", "_duration:=60",
+                                 "_start_delay:=2", "_publish_clock:=true"],
                                 env=self.master.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         try:
             listener.wait_connected()
-        except RuntimeError:
+        except TimeoutError:
             node.kill()
             raise AssertionError("no state publisher; the node said:\n" + node.communicate()[0])
         log, _ = node.communicate(timeout=120)
@@ -160,15 +159,15 @@ class NodeOutput(unittest.TestCase):
         self.assertTrue(all(b > a for a, b in zip(clocks, clocks[1:])), "/clock not strictly increasing")
         self.assertEqual(clocks[-1], sim_stamp(60.0))
 
-    def test_recording_and_playback(self):
+    def test_recording_and_playback(self) -> None:
         duration = 15.0
         bag_path = os.path.join(self.tmp, "run.bag")
         launch = self.master.run(
-            ["roslaunch", "rigid_body_sim", "sim.launch", f"config:={CONFIG}", "record:=true", f"bag:={bag_path}",
-             "use_sim_time:=true", "real_time_factor:=5", f"duration:={duration:g}"])
+            ["roslaunch", "rigid_body_sim", "sim.launch", f"config:={self.tools.config}", "record:=true",
+             f"bag:={bag_path}", "use_sim_time:=true", "real_time_factor:=5", f"duration:={duration:g}"])
         self.assertTrue(os.path.exists(bag_path), "no bag; roslaunch said:\n" + launch.stdout[-3000:])
         self.assertFalse(os.path.exists(bag_path + ".active"), "the recorder did not close the bag")
-        recorded = {}
+        recorded: States = {}
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 recorded.setdefault(topic, []).append(msg)
@@ -192,8 +191,15 @@ class NodeOutput(unittest.TestCase):
                              f"{name} played back; rosbag play said:\n" + play.stdout[-2000:])
 
 
+def main() -> None:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("simulate", help="the simulate executable")
+    parser.add_argument("sim_node", help="the sim_node executable")
+    parser.add_argument("config", help="the config both run")
+    args, unittest_args = parser.parse_known_args()
+    NodeOutput.tools = Tools(args.simulate, args.sim_node, os.path.abspath(args.config))
+    unittest.main(argv=sys.argv[:1] + unittest_args, verbosity=2, warnings="ignore")
+
+
 if __name__ == "__main__":
-    if len(sys.argv) < 4:
-        sys.exit(__doc__)
-    SIMULATE, SIM_NODE, CONFIG = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
-    unittest.main(argv=sys.argv[:1] + sys.argv[4:], verbosity=2, warnings="ignore")
+    main()

@@ -1,0 +1,162 @@
+"""What the Python tools of rigid_body_sim share: a config's values with the documented defaults, the
+state messages of a bag, the rod's contact with the floor, and waiting on processes and ROS masters.
+
+No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
+message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
+The defaults below are the node's and simulate's (README, Configuration); test/scripts/test_sim_tools.py
+checks them against the .cfg files (themselves checked against the core) and against simulate."""
+from __future__ import annotations
+
+import math
+import socket
+import time
+import xmlrpc.client
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Union
+
+import yaml
+
+Config = Dict[str, Any]
+
+WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world"}
+ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "integrator": "euler_cromer",
+                                "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
+ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
+                                   "incline_length": 5.0, "mu_s": 0.3, "mu_d": 0.2, "x0": 0.0, "v0": 0.0,
+                                   "theta0": 0.0, "omega0": 0.0}
+# c = I / (M R^2) of the named shapes.
+INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
+                                     "spherical_shell": 2.0 / 3.0}
+
+
+# --- configs ------------------------------------------------------------------------------------------
+def load_config(path: str) -> Config:
+    """A config file as written (defaults are filled in by world_value and body_spec)."""
+    with open(path) as f:
+        config: Config = yaml.safe_load(f)
+    return config
+
+
+def world_value(config: Config, key: str) -> Any:
+    """A world key's value, or its default."""
+    return config.get(key, WORLD_DEFAULTS[key])
+
+
+def steps_per_sample(config: Config) -> int:
+    return round(float(world_value(config, "rate")) / float(world_value(config, "publish_rate")))
+
+
+@dataclass(frozen=True)
+class RodSpec:
+    name: str
+    length: float
+    mass: float
+    k: float
+
+
+@dataclass(frozen=True)
+class RollerSpec:
+    name: str
+    shape: str  # a named shape, or "custom"
+    c: float  # I / (M R^2)
+    radius: float
+    mass: float
+    angle: float  # incline_angle (rad)
+    slope: float  # incline_length (m)
+    mu_s: float
+    mu_d: float
+
+    def tan_critical(self) -> float:
+        """tan(phi_c) = mu_s (1 + c) / c: the steepest slope on which it can roll without slipping."""
+        return self.mu_s * (1 + self.c) / self.c
+
+    def rolls(self) -> bool:
+        return math.tan(self.angle) <= self.tan_critical()
+
+
+BodySpec = Union[RodSpec, RollerSpec]
+
+
+def body_spec(config: Config, name: str) -> BodySpec:
+    """One body's values, the documented defaults where the config leaves a key out."""
+    body = config["bodies"][name]
+    if body.get("type") == "rod":
+        rod = {**ROD_DEFAULTS, **body}
+        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]))
+    roller = {**ROLLER_DEFAULTS, **body}
+    shape = body.get("shape", "custom" if "inertia_factor" in body else ROLLER_DEFAULTS["shape"])
+    c = float(body.get("inertia_factor", INERTIA_FACTORS.get(shape, math.nan)))
+    return RollerSpec(name, shape, c, float(roller["radius"]), float(roller["mass"]),
+                      float(roller["incline_angle"]), float(roller["incline_length"]), float(roller["mu_s"]),
+                      float(roller["mu_d"]))
+
+
+def body_specs(config: Config) -> List[BodySpec]:
+    return [body_spec(config, name) for name in config["bodies"]]
+
+
+# --- runs ---------------------------------------------------------------------------------------------
+def state_fields(msg: Any) -> List[str]:
+    """The fields of a state message after its header: t, then the CSV's columns."""
+    return [field for field in msg.__slots__ if field != "header"]
+
+
+def body_of_state_topic(topic: str) -> Union[str, None]:
+    """`rod` for /sim/rod/state; None for any other topic."""
+    parts = topic.strip("/").split("/")
+    return parts[1] if len(parts) == 3 and parts[0] == "sim" and parts[2] == "state" else None
+
+
+def read_states(bag_path: str) -> Dict[str, List[Any]]:
+    """{body: its state messages in the bag's order} from the topics /sim/<body>/state."""
+    import rosbag  # only for bags: a run of CSV files needs no ROS
+
+    states: Dict[str, List[Any]] = {}
+    with rosbag.Bag(bag_path) as bag:
+        for topic, msg, _ in bag.read_messages():
+            body = body_of_state_topic(topic)
+            if body is not None:
+                states.setdefault(body, []).append(msg)
+    return states
+
+
+def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
+    """An end of the rod below the floor (the floor's spring pushes it)."""
+    half = 0.5 * length * math.sin(theta)
+    return y + half < 0.0 or y - half < 0.0
+
+
+# --- processes and ROS --------------------------------------------------------------------------------
+def wait_for(what: str, predicate: Callable[[], bool], timeout: float, period: float = 0.05) -> None:
+    """Until predicate() holds; TimeoutError naming `what` after `timeout` seconds."""
+    deadline = time.monotonic() + timeout
+    while not predicate():
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"timed out after {timeout:g} s waiting for {what}")
+        time.sleep(period)
+
+
+def free_port() -> int:
+    """A TCP port that is free now on the loopback (for a master of one's own)."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port: int = s.getsockname()[1]
+        return port
+
+
+def node_pid(node: str, caller: str) -> int:
+    """The process id of a running ROS node, from its own XML-RPC server."""
+    import rosgraph
+
+    uri = rosgraph.Master(caller).lookupNode(node)
+    reply: Any = xmlrpc.client.ServerProxy(uri).getPid(caller)  # (code, message, pid)
+    return int(reply[2])
+
+
+def resident_kib(pid: int) -> int:
+    """Resident memory of a process (kB), -1 when it has none to report."""
+    with open(f"/proc/{pid}/status") as status:
+        for line in status:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1])
+    return -1

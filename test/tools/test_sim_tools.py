@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""scripts/sim_tools.py against the C++ it describes: its defaults are the .cfg files' (which test_reconfigure
+checks against the core) and what simulate does with a config that leaves every key out; its shape factors
+are the ones the core's rolling friction follows; a CSV header and a state message name the same fields.
+Usage: test_sim_tools.py SIMULATE_EXE   (with the package's devel space sourced, for the .cfg modules)"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from typing import Dict, List, Tuple
+
+import rosbag
+from rigid_body_sim.cfg import RodReconfigureConfig, RollerReconfigureConfig
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+import sim_tools  # noqa: E402  (the path above first)
+
+
+def csv_rows(path: str) -> List[Dict[str, str]]:
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        return [dict(zip(header, line.strip().split(","))) for line in f]
+
+
+class SimulateCase(unittest.TestCase):
+    simulate: str  # set by main()
+
+    def setUp(self) -> None:
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self) -> None:
+        self.tmp.cleanup()
+
+    def run_simulate(self, config: str, *args: str) -> Tuple[str, str]:
+        """Runs simulate on a config text in a folder of its own (its working folder); returns the folder and
+        what simulate printed."""
+        folder = tempfile.mkdtemp(dir=self.tmp.name)
+        with open(os.path.join(folder, "config.yaml"), "w") as f:
+            f.write(config)
+        result = subprocess.run([self.simulate, "config.yaml", *args], cwd=folder, check=True, capture_output=True,
+                                text=True)
+        return folder, result.stdout
+
+
+class Defaults(SimulateCase):
+    def test_body_defaults_are_the_cfg_defaults(self) -> None:
+        for defaults, cfg in ((sim_tools.ROD_DEFAULTS, RodReconfigureConfig.defaults),
+                              (sim_tools.ROLLER_DEFAULTS, RollerReconfigureConfig.defaults)):
+            for key, value in defaults.items():
+                self.assertEqual(value, cfg[key], key)
+        self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.ROLLER_DEFAULTS["shape"]],
+                         RollerReconfigureConfig.defaults["inertia_factor"])
+
+    def test_world_defaults_are_what_simulate_does(self) -> None:
+        folder, summary = self.run_simulate("bodies: {rod: {type: rod}}", "--duration", "1", "--bag", "run.bag")
+        self.assertIn(f"in {sim_tools.WORLD_DEFAULTS['rate']:.0f} steps", summary)  # a simulated second
+        rows = csv_rows(os.path.join(folder, "rod.csv"))
+        self.assertEqual(len(rows) - 1, sim_tools.WORLD_DEFAULTS["publish_rate"])  # samples in a second
+        self.assertEqual(float(rows[1]["t"]), 1 / sim_tools.WORLD_DEFAULTS["publish_rate"])
+        rod = sim_tools.ROD_DEFAULTS  # E = M g y0 + M vx0^2 / 2 at t = 0
+        gravity = (float(rows[0]["energy"]) - 0.5 * rod["mass"] * rod["vx0"] ** 2) / (rod["mass"] * rod["y0"])
+        self.assertAlmostEqual(gravity, sim_tools.WORLD_DEFAULTS["gravity"], delta=1e-12)
+        with rosbag.Bag(os.path.join(folder, "run.bag")) as bag:
+            _, tf_static, _ = next(bag.read_messages(topics=["/tf_static"]))
+        self.assertEqual(tf_static.transforms[0].header.frame_id, sim_tools.WORLD_DEFAULTS["world_frame"])
+
+    def test_shape_factors_are_the_cores(self) -> None:
+        """Rolling, friction on the body is -M g sin(phi) c / (1 + c) and the normal force M g cos(phi), so
+        r = friction / (normal tan(phi)) gives c = -r / (1 + r)."""
+        for shape, c in sim_tools.INERTIA_FACTORS.items():
+            config = f"bodies: {{b: {{type: roller, shape: {shape}, incline_angle: 0.1}}}}"
+            folder, _ = self.run_simulate(config, "--duration", "0")
+            row = csv_rows(os.path.join(folder, "b.csv"))[0]
+            self.assertEqual(row["mode"], "rolling", shape)
+            r = float(row["friction"]) / (float(row["normal"]) * math.tan(0.1))
+            self.assertAlmostEqual(-r / (1 + r), c, delta=1e-12, msg=shape)
+
+
+class Runs(SimulateCase):
+    def test_the_csv_header_names_the_state_messages_fields(self) -> None:
+        folder, _ = self.run_simulate("bodies: {rod: {type: rod}, ball: {type: roller}}", "--duration", "0.1",
+                                      "--bag", "run.bag")
+        states = sim_tools.read_states(os.path.join(folder, "run.bag"))
+        self.assertEqual(sorted(states), ["ball", "rod"])
+        for name, msgs in states.items():
+            with open(os.path.join(folder, f"{name}.csv")) as f:
+                self.assertEqual(f.readline().strip().split(","), sim_tools.state_fields(msgs[0]), name)
+
+    def test_a_rod_end_is_below_the_floor_when_its_height_is_negative(self) -> None:
+        self.assertFalse(sim_tools.rod_end_below_floor(0.6, 1.0, 1.0))
+        self.assertTrue(sim_tools.rod_end_below_floor(0.4, math.pi / 2, 1.0))
+        self.assertTrue(sim_tools.rod_end_below_floor(0.4, -math.pi / 2, 1.0))
+
+    def test_body_spec_fills_in_the_defaults(self) -> None:
+        config = {"bodies": {"rod": {"type": "rod", "k": 5.0}, "ring": {"type": "roller", "shape": "ring"},
+                             "odd": {"type": "roller", "inertia_factor": 0.3}}}
+        rod, ring, odd = sim_tools.body_specs(config)
+        self.assertEqual(rod, sim_tools.RodSpec("rod", 1.0, 0.5, 5.0))
+        assert isinstance(ring, sim_tools.RollerSpec) and isinstance(odd, sim_tools.RollerSpec)
+        self.assertEqual((ring.c, ring.radius, ring.slope), (1.0, 0.1, 5.0))
+        self.assertEqual((odd.shape, odd.c), ("custom", 0.3))
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("simulate", help="the simulate executable")
+    args, unittest_args = parser.parse_known_args()
+    SimulateCase.simulate = os.path.abspath(args.simulate)
+    unittest.main(argv=sys.argv[:1] + unittest_args, verbosity=2)
+
+
+if __name__ == "__main__":
+    main()
