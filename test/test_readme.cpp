@@ -1,0 +1,96 @@
+// The README's tables of configuration keys against the core: every numeric key of a body, and the
+// world's numbers, stand in their table with the core's default and the core's range, so that the one
+// place where a user reads them cannot drift from the code.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/parameters.h"
+#include "test_util.h"
+
+using namespace rigid_body_sim;
+using namespace rigid_body_sim::test;
+
+namespace {
+
+struct Cell {
+  std::string default_value;
+  std::string allowed;
+};
+
+std::string trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(' ');
+  const auto last = text.find_last_not_of(' ');
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+// The rows of the first table after the line that starts with `heading`: key -> (default, allowed). A
+// row may list several keys (`x0`, `y0`) with as many defaults.
+std::map<std::string, Cell> tableAfter(const std::string& heading) {
+  std::map<std::string, Cell> rows;
+  std::istringstream readme(slurp(std::string(RBS_README)));
+  std::string line;
+  while (std::getline(readme, line) && line.rfind(heading, 0) != 0) {
+  }
+  while (std::getline(readme, line) && line.rfind("|", 0) != 0) {
+  }
+  for (; !line.empty() && line[0] == '|'; std::getline(readme, line)) {
+    const auto cells = split(line, '|');  // "", keys, default, allowed, ""
+    if (cells.size() < 4 || cells[1].find('`') == std::string::npos) continue;
+    const auto keys = split(cells[1], ',');
+    const auto defaults = split(cells[2], ',');
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const std::string key = trimmed(keys[i]);
+      const std::string value = i < defaults.size() ? trimmed(defaults[i]) : "";
+      rows[key.substr(1, key.size() - 2)] = {value, cells[3]};
+    }
+  }
+  return rows;
+}
+
+// "(0, 1e+12]" of "a finite number in (0, 1e+12]".
+std::string interval(const Range& range) {
+  const std::string text = range.describe();
+  return text.substr(text.find_first_of("[("));
+}
+
+template <class Config>
+void expectKeysDocumented(const std::string& heading, const std::vector<NumericKey<Config>>& keys) {
+  const auto rows = tableAfter(heading);
+  Config defaults;
+  for (const auto& key : keys) {
+    SCOPED_TRACE(heading + " " + key.name);
+    const auto row = rows.find(key.name);
+    ASSERT_NE(row, rows.end()) << "no row";
+    EXPECT_EQ(row->second.default_value, formatNumber(key.field(defaults)));
+    EXPECT_NE(row->second.allowed.find(interval(key.range)), std::string::npos) << row->second.allowed;
+  }
+  EXPECT_EQ(rows.size(), keys.size()) << heading << ": a row for a key the core does not have";
+}
+
+}  // namespace
+
+TEST(Readme, RodKeysAreTheCores) { expectKeysDocumented("Rod (`type: rod`", rodNumericKeys()); }
+
+TEST(Readme, RollerKeysAreTheCores) { expectKeysDocumented("Roller (`type: roller`", rollerNumericKeys()); }
+
+TEST(Readme, WorldNumbersAreTheCores) {
+  const auto rows = tableAfter("## Configuration");
+  const WorldConfig defaults;
+  const std::map<std::string, std::pair<double, Range>> world = {
+      {"rate", {defaults.rate, rateRange()}},
+      {"publish_rate", {defaults.publish_rate, publishRateRange()}},
+      {"gravity", {defaults.gravity, gravityRange()}}};
+  for (const auto& [name, expected] : world) {
+    SCOPED_TRACE(name);
+    ASSERT_EQ(rows.count(name), 1u);
+    EXPECT_EQ(rows.at(name).default_value, formatNumber(expected.first));
+    EXPECT_NE(rows.at(name).allowed.find(interval(expected.second)), std::string::npos);
+  }
+  EXPECT_EQ(rows.at("world_frame").default_value, "`" + defaults.world_frame + "`");
+  for (const auto& key : worldKeys()) EXPECT_EQ(rows.count(key), 1u) << key;
+}
