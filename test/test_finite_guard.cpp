@@ -7,6 +7,7 @@
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
+#include "test_util.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -154,12 +155,9 @@ TEST(FiniteGuard, CatchesTheDegenerateRodOfValidInput) {
   WorldConfig config;
   config.bodies.push_back({"tiny", degenerateRod()});
   config.bodies.push_back({"sphere", RollerConfig{}});
-  try {
-    validate(config);
-  } catch (const ConfigError& error) {
-    GTEST_SKIP() << "validation now refuses the degenerate rod (" << error.what()
-                 << "): no known path to NaN through valid input is left; the tests above cover the guard";
-  }
+  // guard.test runs the node on this rod (test/faults/guard.yaml): should validation ever refuse it, that
+  // test needs another path to NaN through valid input, or goes, the tests above covering the guard.
+  ASSERT_EQ(test::refusalOf([&] { validate(config); }), "");
   World world(config);
   FiniteGuard guard(world.bodies());
   const std::vector<double> initial = stateOf(world.bodies()[0]);
