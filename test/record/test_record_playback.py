@@ -14,6 +14,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -123,6 +124,7 @@ class NodeOutput(unittest.TestCase):
     @classmethod
     def tearDownClass(cls) -> None:
         cls.master.stop()
+        shutil.rmtree(cls.tmp, ignore_errors=True)
 
     def expect_every_sample(self, states: States, duration: float, what: str) -> None:
         """Each body's states: every publishing instant up to duration exactly once, each equal to the CSV."""
