@@ -1,9 +1,10 @@
 """What the Python tools of rigid_body_sim share: a config's values with the documented defaults, the
-state messages of a bag, the rod's contact with the floor, and waiting on processes and ROS masters.
+state messages of a bag, the rod's contact with the floor, the columns of a sweep, and waiting on
+processes and ROS masters.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
-The defaults below are the node's and simulate's (README, Configuration); test/scripts/test_sim_tools.py
+The defaults below are the node's and simulate's (README, Configuration); test/tools/test_sim_tools.py
 checks them against the .cfg files (themselves checked against the core) and against simulate."""
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import socket
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Union
+from typing import Any, Callable, Dict, List, Tuple, Union
 
 import yaml
 
@@ -27,6 +28,22 @@ ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0
 # c = I / (M R^2) of the named shapes.
 INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
                                      "spherical_shell": 2.0 / 3.0}
+# The units of the numeric keys by body type, for axis labels ("" for a pure number), as the .cfg files'
+# descriptions give them.
+KEY_UNITS: Dict[str, Dict[str, str]] = {
+    "rod": {"length": "m", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m", "vx0": "m/s", "vy0": "m/s",
+            "theta0": "rad", "omega0": "rad/s"},
+    "roller": {"inertia_factor": "", "radius": "m", "mass": "kg", "incline_angle": "rad", "incline_length": "m",
+               "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
+}
+# A sweep's row gives every body's final state and then what the run adds about it, starting with this
+# column (README, Offline tool).
+FIRST_SWEEP_RESULT = "energy_drift"
+# Words and units for the columns a sweep adds, for axis labels (a column not named here is shown by its
+# own name, without a unit).
+SWEEP_RESULT_LABELS: Dict[str, Tuple[str, str]] = {"energy_drift": ("energy drift", "J"),
+                                                   "bounces": ("bounces", ""),
+                                                   "slip_to_roll": ("slip-to-roll time", "s")}
 
 
 # --- configs ------------------------------------------------------------------------------------------
@@ -77,10 +94,15 @@ class RollerSpec:
 BodySpec = Union[RodSpec, RollerSpec]
 
 
+def body_type(config: Config, name: str) -> str:
+    """`rod` or `roller` (a body without a type is refused by the config loader before any run)."""
+    return "rod" if config["bodies"][name].get("type") == "rod" else "roller"
+
+
 def body_spec(config: Config, name: str) -> BodySpec:
     """One body's values, the documented defaults where the config leaves a key out."""
     body = config["bodies"][name]
-    if body.get("type") == "rod":
+    if body_type(config, name) == "rod":
         rod = {**ROD_DEFAULTS, **body}
         return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]))
     roller = {**ROLLER_DEFAULTS, **body}
@@ -124,6 +146,44 @@ def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
     """An end of the rod below the floor (the floor's spring pushes it)."""
     half = 0.5 * length * math.sin(theta)
     return y + half < 0.0 or y - half < 0.0
+
+
+# --- sweeps -------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class SweepColumns:
+    """A sweep's header: `variant`, the swept BODY.KEYs, `t`, then BODY.FIELD for every body."""
+    keys: List[str]  # the swept BODY.KEYs, in the order of the --sweep options
+    fields: Dict[str, List[str]]  # body -> its fields, in the header's order
+
+    def results(self, body: str) -> List[str]:
+        """The fields the sweep adds after the body's final state."""
+        fields = self.fields[body]
+        return fields[fields.index(FIRST_SWEEP_RESULT):] if FIRST_SWEEP_RESULT in fields else []
+
+
+def is_sweep_header(header: List[str]) -> bool:
+    return len(header) > 1 and header[0] == "variant" and "t" in header
+
+
+def sweep_columns(header: List[str]) -> SweepColumns:
+    """The swept keys and the bodies' fields of a sweep's header (is_sweep_header must hold)."""
+    end_of_keys = header.index("t")
+    fields: Dict[str, List[str]] = {}
+    for column in header[end_of_keys + 1:]:
+        body, _, field = column.partition(".")
+        fields.setdefault(body, []).append(field)
+    return SweepColumns(header[1:end_of_keys], fields)
+
+
+def key_unit(config: Config, swept: str) -> str:
+    """The unit of a swept BODY.KEY ("" for a pure number or a key this module does not know)."""
+    body, _, key = swept.partition(".")
+    return KEY_UNITS[body_type(config, body)].get(key, "") if body in config["bodies"] else ""
+
+
+def labelled(words: str, unit: str) -> str:
+    """An axis label: `words (unit)`, or the words alone for a pure number."""
+    return f"{words} ({unit})" if unit else words
 
 
 # --- processes and ROS --------------------------------------------------------------------------------

@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
-"""scripts/sim_tools.py against the C++ it describes: its defaults are the .cfg files' (which test_reconfigure
-checks against the core) and what simulate does with a config that leaves every key out; its shape factors
-are the ones the core's rolling friction follows; a CSV header and a state message name the same fields.
+"""scripts/sim_tools.py against the C++ it describes: its defaults and units are the .cfg files' (which
+test_reconfigure checks against the core) and what simulate does with a config that leaves every key out; its
+shape factors are the ones the core's rolling friction follows; a CSV header and a state message name the same
+fields; it reads a sweep's header as simulate writes it, and has words for every column a sweep adds.
 Usage: test_sim_tools.py SIMULATE_EXE   (with the package's devel space sourced, for the .cfg modules)"""
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -53,6 +55,17 @@ class Defaults(SimulateCase):
                 self.assertEqual(value, cfg[key], key)
         self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.ROLLER_DEFAULTS["shape"]],
                          RollerReconfigureConfig.defaults["inertia_factor"])
+
+    def test_key_units_are_the_cfg_descriptions(self) -> None:
+        """A unit is written `(unit)` in the description; a pure number's description names none of them."""
+        units = {unit for table in sim_tools.KEY_UNITS.values() for unit in table.values() if unit}
+        for kind, cfg in (("rod", RodReconfigureConfig), ("roller", RollerReconfigureConfig)):
+            numeric = {p["name"]: p["description"] for p in cfg.config_description["parameters"]
+                       if p["type"] == "double"}
+            self.assertEqual(sorted(sim_tools.KEY_UNITS[kind]), sorted(numeric), kind)
+            for key, unit in sim_tools.KEY_UNITS[kind].items():
+                named = set(re.findall(r"\(([^)]*)\)", numeric[key])) & units
+                self.assertEqual(named, {unit} if unit else set(), f"{kind}.{key}: {numeric[key]}")
 
     def test_world_defaults_are_what_simulate_does(self) -> None:
         folder, summary = self.run_simulate("bodies: {rod: {type: rod}}", "--duration", "1", "--bag", "run.bag")
@@ -102,6 +115,42 @@ class Runs(SimulateCase):
         assert isinstance(ring, sim_tools.RollerSpec) and isinstance(odd, sim_tools.RollerSpec)
         self.assertEqual((ring.c, ring.radius, ring.slope), (1.0, 0.1, 5.0))
         self.assertEqual((odd.shape, odd.c), ("custom", 0.3))
+
+
+class Sweeps(SimulateCase):
+    def test_a_sweep_header_is_read_as_simulate_writes_it(self) -> None:
+        config = "bodies: {rod: {type: rod}, ball: {type: roller}}"
+        folder, _ = self.run_simulate(config, "--duration", "0.1", "--sweep", "ball.v0=0:1:2",
+                                      "--sweep", "rod.k=10:20:2")
+        with open(os.path.join(folder, "sweep.csv")) as f:
+            header = f.readline().strip().split(",")
+        states, _ = self.run_simulate(config, "--duration", "0.1")
+        self.assertTrue(sim_tools.is_sweep_header(header))
+        columns = sim_tools.sweep_columns(header)
+        self.assertEqual(columns.keys, ["ball.v0", "rod.k"])
+        self.assertEqual(sorted(columns.fields), ["ball", "rod"])
+        for body in columns.fields:
+            with open(os.path.join(states, f"{body}.csv")) as f:
+                state = f.readline().strip().split(",")[1:]  # after t
+            self.assertEqual(columns.fields[body][:len(state)], state, body)
+            added = columns.fields[body][len(state):]
+            self.assertEqual(columns.results(body), added, body)
+            self.assertEqual(added[0], sim_tools.FIRST_SWEEP_RESULT, body)
+            for field in added:
+                self.assertIn(field, sim_tools.SWEEP_RESULT_LABELS, f"{body}.{field}")
+
+    def test_a_run_header_is_no_sweep_header(self) -> None:
+        folder, _ = self.run_simulate("bodies: {rod: {type: rod}}", "--duration", "0.1")
+        with open(os.path.join(folder, "rod.csv")) as f:
+            self.assertFalse(sim_tools.is_sweep_header(f.readline().strip().split(",")))
+
+    def test_key_unit_names_the_unit_of_a_swept_key(self) -> None:
+        config = {"bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}}
+        self.assertEqual(sim_tools.key_unit(config, "rod.k"), "N/m")
+        self.assertEqual(sim_tools.key_unit(config, "ball.mu_s"), "")
+        self.assertEqual(sim_tools.key_unit(config, "ball.incline_angle"), "rad")
+        self.assertEqual(sim_tools.labelled("energy drift", "J"), "energy drift (J)")
+        self.assertEqual(sim_tools.labelled("bounces", ""), "bounces")
 
 
 def main() -> None:
