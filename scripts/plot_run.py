@@ -1,33 +1,44 @@
 #!/usr/bin/env python3
 """Plots of a rigid_body_sim run, from a bag of the node (sim.launch record:=true, or simulate --bag)
-or from a folder of simulate's CSV files (simulate CONFIG --out-dir DIR).
+or from a folder of simulate's CSV files (simulate CONFIG --out-dir DIR), and of a sweep
+(simulate CONFIG --sweep ... --out-dir DIR: its sweep.csv, or DIR).
 
-  plot_run.py CONFIG.yaml RUN --out-dir DIR [--prefix NAME_] [--figures rod,rollers,race,energy]
+  plot_run.py CONFIG.yaml RUN --out-dir DIR [--prefix NAME_] [--figures rod,rollers,race,energy,sweep]
 
-RUN is a .bag file or a folder of <body>.csv files; CONFIG is the run's config (it gives each rod's
-length, each roller's radius, shape and slope). Writes, for what the run holds:
+RUN is a .bag file, a folder of <body>.csv files, or a sweep (a sweep.csv, or the folder holding it);
+CONFIG is the run's config (it gives each rod's length, each roller's radius, shape and slope, and the
+bodies' types). Writes, for what the run holds:
   <prefix>rod.png      the path of each rod's centre with the rod drawn every 0.1 s (the text's Fig. 16.17)
   <prefix>rollers.png  per roller: x(t), v(t) and -omega R(t), slipping shaded, slip-to-roll instants marked
   <prefix>race.png     rollers that share a slope (same angle and length), first lap: who is down first
   <prefix>energy.png   energy against time of every body, rod contacts shaded
+  <prefix>sweep_<body>.png  for a sweep, per body with a swept key: each outcome (what the sweep adds after
+                       the final state: energy drift, bounces or slip-to-roll time; and a final state
+                       that is a text: the mode) against the swept keys, as lines for one key and as heat
+                       maps for two (the first key across, the second up); more than two are refused
   <prefix>summary.json the numbers behind them (also printed): slip-to-roll instants, finish times,
-                       critical angles, the rods' energy swing in contact
+                       critical angles, the rods' energy swing in contact; for a sweep, per outcome the
+                       values drawn, their range and where it is reached, and how often each value occurs
+                       (whole numbers and texts; `empty`: variants without a value, e.g. never rolling)
 The slip-to-roll instant comes from the data alone: while a body slips its slip speed u = v + omega R
-is linear in time, so the line through the last two slipping samples crosses zero at the instant."""
+is linear in time, so the line through the last two slipping samples crosses zero at the instant.
+The swept keys and the outcomes are read from the sweep's header (sim_tools.sweep_columns)."""
 import argparse
 import io
 import json
 import math
 import os
 import sys
-from typing import Any, Callable, Dict, List, Optional, Tuple
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, List, Optional, Set, Tuple
 
 import matplotlib
 import numpy as np
 from numpy.typing import NDArray
 
-from sim_tools import (BodySpec, Config, RodSpec, RollerSpec, body_spec, load_config, read_states,
-                       rod_end_below_floor, state_fields)
+from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec, SweepColumns, body_spec,
+                       is_sweep_header, key_unit, labelled, load_config, read_states, rod_end_below_floor,
+                       state_fields, sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
@@ -66,6 +77,8 @@ def load_bag(path: str) -> Run:
 
 def load_run(path: str, config: Config) -> Run:
     """The run's bodies in the config's order."""
+    if not path.endswith(".bag") and not os.path.isdir(path):
+        sys.exit(f"plot_run: {path} is not a .bag, a folder of CSV files or a sweep")
     run = load_bag(path) if path.endswith(".bag") else load_csv_folder(path)
     if not run:
         sys.exit(f"plot_run: no body states in {path} (a .bag with /sim/<body>/state or a folder of CSV files)")
@@ -327,6 +340,279 @@ def plot_energy(run: Run, specs: Specs, path: str) -> None:
     save(fig, path)
 
 
+# --- sweeps ----------------------------------------------------------------------------------------
+# Large type: the sweep figures are shown on projectors.
+PROJECTOR = {"font.size": 15, "axes.titlesize": 16, "axes.labelsize": 16, "xtick.labelsize": 14,
+             "ytick.labelsize": 14, "legend.fontsize": 13, "figure.titlesize": 17}
+MISSING_COLOUR = "0.75"  # heat-map cells and marks of variants without a value (slip-to-roll: never)
+MISSING_LABEL = "no value"
+
+
+@dataclass(frozen=True)
+class Sweep:
+    path: str
+    columns: SweepColumns
+    values: Dict[str, Array]  # column -> numbers (NaN where empty), or texts if any value is not a number
+
+    def swept_bodies(self) -> List[str]:
+        """The bodies with a swept key, in the order of the keys."""
+        return list(dict.fromkeys(key.partition(".")[0] for key in self.columns.keys))
+
+    def outcomes(self, body: str) -> List[str]:
+        """What the sweep adds about the body, and its final state's texts (a roller's mode), in header order."""
+        results = self.columns.results(body)
+        return [field for field in self.columns.fields[body]
+                if field in results or self.values[f"{body}.{field}"].dtype.kind == "U"]
+
+
+def sweep_file(path: str) -> Optional[str]:
+    """The sweep file RUN names (a sweep.csv, or a folder holding one), None if RUN is not a sweep."""
+    candidate = path if path.endswith(".csv") else os.path.join(path, "sweep.csv")
+    if not os.path.isfile(candidate):
+        return None
+    with open(candidate) as f:
+        return candidate if is_sweep_header(f.readline().strip().split(",")) else None
+
+
+def column_values(texts: List[str]) -> Array:
+    """Numbers (NaN where empty), or the texts if any is not a number."""
+    try:
+        return np.array([float(text) if text else math.nan for text in texts])
+    except ValueError:
+        return np.array(texts)
+
+
+def load_sweep(path: str, config: Config) -> Sweep:
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        rows = [line.rstrip("\n").split(",") for line in f if line.strip()]
+    if not rows:
+        sys.exit(f"plot_run: {path} has a header and no variant")
+    columns = sweep_columns(header)
+    unknown = sorted(set(columns.fields) - set(config["bodies"]))
+    if unknown:
+        sys.exit(f"plot_run: bodies {', '.join(unknown)} of {path} are not in the config")
+    if not 1 <= len(columns.keys) <= 2:
+        sys.exit(f"plot_run: {path} sweeps {len(columns.keys)} keys ({', '.join(columns.keys)}); a figure shows "
+                 f"one swept key (lines) or two (heat maps)")
+    return Sweep(path, columns, {name: column_values([row[i] for row in rows]) for i, name in enumerate(header)})
+
+
+def outcome_label(sweep: Sweep, column: str) -> str:
+    field = column.partition(".")[2]
+    if sweep.values[column].dtype.kind == "U":
+        return f"final {field}"
+    words, unit = SWEEP_RESULT_LABELS.get(field, (field.replace("_", " "), ""))
+    return labelled(words, unit)
+
+
+def json_number(value: Any) -> Any:
+    """A number for JSON (None where the sweep has no value), or the text as it is."""
+    if isinstance(value, str):
+        return value
+    return None if math.isnan(value) else float(value)
+
+
+def at(sweep: Sweep, row: int) -> Dict[str, float]:
+    """The swept keys' values of a row."""
+    return {key: float(sweep.values[key][row]) for key in sweep.columns.keys}
+
+
+def whole_numbers(values: Array) -> bool:
+    return bool(len(values)) and bool(np.all(values == np.round(values)))
+
+
+def outcome_stats(sweep: Sweep, column: str) -> Dict[str, Any]:
+    """Range of a numeric outcome and where it is reached (the first such variant), the variants without a
+    value; how often each value occurs for whole numbers and texts."""
+    values = sweep.values[column]
+    if values.dtype.kind == "U":
+        texts, counts = np.unique(values, return_counts=True)
+        return {"counts": {str(text): int(n) for text, n in zip(texts, counts)}}
+    have = np.flatnonzero(~np.isnan(values))
+    stats: Dict[str, Any] = {"empty": int(len(values) - len(have))}
+    if len(have):
+        low, high = have[np.argmin(values[have])], have[np.argmax(values[have])]
+        stats.update(min=float(values[low]), min_at=at(sweep, low), max=float(values[high]), max_at=at(sweep, high),
+                     mean=float(values[have].mean()))
+    if whole_numbers(values[have]):
+        numbers, counts = np.unique(values[have], return_counts=True)
+        stats["counts"] = {str(int(number)): int(n) for number, n in zip(numbers, counts)}
+    return stats
+
+
+def line_data(sweep: Sweep, column: str) -> Tuple[Array, Array]:
+    """The outcome against the one swept key, in the key's order."""
+    x = sweep.values[sweep.columns.keys[0]]
+    order = np.argsort(x, kind="stable")
+    return x[order], sweep.values[column][order]
+
+
+def grid_data(sweep: Sweep, column: str) -> Tuple[Array, Array, List[List[Any]]]:
+    """The outcome on the grid of the two swept keys: the first key's values (x), the second's (y), and
+    z[i][j] at (x[j], y[i]) (None where no variant has that pair, or it has no value)."""
+    first, second = (sweep.values[key] for key in sweep.columns.keys)
+    xs, ys = np.unique(first), np.unique(second)
+    z: List[List[Any]] = [[None] * len(xs) for _ in ys]
+    for row, value in enumerate(sweep.values[column]):
+        z[int(np.searchsorted(ys, second[row]))][int(np.searchsorted(xs, first[row]))] = json_number(value)
+    return xs, ys, z
+
+
+def summarise_sweep(sweep: Sweep, config: Config) -> Dict[str, Any]:
+    keys = {key: {"unit": key_unit(config, key), "values": int(len(np.unique(sweep.values[key]))),
+                  "min": float(sweep.values[key].min()), "max": float(sweep.values[key].max())}
+            for key in sweep.columns.keys}
+    bodies: Dict[str, Any] = {}
+    for body in sweep.swept_bodies():
+        bodies[body] = {}
+        for field in sweep.outcomes(body):
+            column = f"{body}.{field}"
+            if len(sweep.columns.keys) == 1:
+                x, y = line_data(sweep, column)
+                drawn: Dict[str, Any] = {"x": x.tolist(), "y": [json_number(v) for v in y]}
+            else:
+                xs, ys, z = grid_data(sweep, column)
+                drawn = {"x": xs.tolist(), "y": ys.tolist(), "z": z}
+            bodies[body][field] = {"label": outcome_label(sweep, column), **outcome_stats(sweep, column),
+                                   "drawn": drawn}
+    return {"sweep": {"file": sweep.path, "variants": len(sweep.values["variant"]),
+                      "t": float(sweep.values["t"].max()), "keys": keys}, "bodies": bodies}
+
+
+def key_axis(ax: Any, axis: str, key: str, unit: str, values: Array) -> None:
+    """Label an axis with the key and its unit; an angle that spans half a turn or more in steps of π/2."""
+    (ax.set_xlabel if axis == "x" else ax.set_ylabel)(labelled(key, unit))
+    if unit == "rad" and np.ptp(values) >= math.pi:
+        halves = np.arange(math.ceil(values.min() / (math.pi / 2)), math.floor(values.max() / (math.pi / 2)) + 1)
+        names = {0: "0", 1: "π/2", 2: "π", -1: "-π/2", -2: "-π"}
+        labels = [names.get(int(h), f"{int(h) // 2}π" if h % 2 == 0 else f"{int(h)}π/2") for h in halves]
+        (ax.set_xticks if axis == "x" else ax.set_yticks)(halves * math.pi / 2, labels)
+
+
+def draw_line(ax: Any, x: Array, y: Array, label: str) -> None:
+    """One outcome against one key: points (joined when few enough to follow), texts as rows, variants
+    without a value as ticks along the bottom."""
+    from matplotlib.ticker import MaxNLocator
+
+    few = len(x) <= 60
+    marker = {"marker": "o", "ms": 6} if few else {"marker": ".", "ms": 8 if len(x) <= 300 else 5}
+    if y.dtype.kind == "U":
+        texts = sorted(set(y.tolist()))
+        ax.plot(x, [texts.index(v) for v in y], ls="none", color="tab:blue", **marker)
+        ax.set_yticks(range(len(texts)), texts)
+        ax.set_ylim(-0.5, len(texts) - 0.5)
+        ax.set_ylabel(label)
+        return
+    ax.plot(x, y, color="tab:blue", lw=1.5 if few else 0, **marker)
+    if whole_numbers(y[~np.isnan(y)]):
+        ax.yaxis.set_major_locator(MaxNLocator(integer=True))
+    if np.nanmin(y, initial=0.0) < 0.0 < np.nanmax(y, initial=0.0):
+        ax.axhline(0.0, color="0.4", lw=0.8)
+    missing = np.isnan(y)
+    if missing.all():
+        ax.text(0.5, 0.5, f"{MISSING_LABEL} in any variant", transform=ax.transAxes, ha="center", va="center")
+        ax.set_yticks([])
+    elif missing.any():
+        ax.plot(x[missing], np.full(missing.sum(), 0.04), ls="none", marker="|", ms=16, mew=2,
+                color=MISSING_COLOUR, transform=ax.get_xaxis_transform(), label=MISSING_LABEL)
+        ax.legend(loc="upper right")
+    ax.set_ylabel(label)
+
+
+def cell_edges(values: Array) -> Array:
+    """Edges of heat-map cells centred on the values (sorted, distinct)."""
+    if len(values) == 1:
+        half = 0.5 * (abs(values[0]) or 1.0)
+        return np.array([values[0] - half, values[0] + half])
+    middles = 0.5 * (values[1:] + values[:-1])
+    return np.concatenate([[2 * values[0] - middles[0]], middles, [2 * values[-1] - middles[-1]]])
+
+
+def draw_heat_map(fig: Any, ax: Any, xs: Array, ys: Array, z: List[List[Any]], label: str) -> None:
+    """One outcome over two keys: a colour per cell with a colour bar; texts as categories with a legend;
+    cells without a value in grey."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    edges = (cell_edges(xs), cell_edges(ys))
+    flat = [v for row in z for v in row if v is not None]
+    handles = []
+    if any(isinstance(v, str) for v in flat):
+        texts = sorted(set(flat))
+        grid = np.ma.masked_invalid([[math.nan if v is None else texts.index(v) for v in row] for row in z])
+        colours = [plt.get_cmap("tab10")(i) for i in range(len(texts))]
+        ax.pcolormesh(*edges, grid, cmap=ListedColormap(colours), vmin=-0.5, vmax=len(texts) - 0.5)
+        handles = [Patch(color=c, label=t) for c, t in zip(colours, texts)]
+    else:
+        grid = np.ma.masked_invalid([[math.nan if v is None else v for v in row] for row in z])
+        numbers = np.array(flat, dtype=float)
+        style: Dict[str, Any] = {"cmap": "viridis"}
+        if len(numbers) and numbers.min() < 0.0 < numbers.max():  # signed: white at zero
+            bound = float(np.abs(numbers).max())
+            style = {"cmap": "RdBu_r", "vmin": -bound, "vmax": bound}
+        elif whole_numbers(numbers) and 1 < len(np.unique(numbers)) <= 25:  # a colour per whole number
+            bounds = np.arange(numbers.min() - 0.5, numbers.max() + 1.0)
+            style["norm"] = BoundaryNorm(bounds, plt.get_cmap("viridis").N)
+        mesh = ax.pcolormesh(*edges, grid, **style)
+        bar = fig.colorbar(mesh, ax=ax)
+        bar.set_label(label)
+        if "norm" in style:
+            bar.set_ticks(np.unique(numbers)[:: max(1, len(np.unique(numbers)) // 8)])
+    ax.set_facecolor(MISSING_COLOUR)
+    ax.set_title(label + (f" (grey: {MISSING_LABEL})" if np.ma.getmaskarray(grid).any() else ""))
+    if handles:
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+
+
+def plot_sweep_body(sweep: Sweep, config: Config, body: str, summary: Dict[str, Any], path: str) -> None:
+    """Every outcome of one body against the swept keys: stacked lines (one key) or heat maps (two)."""
+    fields = list(summary["bodies"][body])
+    keys = sweep.columns.keys
+    variants, t = summary["sweep"]["variants"], summary["sweep"]["t"]
+    with plt.rc_context(PROJECTOR):
+        if len(keys) == 1:
+            fig, axes = plt.subplots(len(fields), 1, figsize=(12, 3.4 * len(fields) + 1.0), sharex=True,
+                                     squeeze=False)
+            for ax, field in zip(axes[:, 0], fields):
+                x, y = line_data(sweep, f"{body}.{field}")
+                draw_line(ax, x, y, summary["bodies"][body][field]["label"])
+                ax.grid(alpha=0.3)
+            key_axis(axes[-1, 0], "x", keys[0], key_unit(config, keys[0]), sweep.values[keys[0]])
+        else:
+            columns = min(2, len(fields))
+            rows = math.ceil(len(fields) / columns)
+            fig, axes = plt.subplots(rows, columns, figsize=(8 * columns, 6 * rows + 0.8), squeeze=False)
+            for ax, field in zip(axes.flat, fields):
+                xs, ys, z = grid_data(sweep, f"{body}.{field}")
+                draw_heat_map(fig, ax, xs, ys, z, summary["bodies"][body][field]["label"])
+                key_axis(ax, "x", keys[0], key_unit(config, keys[0]), xs)
+                key_axis(ax, "y", keys[1], key_unit(config, keys[1]), ys)
+            for ax in axes.flat[len(fields):]:
+                ax.set_visible(False)
+        fig.suptitle(f"{body}: {variants} runs of {t:g} s, {' and '.join(keys)} swept")
+        fig.tight_layout()
+        save(fig, path)
+
+
+def print_sweep_summary(summary: Dict[str, Any]) -> None:
+    sweep = summary["sweep"]
+    keys = ", ".join(f"{key} in [{k['min']:g}, {k['max']:g}] ({k['values']} values)"
+                     for key, k in sweep["keys"].items())
+    print(f"{sweep['file']}: {sweep['variants']} variants, t = {sweep['t']:g} s; {keys}")
+    for body, outcomes in summary["bodies"].items():
+        for field, o in outcomes.items():
+            parts = []
+            if "min" in o:
+                parts.append(f"{o['min']:g} .. {o['max']:g}, mean {o['mean']:g}")
+            if o.get("empty"):
+                parts.append(f"{o['empty']} without a value")
+            if "counts" in o:
+                parts.append(", ".join(f"{value}: {n}" for value, n in o["counts"].items()))
+            line = f"{body}.{field}: " + "; ".join(parts)
+            print(line)
+
+
 # --- main ------------------------------------------------------------------------------------------
 def summarise(run: Run, specs: Specs) -> Summary:
     summary: Summary = {"rods": {}, "rollers": {}}
@@ -359,21 +645,24 @@ def print_summary(summary: Summary) -> None:
               f"{rolls or 'never'}; off the slope at t = {', '.join(f'{t:.4f}' for t in s['finish_times']) or 'never'}")
 
 
-def main(argv: Optional[List[str]] = None) -> int:
-    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    parser.add_argument("config", help="the run's YAML config")
-    parser.add_argument("run", help="a .bag (node or simulate --bag) or a folder of simulate's CSV files")
-    parser.add_argument("--out-dir", required=True)
-    parser.add_argument("--prefix", default="")
-    parser.add_argument("--figures", default="rod,rollers,race,energy", help="comma-separated subset")
-    args = parser.parse_args(argv)
-    config = load_config(args.config)
-    run = load_run(args.run, config)
+FIGURES = ("rod", "rollers", "race", "energy", "sweep")
+
+
+def plot_sweep(path: str, config: Config, out_dir: str, prefix: str, wanted: Set[str]) -> None:
+    sweep = load_sweep(path, config)
+    summary = summarise_sweep(sweep, config)
+    if "sweep" in wanted:
+        for body in sweep.swept_bodies():
+            plot_sweep_body(sweep, config, body, summary, os.path.join(out_dir, f"{prefix}sweep_{body}.png"))
+    with open(os.path.join(out_dir, f"{prefix}summary.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    print_sweep_summary(summary)
+
+
+def plot_states(path: str, config: Config, out_dir: str, prefix: str, wanted: Set[str]) -> None:
+    run = load_run(path, config)
     specs = {name: body_spec(config, name) for name in run}
-    os.makedirs(args.out_dir, exist_ok=True)
     summary = summarise(run, specs)
-    wanted = set(args.figures.split(","))
     figures: Dict[str, Tuple[bool, Callable[[str], None]]] = {
         "rod": (bool(rods_of(run, specs)), lambda path: plot_rods(run, specs, path)),
         "rollers": (bool(rollers_of(run, specs)), lambda path: plot_rollers(run, specs, path, summary)),
@@ -382,10 +671,32 @@ def main(argv: Optional[List[str]] = None) -> int:
     }
     for name, (drawable, plot) in figures.items():
         if name in wanted and drawable:
-            plot(os.path.join(args.out_dir, f"{args.prefix}{name}.png"))
-    with open(os.path.join(args.out_dir, f"{args.prefix}summary.json"), "w") as f:
+            plot(os.path.join(out_dir, f"{prefix}{name}.png"))
+    with open(os.path.join(out_dir, f"{prefix}summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
     print_summary(summary)
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    parser.add_argument("config", help="the run's YAML config")
+    parser.add_argument("run", help="a .bag (node or simulate --bag), a folder of simulate's CSV files, or a "
+                        "sweep (its sweep.csv or its folder)")
+    parser.add_argument("--out-dir", required=True)
+    parser.add_argument("--prefix", default="")
+    parser.add_argument("--figures", default=",".join(FIGURES), help="comma-separated subset")
+    args = parser.parse_args(argv)
+    wanted = set(args.figures.split(","))
+    if not wanted <= set(FIGURES):
+        parser.error(f"--figures: {', '.join(sorted(wanted - set(FIGURES)))} unknown (known: {', '.join(FIGURES)})")
+    config = load_config(args.config)
+    os.makedirs(args.out_dir, exist_ok=True)
+    sweep = sweep_file(args.run)
+    if sweep:
+        plot_sweep(sweep, config, args.out_dir, args.prefix, wanted)
+    else:
+        plot_states(args.run, config, args.out_dir, args.prefix, wanted)
     return 0
 
 

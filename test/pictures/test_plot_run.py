@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """scripts/plot_run.py on a short simulate run of config/demo.yaml, read from the CSV files and from the
 bag of the same run, and on a bag recorded from sim_node through sim.launch: it writes every figure, and the
-numbers it marks agree with the closed forms of docs/DESIGN.md and with the CSV's own modes.
+numbers it marks agree with the closed forms of docs/DESIGN.md and with the CSV's own modes. On sweeps of one
+key (the rod's θ0) and of two (the bowler's v0 and omega0): a figure for each swept body and none for the
+others, and the values it draws and reports are the sweep.csv's, variant for variant.
 Needs RBS_SIMULATE (the simulate executable) and RBS_BUILD (the build folder, for sim.launch)."""
 import csv
 import json
@@ -11,7 +13,8 @@ import subprocess
 import sys
 import tempfile
 import unittest
-from typing import Any, Dict, List
+from collections import Counter
+from typing import Any, Dict, List, Optional
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
@@ -20,6 +23,8 @@ from sim_tools import free_port, load_config  # noqa: E402  (the path above firs
 
 PLOT = os.path.join(PACKAGE, "scripts", "plot_run.py")
 CONFIG = os.path.join(PACKAGE, "config", "demo.yaml")
+ROD_CONFIG = os.path.join(PACKAGE, "config", "rod.yaml")
+PNG = b"\x89PNG\r\n\x1a\n"
 FIGURES = ("rod.png", "rollers.png", "race.png", "energy.png")
 # The closed forms' values, written out as the text gives them (independently of plot_run's own).
 G = 9.8
@@ -77,7 +82,7 @@ class PlotRunTest(unittest.TestCase):
             for figure in FIGURES:
                 path = os.path.join(self.tmp.name, source, figure)
                 with open(path, "rb") as f:
-                    self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n", path)
+                    self.assertEqual(f.read(8), PNG, path)
                 self.assertGreater(os.path.getsize(path), 10000, path)
 
     def test_slip_to_roll_instant_is_the_closed_form(self) -> None:
@@ -127,6 +132,118 @@ class PlotRunTest(unittest.TestCase):
                                     capture_output=True, text=True)
         self.assertNotEqual(result.returncode, 0)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+
+
+def sweep(config: str, out: str, *sweeps: str) -> List[Dict[str, str]]:
+    """Runs simulate's sweep into `out` and returns sweep.csv's rows."""
+    subprocess.run([os.environ["RBS_SIMULATE"], config, "--duration", "4", "--out-dir", out,
+                    *(f"--sweep={s}" for s in sweeps)], check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(out, "sweep.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def plot(config: str, run: str, out: str) -> Dict[str, Any]:
+    """plot_run on a run; its summary.json."""
+    subprocess.run([sys.executable, PLOT, config, run, "--out-dir", out], check=True, stdout=subprocess.DEVNULL)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary: Dict[str, Any] = json.load(f)
+    return summary
+
+
+def value(text: str) -> Optional[float]:
+    """A sweep's number as plot_run reports it: None where the CSV has none."""
+    return float(text) if text else None
+
+
+class SweepTest(unittest.TestCase):
+    """One key: 64 rods over θ0 in [0, 2π] (the text's random θ0), read from sweep.csv itself. Two keys:
+    the bowler's v0 x omega0 in demo.yaml (five bodies, one swept), read from the sweep's folder."""
+    tmp: "tempfile.TemporaryDirectory[str]"
+    rods: List[Dict[str, str]]
+    bowlers: List[Dict[str, str]]
+    one: Dict[str, Any]
+    two: Dict[str, Any]
+
+    @classmethod
+    def setUpClass(cls) -> None:
+        cls.tmp = tempfile.TemporaryDirectory()
+        folder = cls.tmp.name
+        cls.rods = sweep(ROD_CONFIG, os.path.join(folder, "theta0"), "rod.theta0=0:6.283185307179586:64")
+        cls.one = plot(ROD_CONFIG, os.path.join(folder, "theta0", "sweep.csv"), os.path.join(folder, "one"))
+        cls.bowlers = sweep(CONFIG, os.path.join(folder, "spin"), "bowler.v0=0:6:7", "bowler.omega0=-40:40:9")
+        cls.two = plot(CONFIG, os.path.join(folder, "spin"), os.path.join(folder, "two"))
+
+    @classmethod
+    def tearDownClass(cls) -> None:
+        cls.tmp.cleanup()
+
+    def test_a_figure_per_swept_body(self) -> None:
+        for out, body in (("one", "rod"), ("two", "bowler")):
+            folder = os.path.join(self.tmp.name, out)
+            self.assertEqual(sorted(os.listdir(folder)), ["summary.json", f"sweep_{body}.png"])
+            with open(os.path.join(folder, f"sweep_{body}.png"), "rb") as f:
+                self.assertEqual(f.read(8), PNG, out)
+            self.assertGreater(os.path.getsize(os.path.join(folder, f"sweep_{body}.png")), 10000, out)
+
+    def test_the_outcomes_are_the_sweeps_added_columns_and_texts(self) -> None:
+        self.assertEqual(list(self.one["bodies"]), ["rod"])
+        self.assertEqual(list(self.one["bodies"]["rod"]), ["energy_drift", "bounces"])
+        self.assertEqual(list(self.two["bodies"]), ["bowler"])
+        self.assertEqual(list(self.two["bodies"]["bowler"]), ["mode", "energy_drift", "slip_to_roll"])
+
+    def test_bounces_per_theta0_are_the_csvs(self) -> None:
+        bounces = self.one["bodies"]["rod"]["bounces"]
+        self.assertEqual(bounces["drawn"]["x"], [float(row["rod.theta0"]) for row in self.rods])
+        self.assertEqual(bounces["drawn"]["y"], [float(row["rod.bounces"]) for row in self.rods])
+        counts = Counter(row["rod.bounces"] for row in self.rods)
+        self.assertEqual(bounces["counts"], {n: counts[n] for n in sorted(counts, key=int)})
+        fewest = min(self.rods, key=lambda row: int(row["rod.bounces"]))
+        self.assertEqual((bounces["min"], bounces["min_at"]),
+                         (float(fewest["rod.bounces"]), {"rod.theta0": float(fewest["rod.theta0"])}))
+
+    def test_energy_drift_per_theta0_is_the_csvs(self) -> None:
+        drift = self.one["bodies"]["rod"]["energy_drift"]
+        column = [float(row["rod.energy_drift"]) for row in self.rods]
+        self.assertEqual(drift["drawn"]["y"], column)
+        self.assertEqual((drift["min"], drift["max"], drift["empty"]), (min(column), max(column), 0))
+        self.assertAlmostEqual(drift["mean"], sum(column) / len(column), delta=1e-12)
+        self.assertEqual(self.one["sweep"]["keys"]["rod.theta0"]["unit"], "rad")
+
+    def test_the_heat_maps_cells_are_the_csvs_variants(self) -> None:
+        v0s = sorted({float(row["bowler.v0"]) for row in self.bowlers})
+        omegas = sorted({float(row["bowler.omega0"]) for row in self.bowlers})
+        outcomes = self.two["bodies"]["bowler"]
+        for field in ("mode", "energy_drift", "slip_to_roll"):
+            drawn = outcomes[field]["drawn"]
+            self.assertEqual((drawn["x"], drawn["y"]), (v0s, omegas), field)
+            for row in self.bowlers:
+                cell = drawn["z"][omegas.index(float(row["bowler.omega0"]))][v0s.index(float(row["bowler.v0"]))]
+                text = row[f"bowler.{field}"]
+                self.assertEqual(cell, text if field == "mode" else value(text), (field, row["variant"]))
+
+    def test_the_two_key_counts_are_the_csvs(self) -> None:
+        outcomes = self.two["bodies"]["bowler"]
+        modes = Counter(row["bowler.mode"] for row in self.bowlers)
+        self.assertEqual(outcomes["mode"]["counts"], dict(sorted(modes.items())))
+        never = sum(1 for row in self.bowlers if not row["bowler.slip_to_roll"])
+        self.assertGreater(never, 0)  # the heat map's grey cells are exercised
+        self.assertEqual(outcomes["slip_to_roll"]["empty"], never)
+        times = [float(r["bowler.slip_to_roll"]) for r in self.bowlers if r["bowler.slip_to_roll"]]
+        self.assertEqual((outcomes["slip_to_roll"]["min"], outcomes["slip_to_roll"]["max"]), (min(times), max(times)))
+        self.assertEqual(self.two["sweep"]["variants"], len(self.bowlers))
+        self.assertEqual({k: v["unit"] for k, v in self.two["sweep"]["keys"].items()},
+                         {"bowler.v0": "m/s", "bowler.omega0": "rad/s"})
+
+    def test_three_swept_keys_are_refused_in_one_line(self) -> None:
+        folder = os.path.join(self.tmp.name, "three")
+        sweep(CONFIG, folder, "bowler.v0=0:1:2", "bowler.omega0=0:1:2", "rod.k=100:200:2")
+        out = os.path.join(self.tmp.name, "three_plots")
+        result = subprocess.run([sys.executable, PLOT, CONFIG, folder, "--out-dir", out], capture_output=True,
+                                text=True)
+        self.assertEqual(result.returncode, 1)
+        self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+        self.assertIn("bowler.v0, bowler.omega0, rod.k", result.stderr)
+        self.assertFalse(os.path.exists(out) and os.listdir(out), "nothing written")
 
 
 class NodeBagTest(unittest.TestCase):
