@@ -1,9 +1,12 @@
 # Pictures, into docs/images (README and docs/physics.md):
 #   make screenshot   rviz under Xvfb on config/demo.yaml, checked as the ctest pictures_rviz_screenshot checks it
-#   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy)
-#                     and incline.yaml (the race); the numbers behind them are printed
+#   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy),
+#                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
+#                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
 PICTURES_OUT = $(BUILD)/pictures
 SIMULATE = $(BUILD)/devel/lib/rigid_body_sim/simulate
+# θ0 = i 2π/1000 (0 and 2π both included): θ0 + π (the same rod, its ends swapped) is on the grid too
+THETA0_RODS = 1001
 
 .PHONY: screenshot pictures
 
@@ -19,6 +22,11 @@ pictures: screenshot
 	$(SIMULATE) config/incline.yaml --duration 2 --sample-rate 1000 --out-dir $(PICTURES_OUT)/incline >/dev/null
 	python3 scripts/plot_run.py config/incline.yaml $(PICTURES_OUT)/incline --out-dir $(PICTURES_OUT)/plots \
 	  --prefix incline_ --figures race
+	$(SIMULATE) config/rod.yaml --sweep rod.theta0=0:6.283185307179586:$(THETA0_RODS) --duration 10 \
+	  --out-dir $(PICTURES_OUT)/theta0 >/dev/null
+	python3 scripts/plot_run.py config/rod.yaml $(PICTURES_OUT)/theta0 --out-dir $(PICTURES_OUT)/plots \
+	  --prefix theta0_
 	cp $(PICTURES_OUT)/plots/demo_rod.png $(PICTURES_OUT)/plots/demo_rollers.png \
-	  $(PICTURES_OUT)/plots/demo_energy.png $(PICTURES_OUT)/plots/incline_race.png docs/images/
+	  $(PICTURES_OUT)/plots/demo_energy.png $(PICTURES_OUT)/plots/incline_race.png \
+	  $(PICTURES_OUT)/plots/theta0_sweep_rod.png docs/images/
 	ls -l docs/images
