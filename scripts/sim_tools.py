@@ -37,7 +37,7 @@ KEY_UNITS: Dict[str, Dict[str, str]] = {
                "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
 }
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
-# column (README, Offline tool).
+# column (README, Parameter sweeps).
 FIRST_SWEEP_RESULT = "energy_drift"
 # Words and units for the columns a sweep adds, for axis labels (a column not named here is shown by its
 # own name, without a unit).
