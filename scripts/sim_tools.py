@@ -187,13 +187,17 @@ def labelled(words: str, unit: str) -> str:
 
 
 # --- processes and ROS --------------------------------------------------------------------------------
-def wait_for(what: str, predicate: Callable[[], bool], timeout: float, period: float = 0.05) -> None:
-    """Until predicate() holds; TimeoutError naming `what` after `timeout` seconds."""
-    deadline = time.monotonic() + timeout
+def wait_for(what: str, predicate: Callable[[], bool], timeout: float, period: float = 0.05,
+             slowest: float = 0.0) -> None:
+    """Until predicate() holds, asking every `period` seconds; TimeoutError naming `what` after `timeout`
+    seconds. With `slowest` > period, the period grows by a second for every 30 s waited up to `slowest`
+    (a long wait asks a busy server, such as slurmctld, less and less often)."""
+    start = time.monotonic()
     while not predicate():
-        if time.monotonic() > deadline:
+        waited = time.monotonic() - start
+        if waited > timeout:
             raise TimeoutError(f"timed out after {timeout:g} s waiting for {what}")
-        time.sleep(period)
+        time.sleep(max(period, min(slowest, period + waited / 30)))
 
 
 def free_port() -> int:
