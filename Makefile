@@ -35,12 +35,17 @@ check: build
 	cmake --build $(BUILD) --target unit_tests -j$(JOBS) -- --no-print-directory
 	ctest --test-dir $(BUILD) -L '^unit$$' --output-on-failure
 
+# Python scripts without a .py ending (scripts/slurm_sweep): their first line names python. flake8 and mypy
+# find only *.py files in the folders they are given, so these are named to them one by one.
+PYTHON_SCRIPTS = $(shell git ls-files | grep -v '\.[^/]*$$' | xargs -r awk 'FNR == 1 && /^\#!.*python/ { print FILENAME } { nextfile }')
+
 # The repository's root is the package: its folder is named after the clone, not the package.
 lint: deps
 	catkin_lint -W2 --strict --ignore package_path_name .
 	git ls-files '*.cpp' '*.h' | xargs clang-format --dry-run -Werror
-	flake8 scripts bench test
+	flake8 scripts bench test $(PYTHON_SCRIPTS)
 	mypy
+	$(if $(PYTHON_SCRIPTS),mypy $(PYTHON_SCRIPTS))
 
 clean:
 	rm -rf $(BUILD) build-*
