@@ -9,7 +9,7 @@ SIMULATE = $(BUILD)/devel/lib/rigid_body_sim/simulate
 
 screenshot: build
 	mkdir -p docs/images
-	test/pictures/rviz_screenshot.sh $(BUILD) $(PICTURES_OUT)/rviz.png
+	test/pictures/rviz_screenshot.sh $(BUILD)/devel $(PICTURES_OUT)/rviz.png
 	cp $(PICTURES_OUT)/rviz.png docs/images/rviz.png
 
 pictures: screenshot
