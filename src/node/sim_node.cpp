@@ -22,7 +22,9 @@ Config& configOf(WorldConfig& world, std::size_t index) {
 }
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
-bool placementChanged(const RodConfig&, const RodConfig&) { return false; }
+bool placementChanged(const RodConfig& a, const RodConfig& b) {
+  return a.params.floor_length != b.params.floor_length;
+}
 bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
   return a.params.incline_angle != b.params.incline_angle ||
          a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
