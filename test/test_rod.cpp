@@ -527,7 +527,8 @@ TEST(RodApi, SetInitialAndReset) {
   EXPECT_EQ(maxAbsDiff(rod.state(), again.state()), 0.0);
 }
 
-// ---- a bounded floor: x in [0, floor_length]; leaving it restarts the rod, as a roller's slope end does ----
+// ---- a bounded floor: x in [0, floor_length]; leaving it restarts the rod, as a roller's slope end does
+// ----
 
 RodParams onFloorOf(double floor_length) {
   RodParams p = textParams();
@@ -557,7 +558,8 @@ void checkFloorRestarts(const RodMotion& initial, double floor_length) {
       unbounded.step(kTextDt);
       ASSERT_EQ(restarted, k == k_off) << "lap " << lap << " k = " << k;
       // On the floor the run is the unbounded one, bit for bit.
-      if (k < k_off) ASSERT_EQ(maxAbsDiff(rod.state(), unbounded.state()), 0.0) << "lap " << lap << " k = " << k;
+      if (k < k_off)
+        ASSERT_EQ(maxAbsDiff(rod.state(), unbounded.state()), 0.0) << "lap " << lap << " k = " << k;
     }
     EXPECT_EQ(maxAbsDiff(rod.state(), initial), 0.0) << "lap " << lap << ": not back at its initial state";
   }
