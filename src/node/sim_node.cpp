@@ -125,7 +125,7 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
       publishStaticLocked();
     }
   } catch (const ConfigError& error) {
-    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+    ROS_WARN_STREAM("refused reconfigure, simulation unchanged: " << error.what());
   }
   request = toReconfigure(current);
 }
@@ -171,7 +171,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.success = true;
     response.message = "ok";
   }
-  if (!response.success) ROS_ERROR_STREAM("~step " << response.message);
+  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
   response.t = world_.time();
   return true;
 }

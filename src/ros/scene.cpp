@@ -22,7 +22,7 @@ constexpr double kFloorLength = 40.0;  // along world x
 constexpr double kFloorBehind = 2.0;   // of floor behind x = 0
 constexpr double kFloorMargin = 1.0;   // of floor beyond the outermost lane on either side
 constexpr double kFloorThickness = 0.02;
-constexpr double kBoundedFloorWidth = 0.8;   // across a rod's plane
+constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
 constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
