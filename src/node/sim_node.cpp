@@ -36,21 +36,17 @@ bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node),
       private_node_(private_node),
-      options_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeOptions(params);
-      }()),
-      config_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeConfig(params);
-      }()),
+      start_params_(privateParams(private_node)),
+      options_(parseNodeOptions(start_params_)),
+      config_(parseNodeConfig(start_params_)),
       world_(config_),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
       pacer_(config_.rate, options_.real_time_factor) {
+  checkFrames(options_, config_);
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
-  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
   advertise();
   startReconfigureServers();
 }
@@ -65,6 +61,10 @@ void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
+  if (node_.getNamespace() != "/") {
+    namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
+    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
+  }
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
       state_publishers_.push_back(
@@ -121,7 +121,8 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
     current = wanted;
     if (moved) {
       // The slope's place (and the body's look) changed: new static frames and markers.
-      snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+      snapshots_ =
+          std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
       publishStaticLocked();
     }
   } catch (const ConfigError& error) {
@@ -234,6 +235,7 @@ void SimNode::publishLocked() {
   // at a publishing instant the bodies' frames move with the next publication.
   if (stamp > last_tf_stamp_) {
     tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
     last_tf_stamp_ = stamp;
   }
   marker_publisher_.publish(snapshot.markers);
@@ -245,7 +247,10 @@ void SimNode::publishLocked() {
 
 void SimNode::publishStaticLocked() {
   const ros::Time stamp = stampOf(world_.time());
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stamp));
+  tf2_msgs::TFMessage fixed;
+  fixed.transforms = snapshots_->staticTransforms(stamp);
+  static_broadcaster_.sendTransform(fixed.transforms);
+  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
   marker_publisher_.publish(snapshots_->restartMarkers(stamp));
 }
 

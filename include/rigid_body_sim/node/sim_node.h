@@ -14,6 +14,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -64,6 +65,7 @@ class SimNode {
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
+  XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
   WorldConfig config_;  // the current config of every body (what reconfigure changes)
 
@@ -84,6 +86,8 @@ class SimNode {
 
   ros::Publisher marker_publisher_;
   ros::Publisher clock_publisher_;
+  ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
+  ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
   std::vector<ros::Publisher> state_publishers_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
