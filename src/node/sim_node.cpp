@@ -6,6 +6,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
@@ -15,6 +16,7 @@ namespace {
 // Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
 constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
+constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
 
 template <class Config>
 Config& configOf(WorldConfig& world, std::size_t index) {
@@ -55,6 +57,7 @@ SimNode::~SimNode() {
   stopping_ = true;
   wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
+  if (watcher_.joinable()) watcher_.join();
 }
 
 void SimNode::advertise() {
@@ -297,14 +300,41 @@ void SimNode::stepLoop() {
   }
 }
 
-void SimNode::run() {
+void SimNode::watchMaster() {
+  while (!stopping_ && ros::ok()) {
+    if (askMaster() == MasterView::Forgot) {
+      restoreParameters();
+      ROS_ERROR(
+          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
+          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
+          ros::master::getURI().c_str(), kMasterForgotStatus);
+      exit_status_ = kMasterForgotStatus;
+      ros::requestShutdown();
+      return;
+    }
+    for (int tenth = 0; tenth < 10 && !stopping_; ++tenth) std::this_thread::sleep_for(kWatchTick);
+  }
+}
+
+// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
+// so that a respawned node starts on the same config (unless something has set them meanwhile).
+void SimNode::restoreParameters() {
+  if (ros::param::has(private_node_.getNamespace())) return;
+  ros::param::set(private_node_.getNamespace(), start_params_);
+  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+}
+
+int SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
+  watcher_ = std::thread([this] { watchMaster(); });
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
   stepper_.join();
+  watcher_.join();
+  return exit_status_;
 }
 
 }  // namespace rigid_body_sim

@@ -31,12 +31,16 @@ namespace rigid_body_sim {
 
 class SimNode {
  public:
+  // The exit status after the master restarted and forgot the node (roslaunch's respawn starts it again).
+  static constexpr int kMasterForgotStatus = 3;
+
   // Loads and validates the private parameters; throws ConfigError with the one refusal line.
   SimNode(ros::NodeHandle node, ros::NodeHandle private_node);
   ~SimNode();
 
-  // Starts the stepping thread and spins the callbacks until shutdown.
-  void run();
+  // Starts the stepping thread and spins the callbacks until shutdown; returns the exit status: 0, or
+  // kMasterForgotStatus.
+  int run();
 
  private:
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
@@ -52,6 +56,10 @@ class SimNode {
   bool onStep(Step::Request& request, Step::Response& response);
 
   void stepLoop();
+  // Every second: does the master still know this node? When a restarted master does not, puts the
+  // parameters this node started from back on it (for the respawned node) and shuts down.
+  void watchMaster();
+  void restoreParameters();
   // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
   void stepOnceLocked();
   // Holds a body that became non-finite at its last finite state and logs the one error about it.
@@ -97,7 +105,9 @@ class SimNode {
   std::vector<std::unique_ptr<RollerServer>> roller_servers_;
 
   std::atomic<bool> stopping_{false};
+  std::atomic<int> exit_status_{0};
   std::thread stepper_;
+  std::thread watcher_;
 };
 
 }  // namespace rigid_body_sim
