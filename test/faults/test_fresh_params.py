@@ -3,8 +3,8 @@
 
 - sim.launch on a refused config (a body `wobbly` with k = -5, which config/demo.yaml does not have):
   the node exits 1 with its one line; then a plain sim.launch runs demo.yaml (exit 0, nothing refused).
-- rod.launch, then incline.launch: the second run has exactly incline.yaml's bodies under /sim/bodies and
-  publishes their states, and no rod.
+- rod.launch (use_sim_time:=false) leaves /use_sim_time true as it was; then incline.launch has exactly
+  incline.yaml's bodies under /sim/bodies and publishes their states, and no rod.
 
 Usage: test_fresh_params.py CONFIG_DIR   (with the package's devel space sourced)
 """
@@ -74,7 +74,11 @@ def state_topics(master: rosgraph.Master) -> Set[str]:
 
 
 def incline_after_rod(run: Run, config_dir: str) -> None:
+    run.master.setParam("/use_sim_time", True)  # a system on simulated time: use_sim_time:=false leaves it so
     run.expect(["rod.launch", "duration:=1"], 0)
+    if run.master.getParam("/use_sim_time") is not True:
+        run.failures.append("rod.launch (use_sim_time:=false) changed /use_sim_time")
+    run.master.deleteParam("/use_sim_time")
     incline = load_config(os.path.join(config_dir, "incline.yaml"))
     wanted = {f"/sim/{body}/state" for body in incline["bodies"]}
     process = run.launch(["incline.launch"])
