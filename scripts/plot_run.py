@@ -26,7 +26,10 @@ import matplotlib
 import numpy as np
 from numpy.typing import NDArray
 
-from sim_tools import (BodySpec, Config, RodSpec, RollerSpec, body_spec, load_config, read_states,
+# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
+# runs this file from elsewhere.
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from sim_tools import (BodySpec, Config, RodSpec, RollerSpec, body_spec, load_config, read_states,  # noqa: E402
                        rod_end_below_floor, state_fields)
 
 matplotlib.use("Agg")
