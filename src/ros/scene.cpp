@@ -22,6 +22,8 @@ constexpr double kFloorLength = 40.0;  // along world x
 constexpr double kFloorBehind = 2.0;   // of floor behind x = 0
 constexpr double kFloorMargin = 1.0;   // of floor beyond the outermost lane on either side
 constexpr double kFloorThickness = 0.02;
+constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
+constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
 constexpr double kRodThickness = 0.05;   // also a rod's "radius" for its label
@@ -53,6 +55,7 @@ std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
 }
 
 const std_msgs::ColorRGBA kFloorColour = rgba(0.75f, 0.75f, 0.75f);
+const std_msgs::ColorRGBA kBoundedFloorColour = rgba(0.5f, 0.5f, 0.5f);
 const std_msgs::ColorRGBA kSlopeColour = rgba(0.55f, 0.4f, 0.25f);
 const std_msgs::ColorRGBA kSpokeColour = rgba(0.1f, 0.1f, 0.1f);
 const std_msgs::ColorRGBA kLabelColour = rgba(1, 1, 1);
@@ -105,11 +108,12 @@ double laneSpacing(const std::vector<Body>& bodies) {
   return std::max(kMinLaneSpacing, kLaneRadii * largest_radius);
 }
 
-visualization_msgs::Marker rollerShapeMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id,
+                                             const ros::Time& stamp) {
   const RollerParams& p = std::get<Roller>(body.model).params();
   const double d = 2.0 * p.radius;
   if (p.shape == Shape::Ring) {
-    auto ring = marker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, body.name, stamp);
+    auto ring = marker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame, stamp);
     ring.scale.x = kRingWidth * p.radius;
     for (int i = 0; i <= kRingSegments; ++i) {
       const double a = 2.0 * kPi * i / kRingSegments;
@@ -120,23 +124,24 @@ visualization_msgs::Marker rollerShapeMarker(const Body& body, int id, const ros
   const bool cylinder = p.shape == Shape::Cylinder;
   auto shape = marker(kNsBody, id,
                       cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
-                      body.name, stamp);
+                      frame, stamp);
   shape.scale.x = shape.scale.y = d;
   shape.scale.z = cylinder ? kCylinderLength * d : d;
   return shape;
 }
 
-visualization_msgs::Marker bodyMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id,
+                                      const ros::Time& stamp) {
   visualization_msgs::Marker m;
   if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    m = marker(kNsBody, id, visualization_msgs::Marker::CYLINDER, body.name, stamp);
+    m = marker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame, stamp);
     // A marker cylinder lies along its z; the rod lies along its frame's x.
     m.pose.orientation.y = std::sin(kPi / 4);
     m.pose.orientation.w = std::cos(kPi / 4);
     m.scale.x = m.scale.y = kRodThickness;
     m.scale.z = rod->params().length;
   } else {
-    m = rollerShapeMarker(body, id, stamp);
+    m = rollerShapeMarker(body, frame, id, stamp);
   }
   m.color = bodyColour(body);
   return m;
@@ -144,9 +149,10 @@ visualization_msgs::Marker bodyMarker(const Body& body, int id, const ros::Time&
 
 // A dark bar through the centre along the body's x: it turns with the body, so rolling and slipping
 // can be told apart at a glance.
-visualization_msgs::Marker spokeMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id,
+                                       const ros::Time& stamp) {
   const double r = radiusOf(body);
-  auto spoke = marker(kNsSpoke, id, visualization_msgs::Marker::CUBE, body.name, stamp);
+  auto spoke = marker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame, stamp);
   spoke.scale.x = kSpokeLength * r;
   spoke.scale.y = kSpokeWidth * r;
   spoke.scale.z = kSpokeLength * r;
@@ -166,22 +172,23 @@ std::string labelText(const Body& body) {
 
 }  // namespace
 
-std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies) {
+std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
   const double lane_spacing = laneSpacing(bodies);
   int rods = 0;
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
-    if (std::holds_alternative<Rod>(body.model)) {
-      placements.push_back(
-          {fixedFrameOf(body), uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0});
+    if (const auto* rod = std::get_if<Rod>(&body.model)) {
+      placements.push_back({frame_prefix + fixedFrameOf(body),
+                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
+                            rod->params().floor_length});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
     const double lane_y = kFirstLaneY + lane_spacing * rollers++;
-    placements.push_back(
-        {fixedFrameOf(body), uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
+    placements.push_back({frame_prefix + fixedFrameOf(body),
+                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
   }
   return placements;
 }
@@ -199,9 +206,11 @@ Eigen::Isometry3d frameFromBody(const Body& body) {
   return pose;
 }
 
-Scene::Scene(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points)
+Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+             std::size_t trail_points)
     : world_frame_(std::move(world_frame)),
-      placements_(placeBodies(bodies)),
+      frame_prefix_(std::move(frame_prefix)),
+      placements_(placeBodies(bodies, frame_prefix_)),
       trail_points_(trail_points),
       trails_(bodies.size()) {}
 
@@ -223,6 +232,19 @@ visualization_msgs::MarkerArray Scene::fixedMarkers(const ros::Time& stamp) cons
   floor.color = kFloorColour;
   array.markers.push_back(floor);
   for (std::size_t i = 0; i < placements_.size(); ++i) {
+    // A rod's bounded floor: a darker strip over x in [0, floor_length] of its floor frame.
+    const double floor_length = placements_[i].floor_length;
+    if (floor_length > 0.0) {
+      auto strip = marker(kNsFloor, static_cast<int>(i) + 1, visualization_msgs::Marker::CUBE,
+                          placements_[i].frame, stamp);
+      strip.pose.position.x = floor_length / 2;
+      strip.pose.position.y = kBoundedFloorRaise - kFloorThickness / 2;
+      strip.scale.x = floor_length;
+      strip.scale.y = kFloorThickness;
+      strip.scale.z = kBoundedFloorWidth;
+      strip.color = kBoundedFloorColour;
+      array.markers.push_back(strip);
+    }
     const double length = placements_[i].slope_length;
     if (length <= 0.0) continue;
     auto slope =
@@ -257,8 +279,8 @@ void Scene::addBodyMarkers(std::size_t index, const Body& body, const Eigen::Iso
   label.color = kLabelColour;
   label.text = labelText(body);
 
-  markers.markers.push_back(bodyMarker(body, id, stamp));
-  markers.markers.push_back(spokeMarker(body, id, stamp));
+  markers.markers.push_back(bodyMarker(body, bodyFrame(body), id, stamp));
+  markers.markers.push_back(spokeMarker(body, bodyFrame(body), id, stamp));
   markers.markers.push_back(trail_marker);
   markers.markers.push_back(label);
 }
