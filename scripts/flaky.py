@@ -55,7 +55,8 @@ def read_junit(path: Path) -> List[Outcome]:
 def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
     """One ctest run of the labelled tests; its log and JUnit file go to `folder`."""
     home = tempfile.mkdtemp(prefix="flaky_ros_home_")
-    env = dict(os.environ, ROS_HOME=home, ROS_IP="127.0.0.1")
+    # Debian's python3 first (rostest's nodes import ROS's modules), as the Makefile does.
+    env = dict(os.environ, ROS_HOME=home, ROS_IP="127.0.0.1", PATH="/usr/bin:" + os.environ.get("PATH", ""))
     env.pop("ROS_HOSTNAME", None)
     junit = folder / "ctest.xml"
     try:
