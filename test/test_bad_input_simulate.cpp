@@ -54,8 +54,8 @@ TEST(BadInputSimulate, TableHasEnoughDistinctRows) {
 }
 
 TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
-  const fs::path root = fs::path(::testing::TempDir()) / "bad_input_simulate";
-  fs::remove_all(root);
+  const PrivateDir private_root("bad_input_simulate");
+  const fs::path& root = private_root.path();
   int index = 0;
   for (const Row& row : table()) {
     SCOPED_TRACE(row.what);

@@ -229,7 +229,8 @@ TEST(ConfigFileErrors, MissingFileAndSyntaxError) {
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/rigid_body_sim.yaml"), std::string::npos);
   }
-  const std::string path = ::testing::TempDir() + "/bad_syntax.yaml";
+  const test::PrivateDir dir("config_bad_syntax");
+  const std::string path = (dir.path() / "bad_syntax.yaml").string();
   FILE* file = std::fopen(path.c_str(), "w");
   ASSERT_NE(file, nullptr);
   std::fputs("bodies: {rod: {type: rod\n", file);
@@ -298,8 +299,9 @@ TEST(ConfigNumbers, OutOfDoubleRangeNamesTheKeysRange) {
 }
 
 TEST(ConfigFileErrors, DirectoryAndEmptyFile) {
-  EXPECT_THROW(loadWorldConfigFile(::testing::TempDir()), ConfigError);
-  const std::string path = ::testing::TempDir() + "/empty.yaml";
+  const test::PrivateDir dir("config_empty");
+  EXPECT_THROW(loadWorldConfigFile(dir.path().string()), ConfigError);
+  const std::string path = (dir.path() / "empty.yaml").string();
   std::fclose(std::fopen(path.c_str(), "w"));
   try {
     loadWorldConfigFile(path);
