@@ -54,13 +54,22 @@ class Scene:
         self.frames: Dict[str, Tuple[Array, Array]] = {}
         self.markers: Dict[Tuple[str, int], Any] = {}
         self.t: Optional[float] = None
+        self.state_stamp: Any = None  # of the latest state, and of the latest transform on /tf
+        self.tf_stamp: Any = None
         name, body = next(iter(config["bodies"].items()))  # its state gives the simulated time
         self.subscribers = [
-            rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=100),
+            rospy.Subscriber("/tf", TFMessage, self.on_moving_tf, queue_size=100),
             rospy.Subscriber("/tf_static", TFMessage, self.on_tf, queue_size=100),
             rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, queue_size=100),
             rospy.Subscriber(f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
-                             lambda msg: setattr(self, "t", msg.t), queue_size=100)]
+                             self.on_state, queue_size=100)]
+
+    def on_state(self, msg: Any) -> None:
+        self.t, self.state_stamp = msg.t, msg.header.stamp
+
+    def on_moving_tf(self, msg: Any) -> None:
+        self.on_tf(msg)
+        self.tf_stamp = max(t.header.stamp for t in msg.transforms) if msg.transforms else self.tf_stamp
 
     def on_tf(self, msg: Any) -> None:
         for t in msg.transforms:
@@ -284,6 +293,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     import rospy
     from rosgraph_msgs.msg import Log
     from std_srvs.srv import Empty
+    from rigid_body_sim.srv import Step
 
     def left() -> float:
         return max(1.0, args.timeout - (time.monotonic() - start))
@@ -316,7 +326,11 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     wait_while_running(f"{args.settle:g} simulated seconds", lambda: (scene.t or 0.0) >= t_connected + args.settle,
                        left(), launch)
     rospy.ServiceProxy("/sim/pause", Empty)()
-    time.sleep(1.0)  # the last messages reach rviz and this node
+    # One step more: its state and transforms are the last the node publishes, and each topic delivers in
+    # order, so once they are here nothing published before is still in flight to this node.
+    t_last = rospy.ServiceProxy("/sim/step", Step)(1).t
+    wait_while_running("the state and transforms of the step after the pause",
+                       lambda: scene.t == t_last and scene.tf_stamp == scene.state_stamp, left(), launch)
 
     with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
         manager = yaml.safe_load(f)["Visualization Manager"]
