@@ -69,6 +69,19 @@ TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
   EXPECT_NE(run.out.find("started rolling"), std::string::npos) << run.out;
 }
 
+TEST_F(SimulateTest, SaysOncePerRodWhenAutoSplitsItsSteps) {
+  const fs::path stiff = write("stiff.yaml",
+                               "bodies: {soft: {type: rod}, stiff: {type: rod, k: 5000}, "
+                               "fixed: {type: rod, k: 5000, substeps: 1}}\n");
+  const auto run = simulate(stiff.string() + " --duration 1 --out-dir " + (dir_ / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_NE(run.err.find("simulate: note: body 'stiff': substeps auto splits each step into 2 sub-steps"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(simulate(config("rod.yaml") + " --duration 1 --out-dir " + (dir_ / "text").string()).err, "");
+}
+
 TEST_F(SimulateTest, WritesABag) {
   const auto run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
                             (dir_ / "run.bag").string());

@@ -33,6 +33,8 @@ const std::vector<BadRequest>& badRequests() {
       {"rod y0 = NaN", "rod", {{"y0", kNan}}, {}},
       {"rod stiff k for a light rod", "rod", {{"k", 1e12}, {"mass", 1e-9}}, {}},
       {"rod integrator leapfrog", "rod", {}, {{"integrator", "leapfrog"}}},
+      {"rod substeps 0", "rod", {}, {{"substeps", "0"}}},
+      {"rod substeps 1 where it is unstable", "rod", {{"k", 1e6}}, {{"substeps", "1"}}},  // omega_c dt = 2.83
       {"sphere mu_d > mu_s", "sphere", {{"mu_d", 0.9}}, {}},
       {"sphere mu_s below mu_d", "sphere", {{"mu_s", 0.1}}, {}},
       {"sphere x0 beyond incline_length", "sphere", {{"x0", 6.0}}, {}},
