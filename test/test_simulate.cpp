@@ -82,6 +82,19 @@ TEST_F(SimulateTest, SaysOncePerRodWhenAutoSplitsItsSteps) {
   EXPECT_EQ(simulate(config("rod.yaml") + " --duration 1 --out-dir " + (dir_ / "text").string()).err, "");
 }
 
+// A body whose file cannot be opened: the .tmp files of the bodies before it are removed too.
+TEST_F(SimulateTest, CsvWriterThatCannotOpenAFileLeavesNoTemporaryFile) {
+  const World world(loadWorldConfigFile(config("demo.yaml")));
+  ASSERT_GT(world.bodies().size(), 2u);
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out /
+                         (world.bodies()[2].name + ".csv.tmp"));  // a folder: cannot be opened as a file
+  EXPECT_THROW(CsvWriter(out.string(), world.bodies()), std::runtime_error);
+  for (const auto& entry : fs::directory_iterator(out)) {
+    EXPECT_TRUE(fs::is_directory(entry.path())) << entry.path() << " left behind";
+  }
+}
+
 TEST_F(SimulateTest, WritesABag) {
   const auto run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
                             (dir_ / "run.bag").string());
