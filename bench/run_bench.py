@@ -16,6 +16,8 @@ import time
 from dataclasses import dataclass, field
 from typing import IO, Any, Dict, List, Optional, Sequence, Set, Tuple
 
+import yaml
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
@@ -297,10 +299,28 @@ def recording(report: Report, ros: Ros, out: str, config_1khz: str, seconds: flo
     markers = info.get("/sim/markers")
     if markers and (markers.message_count < published or any(lost)):
         states = f"lost up to {max(lost)} state messages a topic" if any(lost) else "kept every state message"
+        share, points = marker_figures(bag)
         report.note(f"rosbag record kept {markers.message_count} of {published} /sim/markers messages and {states}: "
-                    f"the MarkerArrays (trails of 400 points, at 1 kHz) make most of the bag's {size:.0f} MB per "
-                    f"simulated second, and rosbag's single callback queue falls behind on them when the machine is "
-                    f"busy (load average {load()})")
+                    f"the MarkerArrays (trails of up to {points} points, at 1 kHz) make {100 * share:.0f} % of the "
+                    f"bag's {size:.0f} MB per simulated second, and rosbag's single callback queue falls behind on "
+                    f"them when the machine is busy (load average {load()})")
+
+
+def marker_figures(bag_path: str) -> Tuple[float, int]:
+    """The share of a bag's message bytes that /sim/markers holds, and the most points of a trail marker in
+    its last MarkerArray."""
+    import rosbag
+    total, markers, last = 0, 0, None
+    with rosbag.Bag(bag_path) as bag:
+        for topic, raw, _ in bag.read_messages(raw=True):  # raw: (type, bytes, md5, position, class)
+            total += len(raw[1])
+            if topic == "/sim/markers":
+                markers, last = markers + len(raw[1]), raw
+    points = 0
+    if last is not None:
+        array = last[4]().deserialize(last[1])
+        points = max((len(m.points) for m in array.markers if m.ns == "trail"), default=0)
+    return (markers / total if total else 0.0), points
 
 
 def faster_than_real_time(report: Report, ros: Ros, build: str, out: str, seconds: float) -> None:
@@ -366,6 +386,15 @@ def machine() -> str:
     return f"{cpu}, {os.cpu_count()} cores, load average {load()} at the end"
 
 
+def write_with_publish_rate(source: str, target: str, publish_rate: float) -> None:
+    """`source`'s config with its world key publish_rate set (whether the source gives it or not)."""
+    with open(source) as f:
+        config = yaml.safe_load(f)
+    config["publish_rate"] = publish_rate
+    with open(target, "w") as f:
+        yaml.safe_dump(config, f, sort_keys=False)
+
+
 def write_into_doc(path: str, text: str) -> None:
     """Replaces what stands between BEGIN and END in `path` with `text`."""
     with open(path) as f:
@@ -393,8 +422,7 @@ def main() -> int:
     text_program(report, build, out, core_times)
     sweeps(report, build, out)
     config_1khz = os.path.join(out, "demo_1khz.yaml")
-    with open(os.path.join(ROOT, "config/demo.yaml")) as src, open(config_1khz, "w") as dst:
-        dst.write(src.read().replace("publish_rate: 50.0", "publish_rate: 1000.0"))
+    write_with_publish_rate(os.path.join(ROOT, "config/demo.yaml"), config_1khz, 1000.0)
     ros = Ros(out)
     try:
         demo = os.path.join(ROOT, "config/demo.yaml")

@@ -16,8 +16,9 @@ from sim_tools import RodSpec, body_of_state_topic, body_spec, load_config, rod_
 
 def roller_line(msgs: List[Any]) -> str:
     rolls = [b.t for a, b in zip(msgs, msgs[1:]) if a.mode == "slipping" and b.mode == "rolling"]
+    sampling = f"sampled every {msgs[1].t - msgs[0].t:g} s" if len(msgs) > 1 else "a single sample"
     return (", slip-to-roll seen at t = " + (", ".join(f"{t:g}" for t in rolls) or "never") +
-            f" (sampled every {msgs[1].t - msgs[0].t:g} s); final mode {msgs[-1].mode}")
+            f" ({sampling}); final mode {msgs[-1].mode}")
 
 
 def rod_line(msgs: List[Any], rod: RodSpec) -> str:

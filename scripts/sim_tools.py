@@ -21,8 +21,8 @@ Config = Dict[str, Any]
 
 WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world"}
 ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0,
-                                "integrator": "euler_cromer", "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0,
-                                "theta0": 0.3, "omega0": 0.0}
+                                "integrator": "euler_cromer", "substeps": "auto", "x0": 0.0, "y0": 4.0, "vx0": 2.0,
+                                "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
 ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
                                    "incline_length": 5.0, "mu_s": 0.3, "mu_d": 0.2, "x0": 0.0, "v0": 0.0,
                                    "theta0": 0.0, "omega0": 0.0}

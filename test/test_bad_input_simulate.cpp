@@ -54,8 +54,8 @@ TEST(BadInputSimulate, TableHasEnoughDistinctRows) {
 }
 
 TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
-  const fs::path root = fs::path(::testing::TempDir()) / "bad_input_simulate";
-  fs::remove_all(root);
+  const PrivateDir private_root("bad_input_simulate");
+  const fs::path& root = private_root.path();
   int index = 0;
   for (const Row& row : table()) {
     SCOPED_TRACE(row.what);
@@ -88,15 +88,20 @@ TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
   }
 }
 
-// A valid but slow config runs, with the core's warning on stderr (--duration 0: no step is taken).
+// A valid but slow config runs, with the core's note on its sub-steps and its warning on stderr
+// (--duration 0: no step is taken).
 using SlowConfig = FolderTest;
-TEST_F(SlowConfig, RunsWithOneWarning) {
+TEST_F(SlowConfig, RunsWithOneNoteAndOneWarning) {
   const std::string yaml = "bodies: {rod: {type: rod, k: 1e9, mass: 1e-6}}";
   const ToolRun run =
       simulate(write("stiff.yaml", yaml).string() + " --duration 0 --out-dir " + dir_.string());
   EXPECT_EQ(run.exit_code, 0);
-  const auto warnings = slowRunWarnings(parseWorldConfigText(yaml, "stiff"));
+  const WorldConfig config = parseWorldConfigText(yaml, "stiff");
+  const auto notes = autoSubstepNotes(config);
+  const auto warnings = slowRunWarnings(config);
+  ASSERT_EQ(notes.size(), 1u);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(lines(run.err), std::vector<std::string>{"simulate: warning: " + warnings[0]});
+  EXPECT_EQ(lines(run.err),
+            (std::vector<std::string>{"simulate: note: " + notes[0], "simulate: warning: " + warnings[0]}));
   EXPECT_TRUE(fs::exists(dir_ / "rod.csv"));
 }

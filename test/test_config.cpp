@@ -109,6 +109,31 @@ TEST(ConfigShapes, NamedShapesAndExplicitFactor) {
   EXPECT_EQ(rollerOf(config, 3).params.inertia_factor, 0.5);
 }
 
+TEST(ConfigSubsteps, AutoByDefaultOrAStableWholeNumber) {
+  const auto substepsOf = [](const std::string& yaml) {
+    return std::get<RodConfig>(parse(yaml).bodies[0].config).params.substeps;
+  };
+  EXPECT_EQ(substepsOf("bodies: {rod: {type: rod}}"), kAutoSubsteps);
+  EXPECT_EQ(substepsOf("bodies: {rod: {type: rod, substeps: auto}}"), kAutoSubsteps);
+  EXPECT_EQ(substepsOf("bodies: {rod: {type: rod, k: 50000, substeps: 1}}"), 1);  // omega_c dt = 0.63
+  EXPECT_EQ(substepsOf("bodies: {rod: {type: rod, k: 5e6, substeps: 4}}"), 4);    // 6.32 / 4 < 2
+  // The bound follows the rate: omega_c dt = 2 exactly at k = 5e5 and rate 1000 is refused.
+  EXPECT_NE(refusal("bodies: {rod: {type: rod, k: 5e5, substeps: 1}}"), "");
+  EXPECT_EQ(refusal("rate: 2000\nbodies: {rod: {type: rod, k: 5e5, substeps: 1}}"), "");
+}
+
+TEST(ConfigSubsteps, AutoSplittingIsSaidOncePerRodThatItSplits) {
+  EXPECT_TRUE(autoSubstepNotes(parse("bodies: {rod: {type: rod}}")).empty());  // the text's k
+  const auto notes = autoSubstepNotes(parse(
+      "bodies: {soft: {type: rod}, stiff: {type: rod, k: 5000}, fixed: {type: rod, k: 5000, substeps: 1}, "
+      "ball: {type: roller}}"));
+  ASSERT_EQ(notes.size(), 1u);
+  for (const char* part :
+       {"body 'stiff'", "into 2 sub-steps", "omega_c dt = 0.2", "k = 5000", "1 is the text's scheme"}) {
+    EXPECT_NE(notes[0].find(part), std::string::npos) << part << " in: " << notes[0];
+  }
+}
+
 TEST(ConfigSeed, SeedDrawsAReproducibleAngle) {
   const double a = rodOf(parse("bodies: {rod: {type: rod, seed: 42}}")).initial.theta;
   const double b = rodOf(parse("bodies: {rod: {type: rod, seed: 42}}")).initial.theta;
@@ -176,6 +201,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"unknown integrator",
                  "bodies: {rod: {type: rod, integrator: leapfrog}}",
                  {"'integrator'", "'leapfrog'", "euler_cromer"}},
+        BadInput{"zero substeps",
+                 "bodies: {rod: {type: rod, substeps: 0}}",
+                 {"'rod'", "'substeps'", "value '0'", "auto or a whole number in [1, 1e+09]"}},
+        BadInput{"fractional substeps", "bodies: {rod: {type: rod, substeps: 1.5}}", {"'substeps'", "1.5"}},
+        BadInput{"substeps a word", "bodies: {rod: {type: rod, substeps: many}}", {"'substeps'", "'many'"}},
+        BadInput{"substeps unstable",
+                 "bodies: {rod: {type: rod, k: 5e6, substeps: 3}}",  // omega_c dt = 6.32: N >= 4
+                 {"'rod'", "'substeps'", "value 3", "N >= 4", "omega_c dt / N < 2", "k = 5e+06"}},
         BadInput{"unknown body type",
                  "bodies: {box: {type: cube}}",
                  {"'box'", "'type'", "'cube'", "rod or roller"}},
@@ -247,7 +280,8 @@ TEST(ConfigFileErrors, MissingFileAndSyntaxError) {
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/rigid_body_sim.yaml"), std::string::npos);
   }
-  const std::string path = ::testing::TempDir() + "/bad_syntax.yaml";
+  const test::PrivateDir dir("config_bad_syntax");
+  const std::string path = (dir.path() / "bad_syntax.yaml").string();
   FILE* file = std::fopen(path.c_str(), "w");
   ASSERT_NE(file, nullptr);
   std::fputs("bodies: {rod: {type: rod\n", file);
@@ -316,8 +350,9 @@ TEST(ConfigNumbers, OutOfDoubleRangeNamesTheKeysRange) {
 }
 
 TEST(ConfigFileErrors, DirectoryAndEmptyFile) {
-  EXPECT_THROW(loadWorldConfigFile(::testing::TempDir()), ConfigError);
-  const std::string path = ::testing::TempDir() + "/empty.yaml";
+  const test::PrivateDir dir("config_empty");
+  EXPECT_THROW(loadWorldConfigFile(dir.path().string()), ConfigError);
+  const std::string path = (dir.path() / "empty.yaml").string();
   std::fclose(std::fopen(path.c_str(), "w"));
   try {
     loadWorldConfigFile(path);

@@ -58,9 +58,18 @@ std::string interval(const Range& range) {
   return text.substr(text.find_first_of("[("));
 }
 
+// `texts`: the table's keys that are no numbers, with their default and a part of what they allow.
 template <class Config>
-void expectKeysDocumented(const std::string& heading, const std::vector<NumericKey<Config>>& keys) {
+void expectKeysDocumented(const std::string& heading, const std::vector<NumericKey<Config>>& keys,
+                          const std::map<std::string, Cell>& texts = {}) {
   const auto rows = tableAfter(heading);
+  for (const auto& [name, cell] : texts) {
+    SCOPED_TRACE(heading + " " + name);
+    const auto row = rows.find(name);
+    ASSERT_NE(row, rows.end()) << "no row";
+    EXPECT_EQ(row->second.default_value, cell.default_value);
+    EXPECT_NE(row->second.allowed.find(cell.allowed), std::string::npos) << row->second.allowed;
+  }
   Config defaults;
   for (const auto& key : keys) {
     SCOPED_TRACE(heading + " " + key.name);
@@ -69,12 +78,17 @@ void expectKeysDocumented(const std::string& heading, const std::vector<NumericK
     EXPECT_EQ(row->second.default_value, formatNumber(key.field(defaults)));
     EXPECT_NE(row->second.allowed.find(interval(key.range)), std::string::npos) << row->second.allowed;
   }
-  EXPECT_EQ(rows.size(), keys.size()) << heading << ": a row for a key the core does not have";
+  EXPECT_EQ(rows.size(), keys.size() + texts.size()) << heading << ": a row for a key the core does not have";
 }
 
 }  // namespace
 
-TEST(Readme, RodKeysAreTheCores) { expectKeysDocumented("Rod (`type: rod`", rodNumericKeys()); }
+TEST(Readme, RodKeysAreTheCores) {
+  const std::string allowed = substepsAllowed();  // "auto or a whole number in [1, 1e+09]"
+  expectKeysDocumented(
+      "Rod (`type: rod`", rodNumericKeys(),
+      {{"substeps", {substepsToString(RodParams{}.substeps), allowed.substr(allowed.find('['))}}});
+}
 
 TEST(Readme, RollerKeysAreTheCores) { expectKeysDocumented("Roller (`type: roller`", rollerNumericKeys()); }
 

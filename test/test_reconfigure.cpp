@@ -43,6 +43,7 @@ void expectNumbersAreTheCoreKeys(const std::vector<NumericKey<Config>>& keys, Co
 TEST(ReconfigureCfg, RodNumbersAreTheCoreKeys) {
   expectNumbersAreTheCoreKeys<RodReconfigureConfig>(rodNumericKeys(), RodConfig{});
   EXPECT_EQ(RodReconfigureConfig::__getDefault__().integrator, toString(RodParams{}.integrator));
+  EXPECT_EQ(RodReconfigureConfig::__getDefault__().substeps, substepsToString(RodParams{}.substeps));
 }
 
 TEST(ReconfigureCfg, RollerNumbersAreTheCoreKeys) {
@@ -69,14 +70,32 @@ TEST(ReconfigureCfg, ClampingLeavesEveryValueAsAsked) {
 
 TEST(Reconfigure, RodConfigGoesThereAndBack) {
   RodConfig config;
-  config.params = {1.5, 2.0, 3000.0, 9.8, Integrator::Rk4};
+  config.params = {1.5, 2.0, 3000.0, 9.8, Integrator::Rk4, 3};
   config.initial = {0.1, 2.5, 0.7, -1.0, 0.5, 3.0};
   const RodConfig back = fromReconfigure("rod", toReconfigure(config), RodConfig{});
   EXPECT_EQ(back.params.length, 1.5);
   EXPECT_EQ(back.params.mass, 2.0);
   EXPECT_EQ(back.params.k, 3000.0);
   EXPECT_EQ(back.params.integrator, Integrator::Rk4);
+  EXPECT_EQ(back.params.substeps, 3);
   EXPECT_FALSE(initialChanged(back, config));
+}
+
+TEST(Reconfigure, SubstepsAreAutoOrAWholeNumber) {
+  RodReconfigureConfig request = toReconfigure(RodConfig{});
+  EXPECT_EQ(request.substeps, "auto");
+  request.substeps = "1";
+  EXPECT_EQ(fromReconfigure("rod", request, RodConfig{}).params.substeps, 1);
+  for (const char* bad : {"0", "1.5", "", "many"}) {
+    request.substeps = bad;
+    try {
+      fromReconfigure("rod", request, RodConfig{});
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const ConfigError& error) {
+      EXPECT_NE(std::string(error.what()).find("body 'rod', key 'substeps'"), std::string::npos)
+          << error.what();
+    }
+  }
 }
 
 TEST(Reconfigure, RollerShapeBringsItsFactorAndCustomKeepsTheRequested) {

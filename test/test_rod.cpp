@@ -91,6 +91,33 @@ TEST(RodTextProgram, EulerCromerEqualsTranscriptionBitForBit) {
   }
 }
 
+// substeps: 1 is the text's scheme at any k: bit for bit with the text's program at floors stiff enough for
+// auto to split the steps (omega_c dt = 0.2, 0.4, 0.63), where the text's program is still stable.
+TEST(RodTextProgram, SubstepsOneEqualsTranscriptionAtStifferFloors) {
+  for (double k : {5000.0, 20000.0, 50000.0}) {
+    RodParams params = textParams();
+    params.k = k;
+    ASSERT_GT(Rod(params, textInitial(0.3)).substepsFor(kTextDt), 1) << "auto splits at k " << k;
+    params.substeps = 1;
+    rbs_test::TextParams text_params;
+    text_params.k = k;
+    for (double theta0 : {0.0, 0.3, 2.5}) {
+      const std::vector<rbs_test::OracleSample> text = rbs_test::runTextProgram(theta0, -1, text_params);
+      ASSERT_EQ(text.size(), 10000u);
+      Rod rod(params, textInitial(theta0));
+      ASSERT_EQ(rod.substepsFor(kTextDt), 1);
+      for (std::size_t i = 0; i < text.size(); ++i) {
+        const RodMotion& s = rod.state();
+        const rbs_test::OracleSample& o = text[i];
+        ASSERT_TRUE(bits(s.x) == bits(o.x) && bits(s.y) == bits(o.y) && bits(s.theta) == bits(o.theta) &&
+                    bits(s.vx) == bits(o.vx) && bits(s.vy) == bits(o.vy) && bits(s.omega) == bits(o.omega))
+            << "k " << k << " theta0 " << theta0 << " sample " << i;
+        rod.step(kTextDt);
+      }
+    }
+  }
+}
+
 // ------------------------------------------------------------------------------------------------
 // 2. Against the text's program run by numpy (test/data/text_program_reference.py).
 
@@ -251,6 +278,40 @@ TEST(RodSubstepping, SubstepCounts) {
   rod.setParams(p);
   EXPECT_EQ(rod.substepsFor(kTextDt * 0.999), 1);
   EXPECT_EQ(rod.substepsFor(kTextDt * 1.001), 2);
+}
+
+TEST(RodSubstepping, AFixedCountIsKeptWhateverK) {
+  RodParams p = textParams();
+  for (int n : {1, 2, 7}) {
+    p.substeps = n;
+    for (double k : {1.0, 1000.0, 1e6}) {
+      p.k = k;
+      EXPECT_EQ(Rod(p, textInitial(0.3)).substepsFor(kTextDt), n) << "k " << k;
+    }
+  }
+  // Two sub-steps of dt / 2 are two steps of dt / 2 (dt / 2 exact in binary).
+  p.k = 5000.0;
+  p.substeps = 2;
+  Rod split(p, textInitial(0.3));
+  p.substeps = 1;
+  Rod halves(p, textInitial(0.3));
+  for (int i = 0; i < 3000; ++i) {
+    split.step(kTextDt);
+    halves.step(kTextDt / 2);
+    halves.step(kTextDt / 2);
+  }
+  EXPECT_EQ(maxAbsDiff(split.state(), halves.state()), 0.0);
+}
+
+TEST(RodSubstepping, SubstepsTextIsAutoOrAWholeNumber) {
+  EXPECT_EQ(substepsFromString("auto"), kAutoSubsteps);
+  EXPECT_EQ(substepsFromString("1"), 1);
+  EXPECT_EQ(substepsFromString("1000000000"), kMaxSubsteps);
+  for (const char* bad : {"", "0", "-1", "1.5", "2e3", " 2", "two", "Auto", "1000000001", "99999999999"}) {
+    EXPECT_EQ(substepsFromString(bad), std::nullopt) << "'" << bad << "'";
+  }
+  EXPECT_EQ(substepsToString(kAutoSubsteps), "auto");
+  EXPECT_EQ(substepsToString(12), "12");
 }
 
 TEST(RodSubstepping, StiffFloorStaysFiniteAndConservesEnergy) {

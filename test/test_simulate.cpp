@@ -69,6 +69,32 @@ TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
   EXPECT_NE(run.out.find("started rolling"), std::string::npos) << run.out;
 }
 
+TEST_F(SimulateTest, SaysOncePerRodWhenAutoSplitsItsSteps) {
+  const fs::path stiff = write("stiff.yaml",
+                               "bodies: {soft: {type: rod}, stiff: {type: rod, k: 5000}, "
+                               "fixed: {type: rod, k: 5000, substeps: 1}}\n");
+  const auto run = simulate(stiff.string() + " --duration 1 --out-dir " + (dir_ / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_NE(run.err.find("simulate: note: body 'stiff': substeps auto splits each step into 2 sub-steps"),
+            std::string::npos)
+      << run.err;
+  EXPECT_EQ(simulate(config("rod.yaml") + " --duration 1 --out-dir " + (dir_ / "text").string()).err, "");
+}
+
+// A body whose file cannot be opened: the .tmp files of the bodies before it are removed too.
+TEST_F(SimulateTest, CsvWriterThatCannotOpenAFileLeavesNoTemporaryFile) {
+  const World world(loadWorldConfigFile(config("demo.yaml")));
+  ASSERT_GT(world.bodies().size(), 2u);
+  const fs::path out = dir_ / "out";
+  fs::create_directories(out /
+                         (world.bodies()[2].name + ".csv.tmp"));  // a folder: cannot be opened as a file
+  EXPECT_THROW(CsvWriter(out.string(), world.bodies()), std::runtime_error);
+  for (const auto& entry : fs::directory_iterator(out)) {
+    EXPECT_TRUE(fs::is_directory(entry.path())) << entry.path() << " left behind";
+  }
+}
+
 TEST_F(SimulateTest, WritesABag) {
   const auto run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
                             (dir_ / "run.bag").string());

@@ -96,6 +96,23 @@ TEST(SweepAxis, BadSpecificationsAreRefusedWithOneLine) {
       ConfigError);
 }
 
+TEST(SweepAxis, SubstepsAreSweptAsWholeNumbers) {
+  const WorldConfig base = loadWorldConfigFile(config("demo.yaml"));
+  const std::vector<SweepAxis> axes = {parseSweepAxis("rod.substeps=1:4:4", base)};
+  for (std::int64_t v = 0; v < 4; ++v) {
+    const WorldConfig variant = variantConfig(base, axes, v);
+    EXPECT_EQ(std::get<RodConfig>(variant.bodies[0].config).params.substeps, v + 1);
+  }
+  const std::vector<SweepAxis> halves = {parseSweepAxis("rod.substeps=1:2:3", base)};  // 1, 1.5, 2
+  try {
+    variantConfig(base, halves, 1);
+    ADD_FAILURE() << "substeps 1.5 was accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("'substeps': value 1.5"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(parseSweepAxis("sphere.substeps=1:2:2", base), ConfigError);
+}
+
 TEST(SweepShard, ShardsCoverEveryVariantExactlyOnceInOrder) {
   for (std::int64_t total : {1, 2, 7, 10, 1000, 1001}) {
     for (std::int64_t n = 1; n <= 13; ++n) {

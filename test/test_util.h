@@ -1,15 +1,20 @@
-// Helpers shared by the compiled tests: files and their lines, the one line of a refusal, and a fresh
-// folder per test in which a tool runs as a user runs it. No ROS header.
+// Helpers shared by the compiled tests: files and their lines, the one line of a refusal, and a folder
+// of each run's own in which a tool runs as a user runs it. No ROS header.
 #pragma once
 
 #include <gtest/gtest.h>
 
+#include <stdlib.h>  // mkdtemp
 #include <sys/wait.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -78,14 +83,36 @@ inline ToolRun runTool(const std::string& command, const fs::path& dir) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout"), slurp(dir / "stderr")};
 }
 
-// A fixture with a fresh, empty folder named after the test.
+// A new, empty folder of this run's own (mkdtemp), removed with the object. Never a fixed path: the same
+// test runs at the same time in other working copies on the machine, and a shared folder lets one run
+// remove or truncate what another is writing.
+class PrivateDir {
+ public:
+  explicit PrivateDir(const std::string& prefix) {
+    std::string pattern = (fs::path(::testing::TempDir()) / (prefix + ".XXXXXX")).string();
+    if (!mkdtemp(pattern.data()))
+      throw std::runtime_error("mkdtemp " + pattern + ": " + std::strerror(errno));
+    path_ = pattern;
+  }
+  ~PrivateDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  PrivateDir(const PrivateDir&) = delete;
+  PrivateDir& operator=(const PrivateDir&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// A fixture with a private, empty folder named after the test.
 class FolderTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::path(::testing::TempDir()) / (std::string(test->test_suite_name()) + "_" + test->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    folder_ = std::make_unique<PrivateDir>(std::string(test->test_suite_name()) + "_" + test->name());
+    dir_ = folder_->path();
   }
 
 #ifdef RBS_SIMULATE_EXE  // a test that runs simulate (TOOLS simulate in test/CMakeLists.txt)
@@ -100,6 +127,7 @@ class FolderTest : public ::testing::Test {
     return dir_ / name;
   }
 
+  std::unique_ptr<PrivateDir> folder_;
   fs::path dir_;
 };
 

@@ -144,6 +144,9 @@ void validate(const std::string& body, const RodConfig& config) {
   if (!gravityRange().contains(p.gravity)) {
     throw ConfigError(body, "gravity", formatNumber(p.gravity), gravityRange().describe());
   }
+  if (p.substeps != kAutoSubsteps && !(p.substeps >= 1 && p.substeps <= kMaxSubsteps)) {
+    throw ConfigError(body, "substeps", std::to_string(p.substeps), substepsAllowed());
+  }
   // sqrt(4 k / M) <= w  <=>  k <= w^2 M / 4
   const double max_k = kMaxContactFrequency * kMaxContactFrequency * p.mass / 4.0;
   if (p.k > max_k) {
@@ -155,6 +158,22 @@ void validate(const std::string& body, const RodConfig& config) {
 }
 
 double maxContactFrequency() { return kMaxContactFrequency; }
+
+std::string substepsAllowed() { return "auto or a whole number in [1, " + formatNumber(kMaxSubsteps) + "]"; }
+
+void validateSubsteps(const std::string& body, const RodConfig& config, double rate) {
+  const int n = config.params.substeps;
+  if (n == kAutoSubsteps) return;
+  const double ratio = Rod(config.params, config.initial).contactFrequency() / rate;  // omega_c dt
+  if (ratio / n < 2.0) return;
+  const double smallest = std::floor(ratio / 2.0) + 1.0;
+  throw ConfigError(body, "substeps", std::to_string(n),
+                    "auto or a whole number N >= " + formatNumber(smallest) +
+                        ": a sub-step is stable only while omega_c dt / N < 2, and here omega_c dt = " +
+                        formatNumber(ratio) + " with omega_c = sqrt(4 k / mass), k = " +
+                        formatNumber(config.params.k) + ", mass = " + formatNumber(config.params.mass) +
+                        ", dt = 1 / rate = " + formatNumber(1.0 / rate) + " s");
+}
 
 void validate(const std::string& body, const RollerConfig& config) {
   checkRanges(body, config, rollerNumericKeys());
@@ -250,7 +269,12 @@ void validate(const WorldConfig& config, const std::vector<std::string>& reserve
                         "names whose TF frames (<name>, <name>_floor or <name>_slope) differ from each "
                         "other and from world_frame");
     }
-    std::visit([&](const auto& body_config) { validate(body.name, body_config); }, body.config);
+    std::visit(
+        [&](const auto& body_config) {
+          validate(body.name, body_config);
+          validateSubsteps(body.name, body_config, config.rate);
+        },
+        body.config);
   }
 }
 
@@ -269,6 +293,25 @@ std::vector<std::string> slowRunWarnings(const WorldConfig& config) {
     }
   }
   return warnings;
+}
+
+std::vector<std::string> autoSubstepNotes(const WorldConfig& config) {
+  std::vector<std::string> notes;
+  for (const auto& body : config.bodies) {
+    const auto* rod = std::get_if<RodConfig>(&body.config);
+    if (!rod || rod->params.substeps != kAutoSubsteps) continue;
+    const Rod model(rod->params, rod->initial);
+    const int n = model.autoSubstepsFor(1.0 / config.rate);
+    if (n == 1) continue;
+    notes.push_back(
+        "body '" + body.name + "': substeps auto splits each step into " + std::to_string(n) +
+        " sub-steps, as omega_c dt = " + formatNumber(model.contactFrequency() / config.rate) +
+        " (omega_c = sqrt(4 k / mass) at k = " + formatNumber(rod->params.k) +
+        ", mass = " + formatNumber(rod->params.mass) + ", rate = " + formatNumber(config.rate) +
+        ") is above " + formatNumber(2.0 * Rod::kSubstepFraction) +
+        "; substeps: N fixes the count instead (stable for N > omega_c dt / 2; 1 is the text's scheme)");
+  }
+  return notes;
 }
 
 }  // namespace rigid_body_sim

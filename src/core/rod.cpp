@@ -24,6 +24,22 @@ std::optional<Integrator> integratorFromString(const std::string& name) {
   return std::nullopt;
 }
 
+std::string substepsToString(int substeps) {
+  return substeps == kAutoSubsteps ? "auto" : std::to_string(substeps);
+}
+
+std::optional<int> substepsFromString(const std::string& text) {
+  if (text == "auto") return kAutoSubsteps;
+  if (text.empty() || text.size() > 10) return std::nullopt;
+  long long value = 0;
+  for (const char ch : text) {
+    if (ch < '0' || ch > '9') return std::nullopt;
+    value = value * 10 + (ch - '0');
+  }
+  if (value < 1 || value > kMaxSubsteps) return std::nullopt;
+  return static_cast<int>(value);
+}
+
 Rod::Rod(const RodParams& params, const RodMotion& initial)
     : params_(params), initial_(initial), state_(initial) {}
 
@@ -75,12 +91,17 @@ double Rod::energy() const {
 double Rod::endHeightA() const { return state_.y + (0.5 * params_.length) * std::sin(state_.theta); }
 double Rod::endHeightB() const { return state_.y - (0.5 * params_.length) * std::sin(state_.theta); }
 
+double Rod::contactFrequency() const { return std::sqrt(4.0 * params_.k / params_.mass); }
+
+int Rod::substepsFor(double dt) const {
+  return params_.substeps == kAutoSubsteps ? autoSubstepsFor(dt) : params_.substeps;
+}
+
 // Euler-Cromer on a spring of angular frequency w is stable for w h < 2; one end of a flat rod (effective
 // mass M/4) is the stiffest contact mode. Keep w h within kSubstepFraction of that bound.
-int Rod::substepsFor(double dt) const {
-  const double omega_c = std::sqrt(4.0 * params_.k / params_.mass);
+int Rod::autoSubstepsFor(double dt) const {
   const double limit = 2.0 * kSubstepFraction;
-  const double ratio = omega_c * dt;
+  const double ratio = contactFrequency() * dt;
   if (!(ratio > limit)) return 1;  // also catches NaN
   const double n = std::ceil(ratio / limit);
   if (!(n < static_cast<double>(std::numeric_limits<int>::max()))) {

@@ -81,7 +81,7 @@ void readNumericKeys(const std::string& body, const YAML::Node& map, Config& con
 }
 
 RodConfig parseRod(const std::string& body, const YAML::Node& map) {
-  refuseUnknownKeys(body, map, keyNames(rodNumericKeys(), {"type", "integrator", "seed"}));
+  refuseUnknownKeys(body, map, keyNames(rodNumericKeys(), {"type", "integrator", "substeps", "seed"}));
   RodConfig config;
   readNumericKeys(body, map, config, rodNumericKeys());
   if (map["integrator"]) {
@@ -90,6 +90,11 @@ RodConfig parseRod(const std::string& body, const YAML::Node& map) {
     const auto integrator = integratorFromString(name);
     if (!integrator) throw ConfigError(body, "integrator", "'" + name + "'", allowed);
     config.params.integrator = *integrator;
+  }
+  if (map["substeps"]) {
+    const auto substeps = substepsFromString(asString(body, "substeps", map["substeps"], substepsAllowed()));
+    if (!substeps) throw ConfigError(body, "substeps", describe(map["substeps"]), substepsAllowed());
+    config.params.substeps = *substeps;
   }
   if (map["seed"]) {
     if (map["theta0"]) {

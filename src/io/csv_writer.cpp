@@ -31,19 +31,27 @@ std::string csvRow(double t, const Body& body) {
 
 CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies) {
   std::filesystem::create_directories(out_dir);
-  for (const auto& body : bodies) {
-    File file;
-    file.final_path = (std::filesystem::path(out_dir) / (body.name + ".csv")).string();
-    file.temp_path = file.final_path + ".tmp";
-    file.stream = std::make_unique<std::ofstream>(file.temp_path);
-    if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
-    *file.stream << csvHeader(body) << '\n';
-    files_.push_back(std::move(file));
+  try {
+    for (const auto& body : bodies) {
+      File file;
+      file.final_path = (std::filesystem::path(out_dir) / (body.name + ".csv")).string();
+      file.temp_path = file.final_path + ".tmp";
+      file.stream = std::make_unique<std::ofstream>(file.temp_path);
+      if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
+      files_.push_back(std::move(file));
+      *files_.back().stream << csvHeader(body) << '\n';
+    }
+  } catch (...) {
+    removeTemporaries();  // no destructor runs for a constructor that throws
+    throw;
   }
 }
 
 CsvWriter::~CsvWriter() {
-  if (committed_) return;
+  if (!committed_) removeTemporaries();
+}
+
+void CsvWriter::removeTemporaries() {
   for (auto& file : files_) {
     file.stream->close();
     std::error_code ignored;

@@ -58,9 +58,19 @@ const BodyConfig* findBody(const WorldConfig& config, const std::string& name) {
   return nullptr;
 }
 
+// A rod's fixed sub-step count is swept as numbers too (auto is not one).
+const char* const kSubsteps = "substeps";
+
 // Sets a numeric key of a body config; the key was checked by parseSweepAxis.
 void setKey(BodyConfig& body, const std::string& key, double value) {
   if (auto* rod = std::get_if<RodConfig>(&body.config)) {
+    if (key == kSubsteps) {
+      if (!(value >= 1 && value <= kMaxSubsteps && value == std::floor(value))) {
+        throw ConfigError(body.name, key, formatNumber(value), substepsAllowed());
+      }
+      rod->params.substeps = static_cast<int>(value);
+      return;
+    }
     findKey(rodNumericKeys(), key)->field(*rod) = value;
   } else {
     auto& roller = std::get<RollerConfig>(body.config);
@@ -154,12 +164,12 @@ SweepAxis parseSweepAxis(const std::string& spec, const WorldConfig& config) {
   }
   const BodyConfig* body = findBody(config, axis.body);
   if (!body) throw refuse("a body of the config, as BODY.KEY");
-  const bool known = std::holds_alternative<RodConfig>(body->config)
-                         ? findKey(rodNumericKeys(), axis.key) != nullptr
+  const bool rod = std::holds_alternative<RodConfig>(body->config);
+  const bool known = rod ? findKey(rodNumericKeys(), axis.key) != nullptr || axis.key == kSubsteps
                          : findKey(rollerNumericKeys(), axis.key) != nullptr;
   if (!known) {
-    const std::string names = std::holds_alternative<RodConfig>(body->config) ? keyNames(rodNumericKeys())
-                                                                              : keyNames(rollerNumericKeys());
+    const std::string names =
+        rod ? keyNames(rodNumericKeys()) + ", " + kSubsteps : keyNames(rollerNumericKeys());
     throw ConfigError(axis.body, axis.key, "'" + spec + "'", "a numeric key of this body: " + names);
   }
   return axis;

@@ -49,6 +49,8 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
+  for (const auto& note : autoSubstepNotes(config_)) ROS_INFO_STREAM(note);
+  for (const auto& warning : slowRunWarnings(config_)) ROS_WARN_STREAM(warning);
   advertise();
   startReconfigureServers();
 }
@@ -115,6 +117,7 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
   try {
     const Config wanted = fromReconfigure(name, request, current);
     validate(name, wanted);
+    validateSubsteps(name, wanted, config_.rate);
     Model& model = std::get<Model>(world_.bodies()[index].model);
     model.setParams(wanted.params);
     if (initialChanged(wanted, current)) model.setInitial(wanted.initial);

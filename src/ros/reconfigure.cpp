@@ -8,7 +8,7 @@ namespace {
 
 // Calls visit(key, field) for every number of a .cfg: `field` is the request's member, `key` the core's
 // numeric key of the same name (test_reconfigure checks that the .cfg's numbers are the core's keys, with
-// their defaults and no ranges of their own). Texts (the integrator, the shape) are left to the caller.
+// their defaults and no ranges of their own). Texts (the integrator, substeps, the shape) are left to the caller.
 template <class Request, class Config, class Visit>
 void forEachNumber(const std::vector<NumericKey<Config>>& keys, Visit visit) {
   using Number = typename Request::template ParamDescription<double>;
@@ -40,6 +40,7 @@ void setNumbers(const Request& request, Config& config, const std::vector<Numeri
 RodReconfigureConfig toReconfigure(const RodConfig& config) {
   auto request = numbersOf<RodReconfigureConfig>(config, rodNumericKeys());
   request.integrator = toString(config.params.integrator);
+  request.substeps = substepsToString(config.params.substeps);
   return request;
 }
 
@@ -59,6 +60,9 @@ RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& r
                       "euler_cromer, velocity_verlet or rk4");
   }
   out.params.integrator = *integrator;
+  const auto substeps = substepsFromString(request.substeps);
+  if (!substeps) throw ConfigError(body, "substeps", "'" + request.substeps + "'", substepsAllowed());
+  out.params.substeps = *substeps;
   return out;
 }
 

@@ -112,6 +112,7 @@ int runSimulate(int argc, char** argv, const SinkOpener& open_bag) {
     checkModes(sweep_args, options);
     if (!options.bag.empty() && !open_bag) handOverToRosProgram(argv);
     const auto config = loadWorldConfigFile(config_path);
+    for (const auto& note : autoSubstepNotes(config)) std::cerr << "simulate: note: " << note << "\n";
     for (const auto& warning : slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
     if (!sweep_args.specs.empty()) {
       sweep(config, sweep_args, options);

@@ -2,20 +2,25 @@
 // calls, and exact comparison of a published state with the core World's prediction.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <condition_variable>
 #include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
+#include <ros/network.h>
 #include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
 #include <std_srvs/Empty.h>
+#include <xmlrpcpp/XmlRpc.h>
 
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
@@ -64,36 +69,20 @@ class StateCollector {
     return cv_.wait_for(lock, std::chrono::duration<double>(timeout), pred);
   }
 
-  // Waits until states have come and then stopped for `quiet` wall seconds (a run with a duration is
-  // over), at most `give_up` seconds; returns how many arrived.
-  std::size_t waitQuiet(double give_up, double quiet = 1.5) {
-    std::size_t last = 0;
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(give_up);
-    ros::WallTime quiet_since = ros::WallTime::now();
-    while (ros::WallTime::now() < end) {
-      ros::WallDuration(0.1).sleep();
-      const std::size_t now = count();
-      if (now != last) {
-        last = now;
-        quiet_since = ros::WallTime::now();
-      } else if (last > 0 && (ros::WallTime::now() - quiet_since).toSec() > quiet) {
-        break;
-      }
-    }
-    return last;
-  }
-
-  // Waits until every body has a state with time exactly t.
+  // Waits until every body has a state with time exactly t. A body's t never goes back, so each look
+  // reads its latest states only (it runs at every message).
   bool waitAllAt(const World& world, double t, double timeout = 3.0) {
+    const auto has = [t](const auto& msgs) {
+      for (auto m = msgs.rbegin(); m != msgs.rend() && m->t >= t; ++m) {
+        if (m->t == t) return true;
+      }
+      return false;
+    };
     return waitFor(
         [&] {
           for (const auto& body : world.bodies()) {
-            bool found = false;
-            if (std::holds_alternative<Rod>(body.model)) {
-              for (const auto& m : rods_[body.name]) found = found || m.t == t;
-            } else {
-              for (const auto& m : rollers_[body.name]) found = found || m.t == t;
-            }
+            const bool found =
+                std::holds_alternative<Rod>(body.model) ? has(rods_[body.name]) : has(rollers_[body.name]);
             if (!found) return false;
           }
           return true;
@@ -162,6 +151,98 @@ class StateCollector {
   std::map<std::string, std::vector<RollerState>> rollers_;
   std::size_t count_ = 0;
 };
+
+// Calls `method` of a node's own XML-RPC API (with this node as the caller); false if that fails.
+inline bool callNode(const std::string& node, const std::string& method, XmlRpc::XmlRpcValue& result) {
+  XmlRpc::XmlRpcValue args, lookup, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  if (!ros::master::execute("lookupNode", args, lookup, payload, false)) return false;
+  std::string host;
+  std::uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return false;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue caller;
+  caller[0] = ros::this_node::getName();
+  return client.execute(method.c_str(), caller, result) &&
+         result.getType() == XmlRpc::XmlRpcValue::TypeArray && result.size() >= 3;
+}
+
+// Whether `node` has a connection of its own that publishes `topic` to this node (its getBusInfo). From then
+// on all it publishes there reaches this node: a subscription's publisher count alone is no proof, as it
+// also counts this node's own publisher of the topic (every node publishes /rosout).
+inline bool publishesHere(const std::string& node, const std::string& topic) {
+  XmlRpc::XmlRpcValue result;
+  if (!callNode(node, "getBusInfo", result)) return false;
+  XmlRpc::XmlRpcValue& connections = result[2];  // [id, peer, direction, transport, topic, connected, ...]
+  for (int i = 0; i < connections.size(); ++i) {
+    XmlRpc::XmlRpcValue& c = connections[i];
+    if (c.size() >= 6 && static_cast<std::string>(c[1]) == ros::this_node::getName() &&
+        static_cast<std::string>(c[2]) == "o" && static_cast<std::string>(c[4]) == topic &&
+        static_cast<bool>(c[5]))
+      return true;
+  }
+  return false;
+}
+
+// Every line a node sends to /rosout, in the order it logged them: the node has one /rosout publisher and
+// this one connection to it, so a line logged after another always arrives after it.
+class NodeLog {
+ public:
+  explicit NodeLog(ros::NodeHandle& nh, const std::string& node = "/sim")
+      : node_(node),
+        sub_(nh.subscribe<rosgraph_msgs::Log>("/rosout", 10000,
+                                              [this](const rosgraph_msgs::Log::ConstPtr& msg) {
+                                                if (msg->name != node_) return;
+                                                std::lock_guard<std::mutex> lock(mutex_);
+                                                lines_.push_back(*msg);
+                                                arrived_.notify_all();
+                                              })) {}
+
+  // Waits until the node publishes /rosout to this node (its lines are not lost from then on).
+  bool waitConnected(double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (!publishesHere(node_, "/rosout")) {
+      if (ros::WallTime::now() > end) return false;
+      ros::WallDuration(0.02).sleep();
+    }
+    return true;
+  }
+
+  // Waits until a line holding `text` has arrived (at most timeout wall seconds); then returns every line
+  // before the first such one and forgets them and it. Lines logged before that one have all arrived.
+  std::optional<std::vector<rosgraph_msgs::Log>> takeUntil(const std::string& text, double timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    auto found = lines_.end();
+    const auto holds = [&] {
+      found = std::find_if(lines_.begin(), lines_.end(), [&](const rosgraph_msgs::Log& line) {
+        return line.msg.find(text) != std::string::npos;
+      });
+      return found != lines_.end();
+    };
+    if (!arrived_.wait_for(lock, std::chrono::duration<double>(timeout), holds)) return std::nullopt;
+    std::vector<rosgraph_msgs::Log> before(lines_.begin(), found);
+    lines_.erase(lines_.begin(), found + 1);
+    return before;
+  }
+
+ private:
+  std::string node_;
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::vector<rosgraph_msgs::Log> lines_;
+  ros::Subscriber sub_;
+};
+
+// The texts of the lines of at least `level` (rosgraph_msgs::Log::ERROR, say).
+inline std::vector<std::string> textsAtLeast(const std::vector<rosgraph_msgs::Log>& lines,
+                                             std::uint8_t level) {
+  std::vector<std::string> texts;
+  for (const auto& line : lines) {
+    if (line.level >= level) texts.push_back(line.msg);
+  }
+  return texts;
+}
 
 // Every field but the header, in the order of the message.
 inline auto fieldsOf(const RodState& m) {

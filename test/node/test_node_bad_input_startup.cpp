@@ -2,16 +2,12 @@
 // server can hold, and the node's own options (test/bad_input/node_startup.yaml). Each row is loaded into
 // a private namespace of its own and sim_node is started on it: it must exit 1 and print exactly one line
 // on stderr, which holds the loader's message for those parameters and the row's fragments.
-#include <stdlib.h>  // mkdtemp
 #include <sys/wait.h>
 
-#include <cerrno>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <stdexcept>
 
 #include "node_test_util.h"
 #include "rigid_body_sim/ros/params.h"
@@ -20,6 +16,7 @@
 namespace fs = std::filesystem;
 using namespace rigid_body_sim;
 using test::nonEmptyLines;
+using test::PrivateDir;
 using test::slurp;
 
 namespace {
@@ -92,26 +89,6 @@ std::string simNodeExe() {
   const char* exe = std::getenv("RBS_SIM_NODE_EXE");
   return exe ? exe : RBS_SIM_NODE_EXE;
 }
-
-// A folder of this run's own, removed with it. A fixed path would be shared with the runs of this test in
-// other working copies on the machine: one removes the folder or truncates a file while another's node
-// writes its line into it, and that run reads nothing.
-class PrivateDir {
- public:
-  explicit PrivateDir(const std::string& prefix) {
-    std::string pattern = (fs::path(::testing::TempDir()) / (prefix + ".XXXXXX")).string();
-    if (!mkdtemp(pattern.data()))
-      throw std::runtime_error("mkdtemp " + pattern + ": " + std::strerror(errno));
-    path_ = pattern;
-  }
-  ~PrivateDir() { fs::remove_all(path_); }
-  PrivateDir(const PrivateDir&) = delete;
-  PrivateDir& operator=(const PrivateDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 }  // namespace
 

@@ -117,9 +117,9 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   ASSERT_TRUE(ros::service::waitForService("/sim/sphere/set_parameters", 10000));
   ASSERT_TRUE(ros::service::waitForService("/sim/cylinder/set_parameters", 10000));
   ASSERT_TRUE(callEmpty("/sim/pause"));
-  ros::WallDuration(0.3).sleep();  // states published before the pause arrive before any comparison
 
-  // Bring the local World to the node's step count: step(1) tells the time.
+  // Bring the local World to the node's step count: step(1) tells the time. Its states come after every
+  // state published before the pause (each topic delivers in order).
   bool called = false;
   Step s = callStep(1, &called);
   ASSERT_TRUE(called);

@@ -8,9 +8,7 @@
 //   new, older data.
 #include <signal.h>
 
-#include <ros/network.h>
 #include <tf2_ros/transform_listener.h>
-#include <xmlrpcpp/XmlRpc.h>
 
 #include "node_test_util.h"
 
@@ -21,18 +19,8 @@ namespace {
 
 // The process id of a node, asked from the node itself (getPid of its XML-RPC API).
 int pidOf(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, true)) return -1;
-  std::string host;
-  std::uint32_t port = 0;
-  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return -1;
-  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
-  XmlRpc::XmlRpcValue pid_args, pid_result;
-  pid_args[0] = ros::this_node::getName();
-  if (!client.execute("getPid", pid_args, pid_result) || pid_result.size() < 3) return -1;
-  return static_cast<int>(pid_result[2]);
+  XmlRpc::XmlRpcValue result;
+  return callNode(node, "getPid", result) ? static_cast<int>(result[2]) : -1;
 }
 
 }  // namespace

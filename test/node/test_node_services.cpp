@@ -1,6 +1,9 @@
 // sim_node at wall pace: ~pause, ~step, ~reset and ~unpause, checked against the core World.
 #include <tf2_msgs/TFMessage.h>
 
+#include <chrono>
+#include <cstdio>
+
 #include "node_test_util.h"
 
 using namespace rigid_body_sim;
@@ -68,24 +71,26 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
   ASSERT_TRUE(c.waitFor([&] { return c.rodsLocked()["rod"].size() >= 5; }, 5.0)) << "no rod states";
 
-  // --- pause: no more states, t stays put
+  // --- pause, and step(1): it gives the current time (the world may be between two publishing instants)
+  // and publishes every body's state at it. Those states are the last before the pause's silence, and each
+  // topic delivers in order: once they have come, everything published before has come too.
+  const double t_before_pause = latestRodT(c);
   ASSERT_TRUE(callEmpty("/sim/pause"));
-  ros::WallDuration(0.2).sleep();  // let what was in flight arrive
-  const std::size_t count_paused = c.count();
-  const double t_paused = latestRodT(c);
-  ros::WallDuration(0.6).sleep();
-  EXPECT_EQ(count_paused, c.count()) << "states kept coming while paused";
-  EXPECT_EQ(t_paused, latestRodT(c));
-
-  // --- step(1) gives the current time (the world may be between two publishing instants)
   bool called = false;
   Step s1 = callStep(1, &called);
   ASSERT_TRUE(called);
   ASSERT_TRUE(s1.response.success) << s1.response.message;
-  EXPECT_GE(s1.response.t, t_paused + dt - 1e-9);
+  EXPECT_GE(s1.response.t, t_before_pause + dt - 1e-9);
+  ASSERT_TRUE(c.waitAllAt(initial_world, s1.response.t))
+      << "no state of every body at t = " << s1.response.t << " after step(1)";
   RodState rod_msg;
-  EXPECT_TRUE(waitRodAt(c, s1.response.t, &rod_msg))
-      << "no state at t = " << s1.response.t << " after step(1)";
+  ASSERT_TRUE(waitRodAt(c, s1.response.t, &rod_msg));
+
+  // --- paused: nothing more comes (a window to watch for a message that must not come, not a wait)
+  const std::size_t count_paused = c.count();
+  ros::WallDuration(0.6).sleep();
+  EXPECT_EQ(count_paused, c.count()) << "states kept coming while paused";
+  EXPECT_EQ(s1.response.t, latestRodT(c));
 
   // --- step(10): t advances by exactly 10 dt and the state at that t is published for every body
   Step s10 = callStep(10, &called);
@@ -161,25 +166,32 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
     expectSameState(toRodStateMsg(s5.response.t, rod), rod_msg, "rod 5 steps after reset");
   }
 
-  // --- unpause: time advances again; ~step is refused while running
+  // --- unpause: time advances again at wall pace; ~step is refused while running. The node anchors its
+  // pace when it unpauses, so a state received at wall time w is at most w - (the wall time before the
+  // call) past t_unpaused: never ahead of the wall clock, whatever the load. That it keeps up is waited
+  // for (1 simulated second); how fast it gets there depends on the machine, so it is only printed
+  // (StepPacer's own test checks the pace exactly).
+  const double t_unpaused = s5.response.t;
+  const auto before_unpause = std::chrono::steady_clock::now();  // the node's pacer's clock
+  const auto wall_since_unpause = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - before_unpause).count();
+  };
   ASSERT_TRUE(callEmpty("/sim/unpause"));
   Step running = callStep(1, &called);
   ASSERT_TRUE(called);
   EXPECT_FALSE(running.response.success) << "step accepted while running";
-  const double t_unpaused = s5.response.t;
-  EXPECT_TRUE(c.waitFor(
+  double ahead = -1e9;  // the most any received state was ahead of the wall clock (s)
+  const bool kept_up = c.waitFor(
       [&] {
         const auto& rods = c.rodsLocked()["rod"];
-        return !rods.empty() && rods.back().t > t_unpaused + 0.1;
+        if (rods.empty()) return false;
+        ahead = std::max(ahead, rods.back().t - t_unpaused - wall_since_unpause());
+        return rods.back().t >= t_unpaused + 1.0;
       },
-      3.0))
-      << "time does not advance after unpause";
-  // ... at wall pace: about 1 simulated second per wall second.
-  const double t_a = latestRodT(c);
-  ros::WallDuration(1.0).sleep();
-  const double advanced = latestRodT(c) - t_a;
-  EXPECT_GT(advanced, 0.7);
-  EXPECT_LT(advanced, 1.3);
+      20.0);
+  EXPECT_TRUE(kept_up) << "time does not advance after unpause";
+  EXPECT_LE(ahead, 1e-3) << "the node ran ahead of the wall clock";
+  std::printf("one simulated second after unpause took %.3f wall seconds\n", wall_since_unpause());
 
   tf_sub.shutdown();
   std::lock_guard<std::mutex> lock(tf_mutex);

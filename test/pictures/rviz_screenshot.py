@@ -53,14 +53,40 @@ class Scene:
         from visualization_msgs.msg import MarkerArray
         self.frames: Dict[str, Tuple[Array, Array]] = {}
         self.markers: Dict[Tuple[str, int], Any] = {}
-        self.t: Optional[float] = None
-        name, body = next(iter(config["bodies"].items()))  # its state gives the simulated time
+        self.t: Optional[float] = None  # of the latest state of the first body
+        self.state_stamp: Any = None  # of that state, and of the latest transform on /tf
+        self.tf_stamp: Any = None
+        self.states: Dict[str, Any] = {}  # every body's latest state
+        self.names = list(config["bodies"])
+        self.first = self.names[0]
         self.subscribers = [
-            rospy.Subscriber("/tf", TFMessage, self.on_tf, queue_size=100),
+            rospy.Subscriber("/tf", TFMessage, self.on_moving_tf, queue_size=100),
             rospy.Subscriber("/tf_static", TFMessage, self.on_tf, queue_size=100),
-            rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, queue_size=100),
-            rospy.Subscriber(f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
-                             lambda msg: setattr(self, "t", msg.t), queue_size=100)]
+            rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, queue_size=100)]
+        for name, body in config["bodies"].items():
+            self.subscribers.append(rospy.Subscriber(
+                f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
+                lambda msg, name=name: self.on_state(name, msg), queue_size=100))
+
+    def on_state(self, name: str, msg: Any) -> None:
+        self.states[name] = msg
+        if name == self.first:
+            self.t, self.state_stamp = msg.t, msg.header.stamp
+
+    def on_moving_tf(self, msg: Any) -> None:
+        self.on_tf(msg)
+        self.tf_stamp = max(t.header.stamp for t in msg.transforms) if msg.transforms else self.tf_stamp
+
+    def all_at(self, t: float) -> bool:
+        """Every body's state at t has come, and the transforms of that instant."""
+        return (all(self.states.get(name) is not None and self.states[name].t == t for name in self.names)
+                and self.tf_stamp == self.state_stamp)
+
+    def rollers_high(self, rollers: Sequence[RollerSpec]) -> bool:
+        """No roller on the lowest fifth of its slope: there, in sim.rviz's view, the long slope passes in
+        front of the short ones and may hide it."""
+        return all(name in self.states and self.states[name].x <= 0.8 * slope
+                   for name, slope in ((r.name, r.slope) for r in rollers))
 
     def on_tf(self, msg: Any) -> None:
         for t in msg.transforms:
@@ -120,6 +146,32 @@ class Checker:
         pixels, depth = self.camera.project(corners)
         return pc.convex_hull(pixels) if (depth > 0).all() else None
 
+    def labels(self) -> Array:
+        """Pixels the bodies' labels may cover (white text in front of whatever is behind): a box around each
+        label's projected centre, as wide as its text in glyphs of about its height, with a margin."""
+        covered = np.zeros(self.shape, dtype=bool)
+        for (ns, _), m in self.scene.markers.items():
+            if ns != "label":
+                continue
+            _, centre = self.scene.world_pose(m.header.frame_id, m.pose)
+            (pixel,), (depth,) = self.camera.project(centre)
+            if depth <= 0:
+                continue
+            height = m.scale.z * self.camera.pixels_per_metre_at(depth)
+            half_w, half_h = 0.5 * (0.7 * len(m.text) + 1) * height, height
+            col, row = pixel
+            covered |= pc.polygon_mask(self.shape, [(col - half_w, row - half_h), (col + half_w, row - half_h),
+                                                    (col + half_w, row + half_h), (col - half_w, row + half_h)])
+        return covered
+
+    def count_unlabelled(self, region: Array, labels: Array, colour: str, what: str, share: float) -> Finding:
+        """pc.count on the region less what the labels may cover; a region mostly under a label cannot show
+        its colour and is not counted (a finding that says so)."""
+        shown = region & ~labels
+        if shown.sum() < region.sum() / 3:
+            return flag(f"{what}: mostly under a label, not counted", True)
+        return pc.count(self.image, shown, colour, what, share)
+
     def in_view(self, what: str, region: Array) -> Array:
         """The region clipped to the view; a finding when a tenth of it or more lies outside."""
         total, inside = int(region.sum()), int((region & self.view).sum())
@@ -178,33 +230,42 @@ class Checker:
                 own &= ~box
         self.findings.append(pc.count(self.image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
 
-    def roller(self, name: str, shape_name: str, disc: Optional[Disc]) -> None:
+    def roller(self, name: str, shape_name: str, disc: Optional[Disc], labels: Array) -> None:
         if disc is None:
             self.findings.append(flag(f"{name}'s pose received", False))
             return
         mask, centre, radius = disc
         colour = pc.SHAPE_CLASS[shape_name]
-        found = pc.count(self.image, self.in_view(name, mask), colour, f"{name} ({shape_name})", 0.35)
-        if shape_name == "ring":  # a line 0.15 R wide: most of its circumference, not a share of the disc
+        found = self.count_unlabelled(self.in_view(name, mask), labels, colour, f"{name} ({shape_name})", 0.35)
+        # A ring is a line 0.15 R wide: most of its circumference, not a share of the disc.
+        if shape_name == "ring" and found.colour != "-":
             found.needed_px = int(0.4 * 2 * np.pi * radius)
         self.findings.append(found)
         # A body, not a trail or a TF axis through its centre: its colour all round the centre.
         quarters = pc.quadrants_with(self.image, mask, centre, colour)
         self.findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
 
-    def rod(self, name: str, length: float) -> None:
-        """Blue along the rod's whole length (each quarter), not only somewhere near its centre."""
+    def rod(self, name: str, length: float, labels: Array) -> None:
+        """Blue along the rod's length above the floor (each quarter, less what the labels may cover), not
+        only somewhere near its centre. An end pressed into the floor's spring is below its surface, hidden."""
         if name not in self.scene.frames:
             self.findings.append(flag(f"{name}'s pose received", False))
             return
         rotation, centre = self.scene.frames[name]
         half = 0.5 * length * rotation[:, 0]
-        (a, b), _ = self.camera.project(np.array([centre - half, centre + half]))
+        low, high = sorted([centre - half, centre + half], key=lambda end: end[2])
+        if high[2] <= 0.0:
+            self.findings.append(flag(f"{name}: below the floor, not counted", True))
+            return
+        if low[2] < 0.0:
+            low = low + (high - low) * (-low[2] / (high[2] - low[2]))
+        (a, b), _ = self.camera.project(np.array([low, high]))
         self.outlines.append(("segment", (a, b)))
         for k in range(4):
             p, q = a + (b - a) * k / 4, a + (b - a) * (k + 1) / 4
             region = self.in_view(f"{name} quarter {k + 1}", pc.segment_mask(self.shape, p, q, 3.0))
-            self.findings.append(pc.count(self.image, region, "blue", f"{name} (rod), quarter {k + 1}", 0.25))
+            what = f"{name} (rod), quarter {k + 1}"
+            self.findings.append(self.count_unlabelled(region, labels, "blue", what, 0.25))
 
 
 def check_picture(image: Array, scene: Scene, camera: pc.Camera, config: Config) -> Tuple[List[Finding],
@@ -221,12 +282,13 @@ def check_picture(image: Array, scene: Scene, camera: pc.Camera, config: Config)
     bodies_only = np.zeros_like(covered)
     for disc in discs.values():
         bodies_only |= disc[0]
+    labels = checker.labels()
     for spec in specs:
         if isinstance(spec, RodSpec):
-            checker.rod(spec.name, spec.length)
+            checker.rod(spec.name, spec.length, labels)
         else:
             checker.slope(spec.name, slopes, bodies_only)
-            checker.roller(spec.name, spec.shape, discs.get(spec.name))
+            checker.roller(spec.name, spec.shape, discs.get(spec.name), labels)
     return checker.findings, checker.outlines
 
 
@@ -284,6 +346,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     import rospy
     from rosgraph_msgs.msg import Log
     from std_srvs.srv import Empty
+    from rigid_body_sim.srv import Step
 
     def left() -> float:
         return max(1.0, args.timeout - (time.monotonic() - start))
@@ -313,10 +376,21 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     scene.t = None
     wait_while_running("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
     t_connected: float = scene.t or 0.0
-    wait_while_running(f"{args.settle:g} simulated seconds", lambda: (scene.t or 0.0) >= t_connected + args.settle,
-                       left(), launch)
-    rospy.ServiceProxy("/sim/pause", Empty)()
-    time.sleep(1.0)  # the last messages reach rviz and this node
+    rollers = [spec for spec in (body_spec(config, name) for name in config["bodies"])
+               if isinstance(spec, RollerSpec)]
+    while True:
+        wait_while_running(f"{args.settle:g} simulated seconds, and every roller high on its slope",
+                           lambda: (scene.t or 0.0) >= t_connected + args.settle and scene.rollers_high(rollers),
+                           left(), launch)
+        rospy.ServiceProxy("/sim/pause", Empty)()
+        # One step more: its states and transforms are the last the node publishes, and each topic delivers
+        # in order, so once they are here nothing published before is still in flight to this node.
+        t_last = rospy.ServiceProxy("/sim/step", Step)(1).t
+        wait_while_running("the states and transforms of the step after the pause", lambda: scene.all_at(t_last),
+                           left(), launch)
+        if scene.rollers_high(rollers):  # a roller may have run low between the look and the pause
+            break
+        rospy.ServiceProxy("/sim/unpause", Empty)()
 
     with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
         manager = yaml.safe_load(f)["Visualization Manager"]

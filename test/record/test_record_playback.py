@@ -18,7 +18,6 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import time
 import unittest
 from dataclasses import dataclass
 from typing import Any, Dict, List, Tuple
@@ -90,8 +89,11 @@ class Listener:
         wait_for("a publisher of the state topics", lambda: all(sub.get_num_connections() for sub in self.subs),
                  timeout)
 
-    def close(self) -> None:
-        time.sleep(1.0)  # the last messages in flight
+    def close(self, last_t: float, timeout: float = 30) -> None:
+        """After every body's state at last_t has come: each topic delivers in order, and a full queue
+        drops its oldest message, never the newest, so all that was published before has come too."""
+        wait_for(f"every body's state at t = {last_t:g}",
+                 lambda: all(msgs and msgs[-1].t == last_t for msgs in self.states.values()), timeout)
         for sub in self.subs:
             sub.unregister()
 
@@ -152,7 +154,7 @@ class NodeOutput(unittest.TestCase):
             node.kill()
             raise AssertionError("no state publisher; the node said:\n" + node.communicate()[0])
         log, _ = node.communicate(timeout=120)
-        listener.close()
+        listener.close(60.0)
         clock_sub.unregister()
         self.assertEqual(node.returncode, 0, log)
         self.assertIn("simulated 60.000 s", log)
@@ -187,7 +189,7 @@ class NodeOutput(unittest.TestCase):
         listener = Listener(self.config)
         play = self.master.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={bag_path}",
                                 "rviz:=false", "rate:=5", "delay:=1"])
-        listener.close()
+        listener.close(duration)
         for name in self.config["bodies"]:
             self.assertEqual([as_row(m) for m in listener.states[name]], [as_row(m) for m in states[name]],
                              f"{name} played back; rosbag play said:\n" + play.stdout[-2000:])

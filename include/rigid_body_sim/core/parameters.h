@@ -69,6 +69,13 @@ void validate(const std::string& body, const RodConfig& config);
 void validate(const std::string& body, const RollerConfig& config);
 double maxContactFrequency();  // rad/s
 
+// What `substeps` allows, for messages: "auto or a whole number in [1, 1e+09]".
+std::string substepsAllowed();
+// A rod's fixed sub-step count must keep each sub-step stable at the world's rate: omega_c dt / N < 2
+// (validate(WorldConfig) checks it; the node again for a reconfigured rod). A roller has none.
+void validateSubsteps(const std::string& body, const RodConfig& config, double rate);
+inline void validateSubsteps(const std::string&, const RollerConfig&, double) {}
+
 struct BodyConfig {
   std::string name;  // also the TF frame and the topic namespace
   std::variant<RodConfig, RollerConfig> config;
@@ -112,6 +119,10 @@ constexpr double kSlowSubstepsPerSecond = 1e7;
 // One human line per body of a validated config that makes the run slow (a stiff rod needing many
 // sub-steps per step); empty when nothing is slow. Pure: the caller decides where to print.
 std::vector<std::string> slowRunWarnings(const WorldConfig& config);
+
+// One human line per rod of a validated config whose `substeps: auto` splits its steps: into how many
+// sub-steps and why. Empty when auto splits nothing (the text's values). Pure, as slowRunWarnings.
+std::vector<std::string> autoSubstepNotes(const WorldConfig& config);
 
 // True when `divisor` divides `rate` to rounding: rate / divisor is a whole number >= 1.
 bool dividesRate(double rate, double divisor);

@@ -17,13 +17,22 @@ std::string toString(Integrator integrator);
 // Parses "euler_cromer", "velocity_verlet", "rk4"; nullopt for anything else.
 std::optional<Integrator> integratorFromString(const std::string& name);
 
+// A rod's sub-steps per step: kAutoSubsteps (split only a stiff step, see Rod::autoSubstepsFor) or a
+// fixed count in [1, kMaxSubsteps]; 1 is the text's scheme at any k.
+constexpr int kAutoSubsteps = 0;
+constexpr int kMaxSubsteps = 1000000000;
+std::string substepsToString(int substeps);  // "auto" or the count
+// Parses "auto" or a whole number in [1, kMaxSubsteps] (digits only); nullopt for anything else.
+std::optional<int> substepsFromString(const std::string& text);
+
 struct RodParams {
   double length = 1.0;   // m
   double mass = 0.5;     // kg
   double k = 1000.0;     // N/m, floor spring constant per end
   double gravity = 9.8;  // m/s^2
   Integrator integrator = Integrator::EulerCromer;
-  double floor_length = 0.0;  // m of floor from x = 0; 0 = unbounded (the text's floor)
+  double floor_length = 0.0;     // m of floor from x = 0; 0 = unbounded (the text's floor)
+  int substeps = kAutoSubsteps;  // sub-steps per step
 };
 
 struct RodMotion {
@@ -56,12 +65,16 @@ class Rod {
   const RodMotion& initial() const { return initial_; }
   const RodMotion& state() const { return state_; }
 
-  double momentOfInertia() const;  // M L^2 / 12
-  double energy() const;           // kinetic + gravitational + elastic (J)
-  double endHeightA() const;       // y of end A
-  double endHeightB() const;       // y of end B
+  double momentOfInertia() const;   // M L^2 / 12
+  double energy() const;            // kinetic + gravitational + elastic (J)
+  double endHeightA() const;        // y of end A
+  double endHeightB() const;        // y of end B
+  double contactFrequency() const;  // omega_c = sqrt(4 k / M) (rad/s)
+  // The sub-steps of a step of dt: params().substeps, or autoSubstepsFor(dt) under kAutoSubsteps.
   int substepsFor(double dt) const;
   bool onFloor() const;  // the centre is over the floor (always, when it is unbounded)
+  // 1 while omega_c dt <= 2 kSubstepFraction, else ceil(omega_c dt / (2 kSubstepFraction)).
+  int autoSubstepsFor(double dt) const;
 
  private:
   RodParams params_;

@@ -16,7 +16,8 @@ std::string csvRow(double t, const Body& body);
 
 class CsvWriter {
  public:
-  // Opens DIR/<body>.csv.tmp for every body and writes the headers; throws std::runtime_error.
+  // Opens DIR/<body>.csv.tmp for every body and writes the headers; throws std::runtime_error, leaving no
+  // .tmp file behind.
   CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies);
   ~CsvWriter();  // removes the temporary files of an uncommitted run
   CsvWriter(const CsvWriter&) = delete;
@@ -31,6 +32,7 @@ class CsvWriter {
     std::string temp_path;
     std::unique_ptr<std::ofstream> stream;
   };
+  void removeTemporaries();
   std::vector<File> files_;
   bool committed_ = false;
 };

@@ -1,0 +1,12 @@
+# make flaky [RUNS=10] (not part of `make test`): the suites that start a master (ctest labels node, script,
+# pictures) run RUNS times, as `make test` runs them; prints per test its failures out of RUNS and its time,
+# and fails if any test failed once. The logs of the rounds with a failure stay in $(BUILD)/flaky/.
+RUNS ?= 10
+FLAKY_LABELS ?= node|script|pictures
+
+.PHONY: flaky
+
+flaky: build
+	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
+	/usr/bin/python3 scripts/flaky.py --build $(BUILD) --runs $(RUNS) --labels '$(FLAKY_LABELS)' \
+	  --keep $(BUILD)/flaky

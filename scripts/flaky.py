@@ -1,0 +1,127 @@
+#!/usr/bin/python3
+"""make flaky: runs the suites that start a master (ctest labels node, script, pictures) RUNS times and prints,
+per test, its failures out of RUNS and its time; exits 1 if any test failed once.
+
+Every round is one ctest run as `make test` runs it (serially, a fresh ROS_HOME, the loopback by address).
+The output of every failed test is kept in KEEP/round<i>/ (ctest's log and its JUnit file).
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import xml.etree.ElementTree as ElementTree
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List
+
+
+@dataclass
+class Record:
+    """One test over every round."""
+    runs: int = 0
+    failures: List[int] = field(default_factory=list)  # the rounds it failed in
+    seconds: List[float] = field(default_factory=list)
+
+
+@dataclass
+class Outcome:
+    """One test in one round."""
+    name: str
+    failed: bool
+    seconds: float
+
+
+def short_name(name: str) -> str:
+    """A rostest's ctest name without catkin's prefix: `rostest states.test`."""
+    prefix = "_ctest_rigid_body_sim_rostest_test_rostest_"
+    return "rostest " + name[len(prefix):] if name.startswith(prefix) else name
+
+
+def read_junit(path: Path) -> List[Outcome]:
+    """The tests of a ctest --output-junit file: a <failure> (or a status other than run) is a failure."""
+    outcomes = []
+    for case in ElementTree.parse(path).getroot().iter("testcase"):
+        failed = case.find("failure") is not None or case.get("status", "run") not in ("run", "")
+        outcomes.append(Outcome(short_name(case.get("name", "?")), failed, float(case.get("time", "0") or 0)))
+    return outcomes
+
+
+def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
+    """One ctest run of the labelled tests; its log and JUnit file go to `folder`."""
+    home = tempfile.mkdtemp(prefix="flaky_ros_home_")
+    # Debian's python3 first (rostest's nodes import ROS's modules), as the Makefile does.
+    env = dict(os.environ, ROS_HOME=home, ROS_IP="127.0.0.1", PATH="/usr/bin:" + os.environ.get("PATH", ""))
+    env.pop("ROS_HOSTNAME", None)
+    junit = folder / "ctest.xml"
+    try:
+        with open(folder / "ctest.log", "w") as log:
+            subprocess.run(["ctest", "--test-dir", str(build), "-L", labels, "--output-on-failure",
+                            "--output-junit", str(junit.resolve())], env=env, stdout=log, stderr=subprocess.STDOUT)
+    finally:
+        shutil.rmtree(home, ignore_errors=True)
+    if not junit.exists():
+        raise SystemExit(f"flaky: ctest wrote no {junit}; see {folder / 'ctest.log'}")
+    return read_junit(junit)
+
+
+def table(records: Dict[str, Record], rounds: int, wall: float) -> str:
+    """The Markdown table: per test its failures out of the rounds and its time."""
+    lines = [f"| test | failures of {rounds} | rounds failed | mean time (s) | max time (s) |",
+             "|---|---:|---|---:|---:|"]
+    for name, record in sorted(records.items()):
+        failed = ", ".join(str(r) for r in record.failures) or "-"
+        lines.append(f"| {name} | {len(record.failures)} of {record.runs} | {failed} | "
+                     f"{statistics.mean(record.seconds):.1f} | {max(record.seconds):.1f} |")
+    total = sum(sum(r.seconds) for r in records.values())
+    lines.append(f"\n{len(records)} tests, {rounds} rounds, {total:.0f} s of tests, {wall:.0f} s wall "
+                 f"({wall / max(1, rounds):.0f} s a round)")
+    return "\n".join(lines)
+
+
+def parse_args() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default="build", help="the build folder, its tests built")
+    parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
+    parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
+    parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
+    return parser.parse_args()
+
+
+def main() -> int:
+    args = parse_args()
+    build = Path(args.build).resolve()
+    keep = Path(args.keep).resolve()
+    shutil.rmtree(keep, ignore_errors=True)
+    records: Dict[str, Record] = {}
+    began = time.monotonic()
+    for index in range(1, args.runs + 1):
+        folder = keep / f"round{index}"
+        folder.mkdir(parents=True)
+        round_began = time.monotonic()
+        outcomes = run_round(build, args.labels, folder)
+        for outcome in outcomes:
+            record = records.setdefault(outcome.name, Record())
+            record.runs += 1
+            record.seconds.append(outcome.seconds)
+            if outcome.failed:
+                record.failures.append(index)
+        failed = [o.name for o in outcomes if o.failed]
+        print(f"flaky: round {index} of {args.runs}: {len(outcomes)} tests in {time.monotonic() - round_began:.0f} s, "
+              + (f"FAILED: {', '.join(failed)} (log in {folder})" if failed else "all passed"), flush=True)
+        if not failed:
+            shutil.rmtree(folder)
+    print(table(records, args.runs, time.monotonic() - began))
+    flaky = [name for name, record in records.items() if record.failures]
+    print("flaky: " + (f"{len(flaky)} tests failed at least once: {', '.join(sorted(flaky))}" if flaky
+                       else "every test passed every round"))
+    return 1 if flaky else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

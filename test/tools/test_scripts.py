@@ -1,0 +1,125 @@
+#!/usr/bin/env python3
+"""The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
+per topic, each checked on its own), scripts/bag_summary.py (a body with a single state) and
+bench/run_bench.py's 1 kHz config and the figures of its notes.
+Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
+import importlib.util
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from typing import Any, Dict, List
+
+import rosbag
+import rospy
+import yaml
+from geometry_msgs.msg import Point
+from tf2_msgs.msg import TFMessage
+from visualization_msgs.msg import Marker, MarkerArray
+from rigid_body_sim.msg import RodState, RollerState
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+SCRIPTS = os.path.join(ROOT, "scripts")
+
+
+def write_bag(path: str, messages: Dict[str, List[Any]]) -> None:
+    with rosbag.Bag(path, "w") as bag:
+        for topic, msgs in messages.items():
+            for i, msg in enumerate(msgs):
+                bag.write(topic, msg, rospy.Time(1 + i))
+
+
+def run_script(*args: str) -> "subprocess.CompletedProcess[str]":
+    return subprocess.run([sys.executable, *args], capture_output=True, text=True)
+
+
+class Case(unittest.TestCase):
+    def setUp(self) -> None:
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self) -> None:
+        self.tmp.cleanup()
+
+    def path(self, name: str) -> str:
+        return os.path.join(self.tmp.name, name)
+
+    def write_config(self, config: Dict[str, Any]) -> str:
+        with open(self.path("config.yaml"), "w") as f:
+            yaml.safe_dump(config, f)
+        return self.path("config.yaml")
+
+
+class SoakBagcheck(Case):
+    """A soak of 2 s at publish_rate 1: 3 states of the rod and 3 /tf, 1 /tf_static."""
+
+    def check(self, states: int, tfs: int) -> "subprocess.CompletedProcess[str]":
+        config = self.write_config({"publish_rate": 1.0, "rate": 1000.0, "bodies": {"rod": {"type": "rod"}}})
+        write_bag(self.path("soak.bag"), {"/sim/rod/state": [RodState()] * states, "/tf": [TFMessage()] * tfs,
+                                          "/tf_static": [TFMessage()]})
+        return run_script(os.path.join(SCRIPTS, "soak_bagcheck.py"), self.path("soak.bag"), config, "2")
+
+    def test_every_count_as_expected_passes(self) -> None:
+        result = self.check(3, 3)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertNotIn("MISMATCH", result.stdout)
+
+    def test_an_extra_message_does_not_hide_a_missing_one(self) -> None:
+        result = self.check(4, 2)
+        self.assertEqual(result.stdout.count("MISMATCH"), 2, result.stdout)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+
+    def test_extra_messages_alone_fail(self) -> None:
+        result = self.check(4, 3)
+        self.assertIn("MISMATCH", result.stdout)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+
+
+class BagSummary(Case):
+    def test_a_body_with_a_single_state(self) -> None:
+        config = self.write_config({"bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}})
+        rod, ball = RodState(), RollerState()
+        rod.y, rod.energy = 4.0, 19.6
+        ball.mode, ball.energy = "rolling", 1.0
+        write_bag(self.path("run.bag"), {"/sim/rod/state": [rod], "/sim/ball/state": [ball]})
+        result = run_script(os.path.join(SCRIPTS, "bag_summary.py"), self.path("run.bag"), config)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIn("ball: t 0 .. 0 s", result.stdout)
+        self.assertIn("a single sample", result.stdout)
+        self.assertIn("rod: t 0 .. 0 s", result.stdout)
+
+
+def load_run_bench() -> Any:
+    spec = importlib.util.spec_from_file_location("run_bench", os.path.join(ROOT, "bench", "run_bench.py"))
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class RunBench(Case):
+    def test_the_1khz_config_whatever_the_source_writes(self) -> None:
+        run_bench = load_run_bench()
+        for text in ("publish_rate: 50.0\n", "publish_rate: 50\n", "publish_rate:   5e1\n", ""):
+            with open(self.path("source.yaml"), "w") as f:
+                f.write(text + "rate: 1000.0\nbodies: {rod: {type: rod}}\n")
+            run_bench.write_with_publish_rate(self.path("source.yaml"), self.path("1khz.yaml"), 1000.0)
+            with open(self.path("1khz.yaml")) as f:
+                written = yaml.safe_load(f)
+            self.assertEqual(written["publish_rate"], 1000.0, repr(text))
+            self.assertEqual(written["bodies"], {"rod": {"type": "rod"}}, repr(text))
+
+    def test_marker_figures_are_the_bags_own(self) -> None:
+        run_bench = load_run_bench()
+        for points in (3, 17):
+            trail = Marker(ns="trail", points=[Point(x=float(i)) for i in range(points)])
+            write_bag(self.path("record.bag"), {"/sim/markers": [MarkerArray(markers=[Marker(ns="body"), trail])],
+                                                "/sim/rod/state": [RodState()]})
+            share, most = run_bench.marker_figures(self.path("record.bag"))
+            self.assertEqual(most, points)
+            self.assertGreater(share, 0.0)
+            self.assertLess(share, 1.0)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
