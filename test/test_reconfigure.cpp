@@ -70,13 +70,19 @@ TEST(ReconfigureCfg, ClampingLeavesEveryValueAsAsked) {
 
 TEST(Reconfigure, RodConfigGoesThereAndBack) {
   RodConfig config;
-  config.params = {1.5, 2.0, 3000.0, 9.8, Integrator::Rk4, 3};
+  config.params.length = 1.5;
+  config.params.mass = 2.0;
+  config.params.k = 3000.0;
+  config.params.integrator = Integrator::Rk4;
+  config.params.floor_length = 12.0;
+  config.params.substeps = 3;
   config.initial = {0.1, 2.5, 0.7, -1.0, 0.5, 3.0};
   const RodConfig back = fromReconfigure("rod", toReconfigure(config), RodConfig{});
   EXPECT_EQ(back.params.length, 1.5);
   EXPECT_EQ(back.params.mass, 2.0);
   EXPECT_EQ(back.params.k, 3000.0);
   EXPECT_EQ(back.params.integrator, Integrator::Rk4);
+  EXPECT_EQ(back.params.floor_length, 12.0);
   EXPECT_EQ(back.params.substeps, 3);
   EXPECT_FALSE(initialChanged(back, config));
 }
