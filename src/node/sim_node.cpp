@@ -5,10 +5,10 @@
 
 #include <rosgraph_msgs/Clock.h>
 
-#include "rigid_body_sim/Command.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
@@ -190,16 +190,8 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
 }
 
 void SimNode::publishCommandLocked(const WorldCommand& command) {
-  rigid_body_sim::Command msg;
-  msg.header.seq = commands_published_++;
-  msg.header.stamp = stampOf(world_.time());
-  msg.header.frame_id = world_.config().world_frame;
-  msg.step = static_cast<std::uint64_t>(command.step);
-  msg.t = world_.time();
-  msg.kind = toString(command.kind);
-  msg.body = command.body;
-  msg.yaml = payloadYaml(command);
-  command_publisher_.publish(msg);
+  command_publisher_.publish(toMessage(command, commands_published_++, world_.time(), stampOf(world_.time()),
+                                       world_.config().world_frame));
 }
 
 void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
