@@ -135,14 +135,15 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
   ASSERT_TRUE(called);
   ASSERT_TRUE(after_reset.response.success);
   EXPECT_NEAR(after_reset.response.t, t_before_reset + dt, 1e-9);
-  ASSERT_TRUE(c.waitAllAt(initial_world, after_reset.response.t)) << "no state of every body after reset and step(1)";
+  ASSERT_TRUE(c.waitAllAt(initial_world, after_reset.response.t))
+      << "no state of every body after reset and step(1)";
   {
     World world(config);
     world.step();
     const auto rods = c.rod("rod");
     for (const auto& m : rods) EXPECT_NE(m.t, t_before_reset) << "a second state at the reset's t";
-    expectSameState(toRodStateMsg(after_reset.response.t, std::get<Rod>(world.find("rod")->model)), rods.back(),
-                    "rod 1 step after reset");
+    expectSameState(toRodStateMsg(after_reset.response.t, std::get<Rod>(world.find("rod")->model)),
+                    rods.back(), "rod 1 step after reset");
     for (const auto& body : world.bodies()) {
       if (!std::holds_alternative<Roller>(body.model)) continue;
       const auto rollers = c.roller(body.name);
