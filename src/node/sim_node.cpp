@@ -9,6 +9,7 @@
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
+#include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
@@ -20,6 +21,7 @@ constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 // ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
 constexpr std::uint32_t kCommandQueue = 100000;
+constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
 bool placementChanged(const RodConfig& a, const RodConfig& b) {
@@ -49,22 +51,17 @@ std::size_t indexIn(const WorldConfig& config, const std::string& name) {
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node),
       private_node_(private_node),
-      options_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeOptions(params);
-      }()),
-      world_(
-          [&] {
-            auto params = privateParams(private_node);
-            return parseNodeConfig(params);
-          }(),
-          node_interface::ownNames()),
+      start_params_(privateParams(private_node)),
+      options_(parseNodeOptions(start_params_)),
+      world_(parseNodeConfig(start_params_), node_interface::ownNames()),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(world_.rate() / world_.config().publish_rate)),
       pacer_(world_.rate(), options_.real_time_factor) {
+  checkFrames(options_, world_.config());
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
-  snapshots_ = std::make_unique<SnapshotBuilder>(world_.config().world_frame, world_.bodies());
+  snapshots_ =
+      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
   advertise();
   WorldCommand start;
   start.kind = WorldCommand::Kind::Config;
@@ -77,12 +74,17 @@ SimNode::~SimNode() {
   stopping_ = true;
   wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
+  if (watcher_.joinable()) watcher_.join();
 }
 
 void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
+  if (node_.getNamespace() != "/") {
+    namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
+    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
+  }
   command_publisher_ =
       private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
   for (const auto& body : world_.bodies()) state_publishers_.push_back(advertiseState(body));
@@ -237,7 +239,8 @@ void SimNode::followWorldServers(const WorldCommand& command) {
 
 // The scene is rebuilt from the bodies there are now: static frames and markers anew (DELETEALL first).
 void SimNode::rebuildSceneLocked() {
-  snapshots_ = std::make_unique<SnapshotBuilder>(world_.config().world_frame, world_.bodies());
+  snapshots_ =
+      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
   publishStaticLocked();
 }
 
@@ -385,6 +388,7 @@ void SimNode::publishLocked() {
   // at a publishing instant the bodies' frames move with the next publication.
   if (stamp > last_tf_stamp_) {
     tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
     last_tf_stamp_ = stamp;
   }
   marker_publisher_.publish(snapshot.markers);
@@ -396,7 +400,10 @@ void SimNode::publishLocked() {
 
 void SimNode::publishStaticLocked() {
   const ros::Time stamp = stampOf(world_.time());
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stamp));
+  tf2_msgs::TFMessage fixed;
+  fixed.transforms = snapshots_->staticTransforms(stamp);
+  static_broadcaster_.sendTransform(fixed.transforms);
+  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
   marker_publisher_.publish(snapshots_->restartMarkers(stamp));
 }
 
@@ -443,14 +450,41 @@ void SimNode::stepLoop() {
   }
 }
 
-void SimNode::run() {
+void SimNode::watchMaster() {
+  while (!stopping_ && ros::ok()) {
+    if (askMaster() == MasterView::Forgot) {
+      restoreParameters();
+      ROS_ERROR(
+          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
+          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
+          ros::master::getURI().c_str(), kMasterForgotStatus);
+      exit_status_ = kMasterForgotStatus;
+      ros::requestShutdown();
+      return;
+    }
+    for (int tenth = 0; tenth < 10 && !stopping_; ++tenth) std::this_thread::sleep_for(kWatchTick);
+  }
+}
+
+// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
+// so that a respawned node starts on the same config (unless something has set them meanwhile).
+void SimNode::restoreParameters() {
+  if (ros::param::has(private_node_.getNamespace())) return;
+  ros::param::set(private_node_.getNamespace(), start_params_);
+  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+}
+
+int SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
+  watcher_ = std::thread([this] { watchMaster(); });
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
   stepper_.join();
+  watcher_.join();
+  return exit_status_;
 }
 
 }  // namespace rigid_body_sim

@@ -35,7 +35,7 @@ boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
 
 BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
                          std::string node_namespace)
-    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(config.world_frame, bodies) {
+    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(config.world_frame, "", bodies) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
   // /tf_static is latched: a player hands it to late subscribers as a live node would.
