@@ -8,21 +8,12 @@
 
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/core/world.h"
+#include "test_util.h"
 
 using namespace rigid_body_sim;
+using rigid_body_sim::test::rodAndBall;
 
 namespace {
-
-WorldConfig rodAndBall() {
-  WorldConfig config;
-  RollerConfig ball;
-  ball.params.incline_angle = 0.1;
-  ball.params.incline_length = 1e6;
-  ball.initial.v0 = 3.0;  // launched sliding: slips, then rolls
-  config.bodies.push_back({"rod", RodConfig{}});
-  config.bodies.push_back({"ball", ball});
-  return config;
-}
 
 BodyConfig ring(const std::string& name) {
   RollerConfig ring;
