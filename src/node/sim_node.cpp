@@ -176,6 +176,11 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
     command.step = world_.stepCount();
     const WorldConfig before = world_.config();
     try {
+      if (command.kind == WorldCommand::Kind::Spawn) {  // its frames with the prefix, as at the start
+        WorldConfig would_be = before;
+        would_be.bodies.push_back(command.config);
+        checkFrames(options_, would_be);
+      }
       world_.apply(command);
     } catch (const ConfigError& error) {
       return refuse(toString(command.kind), command.body, error.what(), why);
