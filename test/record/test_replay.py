@@ -21,6 +21,7 @@ import unittest
 from typing import Any, Dict, List
 
 import rosbag
+import rosgraph
 import rospy
 from rigid_body_sim.msg import RodState
 from rigid_body_sim.srv import Delete, SetState, Spawn, Step
@@ -51,6 +52,14 @@ class Script:
         rospy.wait_for_service(name, timeout=30.0)
         return rospy.ServiceProxy(name, kind)(*args)
 
+    @staticmethod
+    def wait_recorded(topic: str) -> None:
+        """Until the recorder (rosbag record finds new topics by polling) subscribes to `topic`."""
+        def subscribed() -> bool:
+            _, subscribers, _ = rosgraph.Master("/replay_script").getSystemState()
+            return any(name == topic and "/record" in nodes for name, nodes in subscribers)
+        wait_for(f"the recorder on {topic}", subscribed, 30.0, period=0.1)
+
     def ok(self, name: str, kind: Any, *args: Any) -> None:
         response = self.call(name, kind, *args)
         assert response.success, f"{name}{args}: {response.message}"
@@ -61,6 +70,7 @@ class Script:
                        check=True, timeout=60, stdout=subprocess.DEVNULL)
         self.wait_sim(0.3)
         self.ok("/sim/spawn", Spawn, "hoop", "{type: roller, shape: ring, incline_angle: 0.4, x0: 0.5}")
+        self.wait_recorded("/sim/hoop/state")
         self.wait_sim(0.3)
         self.ok("/sim/set_state", SetState, "hoop", "{x: 1.25, v: 0.7}")
         self.ok("/sim/set_state", SetState, "rod", "{y: 2.5, omega: -1.5}")
@@ -74,6 +84,7 @@ class Script:
         self.ok("/sim/set_state", SetState, "sphere", "{x: 0.3}")  # while paused: shows with the next step
         self.ok("/sim/step", Step, 13)
         self.ok("/sim/spawn", Spawn, "stick", "{type: rod, y0: 3, seed: 5}")
+        self.wait_recorded("/sim/stick/state")
         self.call("/sim/unpause", Empty)
         self.wait_sim(0.5)
 
@@ -103,7 +114,9 @@ class Replay(unittest.TestCase):
 
     def test_replay_equals_the_recorded_run(self) -> None:
         port = free_port()
-        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1")
+        # Debian's python3 first: dynparam and roslaunch run on whatever python3 PATH finds.
+        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
+                   PATH="/usr/bin:" + os.environ.get("PATH", ""))
         env.pop("ROS_HOSTNAME", None)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
         bag_path = os.path.join(self.tmp, "run.bag")
@@ -129,7 +142,7 @@ class Replay(unittest.TestCase):
         rows = csv_rows(out_dir)
 
         kinds: List[str] = []
-        compared = 0
+        compared: Dict[str, int] = {}
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 if topic == "/sim/commands":
@@ -144,13 +157,15 @@ class Replay(unittest.TestCase):
                 for field, cell in zip(state_fields(msg)[1:], row):
                     self.assertTrue(same(getattr(msg, field), cell),
                                     f"{body} at t = {msg.t!r}: {field} {getattr(msg, field)!r} vs {cell}")
-                compared += 1
+                compared[body] = compared.get(body, 0) + 1
         self.assertEqual(kinds[0], "config")
         for kind in ("reconfigure", "spawn", "set_state", "delete", "reset"):
             self.assertIn(kind, kinds)
+        # Every body of the run, spawned and deleted ones included, was recorded and compared.
+        self.assertEqual(set(compared), set(rows))
         self.assertIn("stick", rows)
-        self.assertGreater(compared, 1000)
-        print(f"{compared} state messages equal to the replay, {len(kinds)} commands", file=sys.stderr)
+        print(f"{sum(compared.values())} state messages equal to the replay ({compared}), {len(kinds)} commands",
+              file=sys.stderr)
 
 
 if __name__ == "__main__":
