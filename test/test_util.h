@@ -24,6 +24,19 @@ namespace rigid_body_sim::test {
 
 namespace fs = std::filesystem;
 
+// A rod and a ball launched sliding on a long gentle slope (it slips, then rolls): a small world of both
+// kinds.
+inline WorldConfig rodAndBall() {
+  WorldConfig config;
+  RollerConfig ball;
+  ball.params.incline_angle = 0.1;
+  ball.params.incline_length = 1e6;
+  ball.initial.v0 = 3.0;
+  config.bodies.push_back({"rod", RodConfig{}});
+  config.bodies.push_back({"ball", ball});
+  return config;
+}
+
 inline std::string slurp(const fs::path& path) {
   std::ifstream in(path);
   std::stringstream buffer;

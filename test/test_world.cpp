@@ -4,23 +4,10 @@
 #include <cmath>
 
 #include "rigid_body_sim/core/world.h"
+#include "test_util.h"
 
 using namespace rigid_body_sim;
-
-namespace {
-
-WorldConfig rodAndBall() {
-  WorldConfig config;
-  RollerConfig ball;
-  ball.params.incline_angle = 0.1;
-  ball.params.incline_length = 1e6;
-  ball.initial.v0 = 3.0;  // launched sliding: slips, then rolls
-  config.bodies.push_back({"rod", RodConfig{}});
-  config.bodies.push_back({"ball", ball});
-  return config;
-}
-
-}  // namespace
+using rigid_body_sim::test::rodAndBall;
 
 TEST(World, TimeIsAStepCountWithoutAccumulatedRounding) {
   WorldConfig config = rodAndBall();

@@ -198,6 +198,18 @@ void validate(const std::string& body, const RollerConfig& config) {
   }
 }
 
+bool initialChanged(const RodConfig& a, const RodConfig& b) {
+  const RodMotion& p = a.initial;
+  const RodMotion& q = b.initial;
+  return p.x != q.x || p.y != q.y || p.theta != q.theta || p.vx != q.vx || p.vy != q.vy || p.omega != q.omega;
+}
+
+bool initialChanged(const RollerConfig& a, const RollerConfig& b) {
+  const RollerInitial& p = a.initial;
+  const RollerInitial& q = b.initial;
+  return p.x0 != q.x0 || p.v0 != q.v0 || p.theta0 != q.theta0 || p.omega0 != q.omega0;
+}
+
 Range rateRange() { return {1.0, 1e6, false, false}; }
 Range publishRateRange() { return {0.0, 1e6, true, false}; }
 Range gravityRange() { return {0.0, 1e3, false, false}; }
@@ -249,6 +261,10 @@ void validate(const WorldConfig& config, const std::vector<std::string>& reserve
   }
   if (config.bodies.empty()) {
     throw ConfigError(world, "bodies", "(none)", "a map of at least one body");
+  }
+  if (config.bodies.size() > kMaxBodies) {
+    throw ConfigError(world, "bodies", std::to_string(config.bodies.size()) + " bodies",
+                      "at most " + std::to_string(kMaxBodies) + " bodies");
   }
   std::set<std::string> frames{config.world_frame};
   std::vector<std::string> reserved = worldKeys();

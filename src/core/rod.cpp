@@ -71,6 +71,8 @@ void Rod::setInitial(const RodMotion& initial) {
 
 void Rod::reset() { state_ = initial_; }
 
+void Rod::setState(const RodMotion& state) { state_ = state; }
+
 double Rod::momentOfInertia() const {
   return (1.0 / 12.0) * params_.mass * (params_.length * params_.length);
 }

@@ -76,6 +76,12 @@ void Roller::reset() {
   pending_started_slipping_ = false;
 }
 
+void Roller::setState(const RollerMotion& state) {
+  state_ = state;
+  enterModeFromState();
+  pending_started_slipping_ = false;
+}
+
 void Roller::enterModeFromState() {
   const double u = slipSpeed();
   if (u == 0.0) {

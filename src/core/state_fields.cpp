@@ -44,4 +44,13 @@ const std::vector<std::string>& stateFieldNames(BodyKind kind) {
   return kind == BodyKind::Rod ? rod : roller;
 }
 
+const std::vector<std::string>& settableStateFields(BodyKind kind) {
+  // The motion's own fields; the rest are derived from them and the parameters.
+  static const std::vector<std::string> rod(stateFieldNames(BodyKind::Rod).begin(),
+                                            stateFieldNames(BodyKind::Rod).begin() + 6);
+  static const std::vector<std::string> roller(stateFieldNames(BodyKind::Roller).begin(),
+                                               stateFieldNames(BodyKind::Roller).begin() + 4);
+  return kind == BodyKind::Rod ? rod : roller;
+}
+
 }  // namespace rigid_body_sim

@@ -1,5 +1,10 @@
 #include "rigid_body_sim/core/world.h"
 
+#include <algorithm>
+#include <type_traits>
+
+#include "rigid_body_sim/core/state_fields.h"
+
 namespace rigid_body_sim {
 
 namespace {
@@ -17,7 +22,75 @@ std::variant<Rod, Roller> makeModel(const BodyConfig& body, double gravity) {
   return Roller(params, roller.initial);
 }
 
+BodyConfig withGravity(BodyConfig body, double gravity) {
+  std::visit([&](auto& config) { config.params.gravity = gravity; }, body.config);
+  return body;
+}
+
+std::string kindName(BodyKind kind) { return kind == BodyKind::Rod ? "rod" : "roller"; }
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+// Where SetState puts each state field (settableStateFields' names).
+double& fieldOf(RodMotion& motion, const std::string& name) {
+  if (name == "x") return motion.x;
+  if (name == "y") return motion.y;
+  if (name == "theta") return motion.theta;
+  if (name == "vx") return motion.vx;
+  if (name == "vy") return motion.vy;
+  return motion.omega;
+}
+double& fieldOf(RollerMotion& motion, const std::string& name) {
+  if (name == "x") return motion.x;
+  if (name == "v") return motion.v;
+  if (name == "theta") return motion.theta;
+  return motion.omega;
+}
+
+// A state field takes the range of its initial condition (x: x0, omega: omega0, ...); a roller's x must also
+// be on its slope. Throws ConfigError naming the body, the field and the value.
+template <class Config>
+void checkStateValue(const std::string& body, const StateValue& value, const Config& config,
+                     const std::vector<NumericKey<Config>>& keys) {
+  const NumericKey<Config>* key = findKey(keys, value.field + "0");
+  if (!key->range.contains(value.value)) {
+    throw ConfigError(body, value.field, formatNumber(value.value), key->range.describe());
+  }
+  if constexpr (std::is_same_v<Config, RollerConfig>) {
+    if (value.field == "x" && value.value > config.params.incline_length) {
+      throw ConfigError(body, "x", formatNumber(value.value),
+                        "a position on the slope, in [0, incline_length = " +
+                            formatNumber(config.params.incline_length) + "]");
+    }
+  }
+}
+
 }  // namespace
+
+std::string toString(WorldCommand::Kind kind) {
+  switch (kind) {
+    case WorldCommand::Kind::Config: return "config";
+    case WorldCommand::Kind::Reconfigure: return "reconfigure";
+    case WorldCommand::Kind::Spawn: return "spawn";
+    case WorldCommand::Kind::Delete: return "delete";
+    case WorldCommand::Kind::SetState: return "set_state";
+    case WorldCommand::Kind::Reset: return "reset";
+  }
+  return "?";
+}
+
+std::optional<WorldCommand::Kind> commandKindFromString(const std::string& name) {
+  for (const auto kind :
+       {WorldCommand::Kind::Config, WorldCommand::Kind::Reconfigure, WorldCommand::Kind::Spawn,
+        WorldCommand::Kind::Delete, WorldCommand::Kind::SetState, WorldCommand::Kind::Reset}) {
+    if (toString(kind) == name) return kind;
+  }
+  return std::nullopt;
+}
 
 std::string toString(WorldEvent::Kind kind) {
   switch (kind) {
@@ -28,12 +101,134 @@ std::string toString(WorldEvent::Kind kind) {
   return "?";
 }
 
-World::World(const WorldConfig& config) : rate_(config.rate), dt_(1.0 / config.rate) {
-  validate(config);
+World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
+    : config_(config),
+      reserved_names_(std::move(reserved_names)),
+      rate_(config.rate),
+      dt_(1.0 / config.rate) {
+  validate(config, reserved_names_);
   bodies_.reserve(config.bodies.size());
-  for (const auto& body : config.bodies) {
+  for (auto& body : config_.bodies) {
+    body = withGravity(body, config.gravity);
     bodies_.push_back(Body{body.name, makeModel(body, config.gravity)});
   }
+}
+
+void World::apply(const WorldCommand& command) {
+  if (command.step != steps_) {
+    throw ConfigError("command " + toString(command.kind) + " for step " + std::to_string(command.step) +
+                      " refused: the world is at step " + std::to_string(steps_));
+  }
+  switch (command.kind) {
+    case WorldCommand::Kind::Config: {
+      if (command.world.rate != rate_ || command.world.publish_rate != config_.publish_rate) {
+        throw ConfigError("(world)", "rate", formatNumber(command.world.rate),
+                          "the running rate " + formatNumber(rate_) + " and publish_rate " +
+                              formatNumber(config_.publish_rate));
+      }
+      World fresh(command.world, reserved_names_);
+      config_ = fresh.config_;
+      bodies_ = std::move(fresh.bodies_);
+      return;
+    }
+    case WorldCommand::Kind::Reconfigure: {
+      const std::size_t index = existingIndex(command);
+      const BodyConfig wanted = bodyOf(command);
+      if (kindOf(wanted) != kindOf(config_.bodies[index])) {
+        throw ConfigError(command.body, "type", kindName(kindOf(wanted)),
+                          "the body's own type, " + kindName(kindOf(config_.bodies[index])));
+      }
+      WorldConfig would_be = config_;
+      would_be.bodies[index] = wanted;
+      validateWouldBe(would_be);
+      std::visit(
+          [&](auto& model) {
+            using Config = std::conditional_t<std::is_same_v<std::decay_t<decltype(model)>, Rod>, RodConfig,
+                                              RollerConfig>;
+            const auto& next = std::get<Config>(wanted.config);
+            model.setParams(next.params);
+            if (initialChanged(next, std::get<Config>(config_.bodies[index].config))) {
+              model.setInitial(next.initial);
+            }
+          },
+          bodies_[index].model);
+      config_.bodies[index] = wanted;
+      return;
+    }
+    case WorldCommand::Kind::Spawn: {
+      const BodyConfig wanted = bodyOf(command);
+      WorldConfig would_be = config_;
+      would_be.bodies.push_back(wanted);
+      validateWouldBe(would_be);
+      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity)});
+      config_.bodies.push_back(wanted);
+      return;
+    }
+    case WorldCommand::Kind::Delete: {
+      const std::size_t index = existingIndex(command);
+      WorldConfig would_be = config_;
+      would_be.bodies.erase(would_be.bodies.begin() + static_cast<std::ptrdiff_t>(index));
+      validateWouldBe(would_be);
+      bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
+      config_.bodies.erase(config_.bodies.begin() + static_cast<std::ptrdiff_t>(index));
+      return;
+    }
+    case WorldCommand::Kind::SetState: setState(existingIndex(command), command.state); return;
+    case WorldCommand::Kind::Reset: reset(); return;
+  }
+}
+
+std::size_t World::existingIndex(const WorldCommand& command) const {
+  const auto index = indexOf(command.body);
+  if (!index) {
+    std::vector<std::string> names;
+    for (const auto& body : bodies_) names.push_back(body.name);
+    throw ConfigError(command.body, "(body)", "'" + command.body + "'",
+                      "the name of a body of the world: " + joined(names));
+  }
+  return *index;
+}
+
+BodyConfig World::bodyOf(const WorldCommand& command) const {
+  if (command.config.name != command.body) {
+    throw ConfigError(command.body, "(name)", "'" + command.config.name + "'", "the body's own name");
+  }
+  return withGravity(command.config, config_.gravity);
+}
+
+void World::validateWouldBe(const WorldConfig& config) const { validate(config, reserved_names_); }
+
+void World::setState(std::size_t index, const std::vector<StateValue>& state) {
+  const std::string& name = bodies_[index].name;
+  const BodyKind kind = kindOf(bodies_[index]);
+  const std::vector<std::string>& fields = settableStateFields(kind);
+  if (state.empty()) {
+    throw ConfigError(name, "(state)", "(no field)", "at least one of " + joined(fields));
+  }
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    const StateValue& value = state[i];
+    if (std::find(fields.begin(), fields.end(), value.field) == fields.end()) {
+      throw ConfigError(name, value.field, formatNumber(value.value),
+                        "no such state field of a " + kindName(kind) + "; its fields: " + joined(fields));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (state[j].field == value.field) {
+        throw ConfigError(name, value.field, formatNumber(value.value), "each field once");
+      }
+    }
+    if (const auto* rod = std::get_if<RodConfig>(&config_.bodies[index].config)) {
+      checkStateValue(name, value, *rod, rodNumericKeys());
+    } else {
+      checkStateValue(name, value, std::get<RollerConfig>(config_.bodies[index].config), rollerNumericKeys());
+    }
+  }
+  std::visit(
+      [&](auto& model) {
+        auto motion = model.state();
+        for (const auto& value : state) fieldOf(motion, value.field) = value.value;
+        model.setState(motion);
+      },
+      bodies_[index].model);
 }
 
 double World::time() const { return static_cast<double>(steps_) / rate_; }
@@ -63,6 +258,13 @@ void World::reset() {
   for (auto& body : bodies_) {
     std::visit([](auto& model) { model.reset(); }, body.model);
   }
+}
+
+std::optional<std::size_t> World::indexOf(const std::string& name) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    if (bodies_[i].name == name) return i;
+  }
+  return std::nullopt;
 }
 
 Body* World::find(const std::string& name) {

@@ -153,6 +153,14 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
   return parsed;
 }
 
+YAML::Node loadText(const std::string& text, const std::string& what) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& error) {
+    throw ConfigError(what + " is not valid YAML: " + error.what());
+  }
+}
+
 }  // namespace
 
 double theta0FromSeed(unsigned long long seed) {
@@ -185,13 +193,22 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
 }
 
 WorldConfig parseWorldConfigText(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& error) {
-    throw ConfigError("config file '" + source + "' is not valid YAML: " + error.what());
+  return parseWorldConfig(loadText(text, "config file '" + source + "'"));
+}
+
+BodyConfig parseBodyText(const std::string& name, const std::string& text) {
+  return parseBody(name, loadText(text, "body '" + name + "'"));
+}
+
+std::vector<StateValue> parseStateText(const std::string& body, const std::string& text) {
+  const YAML::Node map = loadText(text, "state of body '" + body + "'");
+  if (!map.IsMap()) throw ConfigError(body, "(state)", describe(map), "a map of state fields to numbers");
+  std::vector<StateValue> state;
+  for (const auto& entry : map) {
+    const std::string field = keyName(entry.first);
+    state.push_back({field, asNumber(body, field, entry.second)});
   }
-  return parseWorldConfig(root);
+  return state;
 }
 
 WorldConfig loadWorldConfigFile(const std::string& path) {

@@ -29,22 +29,34 @@ std::string csvRow(double t, const Body& body) {
   return std::visit([t](const auto& model) { return joinFields(t, stateFields(model)); }, body.model);
 }
 
-CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies) {
+CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies) : out_dir_(out_dir) {
   std::filesystem::create_directories(out_dir);
   try {
-    for (const auto& body : bodies) {
-      File file;
-      file.final_path = (std::filesystem::path(out_dir) / (body.name + ".csv")).string();
-      file.temp_path = file.final_path + ".tmp";
-      file.stream = std::make_unique<std::ofstream>(file.temp_path);
-      if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
-      files_.push_back(std::move(file));
-      *files_.back().stream << csvHeader(body) << '\n';
-    }
+    for (const auto& body : bodies) fileOf(body);
   } catch (...) {
     removeTemporaries();  // no destructor runs for a constructor that throws
     throw;
   }
+}
+
+CsvWriter::File& CsvWriter::fileOf(const Body& body) {
+  for (auto& file : files_) {
+    if (file.name != body.name) continue;
+    if (file.kind != kindOf(body)) {
+      throw std::runtime_error("body '" + body.name + "' comes back as another type: its CSV has one header");
+    }
+    return file;
+  }
+  File file;
+  file.name = body.name;
+  file.kind = kindOf(body);
+  file.final_path = (std::filesystem::path(out_dir_) / (body.name + ".csv")).string();
+  file.temp_path = file.final_path + ".tmp";
+  file.stream = std::make_unique<std::ofstream>(file.temp_path);
+  if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
+  *file.stream << csvHeader(body) << '\n';
+  files_.push_back(std::move(file));
+  return files_.back();
 }
 
 CsvWriter::~CsvWriter() {
@@ -61,7 +73,11 @@ void CsvWriter::removeTemporaries() {
 
 void CsvWriter::write(double t, const std::vector<Body>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    *files_[i].stream << csvRow(t, bodies[i]) << '\n';
+    // The files of a run whose bodies never change are the bodies, in order: no look-up.
+    const bool same =
+        i < files_.size() && files_[i].name == bodies[i].name && files_[i].kind == kindOf(bodies[i]);
+    File& file = same ? files_[i] : fileOf(bodies[i]);
+    *file.stream << csvRow(t, bodies[i]) << '\n';
   }
 }
 

@@ -89,4 +89,14 @@ void FiniteGuard::releaseAll(const std::vector<Body>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) release(i, bodies[i]);
 }
 
+void FiniteGuard::add(const Body& body) {
+  last_finite_.push_back(body.model);
+  held_.push_back(false);
+}
+
+void FiniteGuard::remove(std::size_t index) {
+  last_finite_.erase(last_finite_.begin() + static_cast<std::ptrdiff_t>(index));
+  held_.erase(held_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
 }  // namespace rigid_body_sim

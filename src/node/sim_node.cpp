@@ -5,7 +5,10 @@
 
 #include <rosgraph_msgs/Clock.h>
 
+#include "rigid_body_sim/io/config_loader.h"
+#include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
@@ -16,12 +19,9 @@ namespace {
 // Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
 constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
+// ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
+constexpr std::uint32_t kCommandQueue = 100000;
 constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
-
-template <class Config>
-Config& configOf(WorldConfig& world, std::size_t index) {
-  return std::get<Config>(world.bodies[index].config);
-}
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
 bool placementChanged(const RodConfig& a, const RodConfig& b) {
@@ -32,6 +32,19 @@ bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
          a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
          a.params.radius != b.params.radius;
 }
+bool placementChanged(const BodyConfig& a, const BodyConfig& b) {
+  return std::visit(
+      [&](const auto& config) {
+        return placementChanged(config, std::get<std::decay_t<decltype(config)>>(b.config));
+      },
+      a.config);
+}
+
+std::size_t indexIn(const WorldConfig& config, const std::string& name) {
+  std::size_t index = 0;
+  while (index < config.bodies.size() && config.bodies[index].name != name) ++index;
+  return index;
+}
 
 }  // namespace
 
@@ -40,19 +53,23 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       private_node_(private_node),
       start_params_(privateParams(private_node)),
       options_(parseNodeOptions(start_params_)),
-      config_(parseNodeConfig(start_params_)),
-      world_(config_),
+      world_(parseNodeConfig(start_params_), node_interface::ownNames()),
       guard_(world_.bodies()),
-      steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
-      pacer_(config_.rate, options_.real_time_factor) {
-  checkFrames(options_, config_);
+      steps_per_publish_(std::llround(world_.rate() / world_.config().publish_rate)),
+      pacer_(world_.rate(), options_.real_time_factor) {
+  checkFrames(options_, world_.config());
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
-  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
-  for (const auto& note : autoSubstepNotes(config_)) ROS_INFO_STREAM(note);
-  for (const auto& warning : slowRunWarnings(config_)) ROS_WARN_STREAM(warning);
+  snapshots_ =
+      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
+  for (const auto& note : autoSubstepNotes(world_.config())) ROS_INFO_STREAM(note);
+  for (const auto& warning : slowRunWarnings(world_.config())) ROS_WARN_STREAM(warning);
   advertise();
-  startReconfigureServers();
+  WorldCommand start;
+  start.kind = WorldCommand::Kind::Config;
+  start.world = world_.config();
+  publishCommandLocked(start);  // nothing runs yet: no lock to take
+  for (const auto& body : world_.config().bodies) startReconfigureServer(body);
 }
 
 SimNode::~SimNode() {
@@ -70,81 +87,218 @@ void SimNode::advertise() {
     namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
-  for (const auto& body : world_.bodies()) {
-    if (std::holds_alternative<Rod>(body.model)) {
-      state_publishers_.push_back(
-          private_node_.advertise<RodState>(names::stateTopic(body.name), kStateQueue));
-    } else {
-      state_publishers_.push_back(
-          private_node_.advertise<RollerState>(names::stateTopic(body.name), kStateQueue));
-    }
-  }
+  command_publisher_ =
+      private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
+  for (const auto& body : world_.bodies()) state_publishers_.push_back(advertiseState(body));
+  services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
+  services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
+  services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
+  services_.push_back(private_node_.advertiseService(names::kGetConfig, &SimNode::onGetConfig, this));
   services_.push_back(private_node_.advertiseService(names::kReset, &SimNode::onReset, this));
   services_.push_back(private_node_.advertiseService(names::kPause, &SimNode::onPause, this));
   services_.push_back(private_node_.advertiseService(names::kUnpause, &SimNode::onUnpause, this));
   services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
 }
 
-// The YAML's values go to each server before its callback is set, so that they win over the .cfg
-// defaults; the first callback then finds nothing to change.
-void SimNode::startReconfigureServers() {
-  for (std::size_t i = 0; i < config_.bodies.size(); ++i) {
-    const ros::NodeHandle body_node(private_node_, config_.bodies[i].name);
-    if (std::holds_alternative<RodConfig>(config_.bodies[i].config)) {
-      auto server = std::make_unique<RodServer>(reconfigure_mutex_, body_node);
-      server->updateConfig(toReconfigure(configOf<RodConfig>(config_, i)));
-      server->setCallback(
-          [this, i](RodReconfigureConfig& request, uint32_t) { reconfigure<Rod, RodConfig>(i, request); });
-      rod_servers_.push_back(std::move(server));
-    } else {
-      auto server = std::make_unique<RollerServer>(reconfigure_mutex_, body_node);
-      server->updateConfig(toReconfigure(configOf<RollerConfig>(config_, i)));
-      server->setCallback([this, i](RollerReconfigureConfig& request, uint32_t) {
-        reconfigure<Roller, RollerConfig>(i, request);
-      });
-      roller_servers_.push_back(std::move(server));
-    }
+ros::Publisher SimNode::advertiseState(const Body& body) {
+  const std::string topic = node_interface::stateTopic(body.name);
+  if (kindOf(body) == BodyKind::Rod) return private_node_.advertise<RodState>(topic, kStateQueue);
+  return private_node_.advertise<RollerState>(topic, kStateQueue);
+}
+
+// The body's values go to its server before its callback is set, so that they win over the .cfg defaults;
+// the first callback then finds nothing to change.
+void SimNode::startReconfigureServer(const BodyConfig& body) {
+  const ros::NodeHandle body_node(private_node_, body.name);
+  BodyServer& server = servers_[body.name];
+  const std::string name = body.name;
+  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
+    server.rod = std::make_unique<RodServer>(reconfigure_mutex_, body_node);
+    server.rod->updateConfig(toReconfigure(*rod));
+    server.rod->setCallback(
+        [this, name](RodReconfigureConfig& request, uint32_t) { onReconfigure<RodConfig>(name, request); });
+  } else {
+    server.roller = std::make_unique<RollerServer>(reconfigure_mutex_, body_node);
+    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(body.config)));
+    server.roller->setCallback([this, name](RollerReconfigureConfig& request, uint32_t) {
+      onReconfigure<RollerConfig>(name, request);
+    });
   }
 }
 
-// Applies a reconfigure request to one body if it validates; otherwise logs one line and changes
-// nothing. The request is rewritten to what runs, so that the server shows the truth.
-template <class Model, class Config, class Request>
-void SimNode::reconfigure(std::size_t index, Request& request) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const std::string& name = config_.bodies[index].name;
-  Config& current = configOf<Config>(config_, index);
+// A request that changes nothing (the server's first call, a dynparam set of the same values) is no
+// command. The request is rewritten to what runs, so that the server shows the truth.
+template <class Config, class Request>
+void SimNode::onReconfigure(const std::string& name, Request& request) {
+  const auto current = [&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return world_.config().bodies[indexIn(world_.config(), name)];
+  };
+  const BodyConfig before = current();
   try {
-    const Config wanted = fromReconfigure(name, request, current);
-    validate(name, wanted);
-    validateSubsteps(name, wanted, config_.rate);
-    Model& model = std::get<Model>(world_.bodies()[index].model);
-    model.setParams(wanted.params);
-    if (initialChanged(wanted, current)) model.setInitial(wanted.initial);
-    if (guard_.held(index)) ROS_INFO_STREAM("body '" << name << "' reconfigured: it runs again");
-    guard_.release(index, world_.bodies()[index]);
-    const bool moved = placementChanged(wanted, current);
-    current = wanted;
-    if (moved) {
-      // The slope's place (and the body's look) changed: new static frames and markers.
-      snapshots_ =
-          std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
-      publishStaticLocked();
-    }
+    WorldCommand command;
+    command.kind = WorldCommand::Kind::Reconfigure;
+    command.body = name;
+    command.config = {name, fromReconfigure(name, request, std::get<Config>(before.config))};
+    if (toYaml(command.config) != toYaml(before)) applyCommand(command);
   } catch (const ConfigError& error) {
-    ROS_WARN_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+    refuse(toString(WorldCommand::Kind::Reconfigure), name, error.what(), nullptr);
   }
-  request = toReconfigure(current);
+  request = toReconfigure(std::get<Config>(current().config));
+}
+
+template <class Build>
+bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why) {
+  WorldCommand command;
+  try {
+    command = build();
+  } catch (const ConfigError& error) {
+    return refuse(kind, body, error.what(), why);
+  }
+  return applyCommand(std::move(command), why);
+}
+
+bool SimNode::refuse(const std::string& kind, const std::string& body, const std::string& reason,
+                     std::string* why) {
+  const std::string line =
+      "refused " + kind + (body.empty() ? "" : " of '" + body + "'") + ", simulation unchanged: " + reason;
+  ROS_WARN_STREAM(line);
+  if (why) *why = line;
+  return false;
+}
+
+bool SimNode::applyCommand(WorldCommand command, std::string* why) {
+  std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // States at a count are published before the commands at that count apply (docs/commands.md).
+    if (world_.stepCount() % steps_per_publish_ == 0 && last_published_step_ != world_.stepCount()) {
+      publishLocked();
+    }
+    command.step = world_.stepCount();
+    const WorldConfig before = world_.config();
+    try {
+      if (command.kind == WorldCommand::Kind::Spawn) {  // its frames with the prefix, as at the start
+        WorldConfig would_be = before;
+        would_be.bodies.push_back(command.config);
+        checkFrames(options_, would_be);
+      }
+      world_.apply(command);
+    } catch (const ConfigError& error) {
+      return refuse(toString(command.kind), command.body, error.what(), why);
+    }
+    ROS_INFO_STREAM(toString(command.kind)
+                    << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
+                    << " (t = " << formatNumber(world_.time()) << " s)");
+    publishCommandLocked(command);
+    followWorldLocked(command, before);
+  }
+  followWorldServers(command);
+  if (why) *why = "ok";
+  return true;
+}
+
+void SimNode::publishCommandLocked(const WorldCommand& command) {
+  command_publisher_.publish(toMessage(command, commands_published_++, world_.time(), stampOf(world_.time()),
+                                       world_.config().world_frame));
+}
+
+void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
+  const std::size_t index = indexIn(before, command.body);
+  switch (command.kind) {
+    case WorldCommand::Kind::Spawn:
+      state_publishers_.push_back(advertiseState(world_.bodies().back()));
+      guard_.add(world_.bodies().back());
+      rebuildSceneLocked();
+      return;
+    case WorldCommand::Kind::Delete:
+      state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
+      guard_.remove(index);
+      rebuildSceneLocked();
+      return;
+    case WorldCommand::Kind::Reconfigure:
+    case WorldCommand::Kind::SetState:
+      if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
+      guard_.release(index, world_.bodies()[index]);
+      if (command.kind == WorldCommand::Kind::Reconfigure &&
+          placementChanged(before.bodies[index], world_.config().bodies[index])) {
+        rebuildSceneLocked();
+      }
+      return;
+    case WorldCommand::Kind::Reset:
+      world_.takeEvents();
+      guard_.releaseAll(world_.bodies());
+      rebuildSceneLocked();  // trails start anew
+      return;
+    case WorldCommand::Kind::Config: return;  // the node applies none after its start
+  }
+}
+
+void SimNode::followWorldServers(const WorldCommand& command) {
+  if (command.kind == WorldCommand::Kind::Spawn) startReconfigureServer(command.config);
+  if (command.kind == WorldCommand::Kind::Delete) servers_.erase(command.body);
+  if (command.kind != WorldCommand::Kind::Reconfigure) return;
+  BodyServer& server = servers_.at(command.body);
+  if (server.rod) server.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
+  if (server.roller)
+    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
+}
+
+// The scene is rebuilt from the bodies there are now: static frames and markers anew (DELETEALL first).
+void SimNode::rebuildSceneLocked() {
+  snapshots_ =
+      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
+  publishStaticLocked();
+}
+
+bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
+  response.success = applyBuilt(
+      toString(WorldCommand::Kind::Spawn), request.name,
+      [&] {
+        WorldCommand command;
+        command.kind = WorldCommand::Kind::Spawn;
+        command.body = request.name;
+        command.config = parseBodyText(request.name, request.body);
+        return command;
+      },
+      &response.message);
+  std::lock_guard<std::mutex> lock(mutex_);
+  response.t = world_.time();
+  return true;
+}
+
+bool SimNode::onDelete(Delete::Request& request, Delete::Response& response) {
+  WorldCommand command;
+  command.kind = WorldCommand::Kind::Delete;
+  command.body = request.name;
+  response.success = applyCommand(command, &response.message);
+  return true;
+}
+
+bool SimNode::onSetState(SetState::Request& request, SetState::Response& response) {
+  response.success = applyBuilt(
+      toString(WorldCommand::Kind::SetState), request.name,
+      [&] {
+        WorldCommand command;
+        command.kind = WorldCommand::Kind::SetState;
+        command.body = request.name;
+        command.state = parseStateText(request.name, request.state);
+        return command;
+      },
+      &response.message);
+  return true;
+}
+
+bool SimNode::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  response.yaml = toYaml(world_.config());
+  return true;
 }
 
 bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  world_.reset();
-  world_.takeEvents();
-  guard_.releaseAll(world_.bodies());
-  publishStaticLocked();  // DELETEALL, then the fixed markers again; trails start anew
-  publishLocked();
-  ROS_INFO("reset: every body back to its initial conditions at t = %.6f s", world_.time());
+  WorldCommand command;
+  command.kind = WorldCommand::Kind::Reset;
+  applyCommand(command);
   return true;
 }
 
@@ -269,7 +423,7 @@ void SimNode::stepLoop() {
                  [this] { return stopping_.load(); });
   anchorLocked();
   publishStaticLocked();
-  publishLocked();
+  if (last_published_step_ != world_.stepCount()) publishLocked();  // unless a command published it
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
   while (!stopping_ && ros::ok()) {
     if (paused_) {

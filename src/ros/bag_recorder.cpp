@@ -5,6 +5,7 @@
 #include <boost/make_shared.hpp>
 
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/command_log.h"
 
 namespace rigid_body_sim {
 
@@ -18,26 +19,38 @@ std::string markerTopic(const std::string& node_namespace) {
   return node_namespace + "/" + node_interface::kMarkers;
 }
 
+// The connection header of a latched topic (as /tf_static and ~commands are).
+template <class Message>
+boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
+  auto latched = boost::make_shared<ros::M_string>();
+  (*latched)["type"] = ros::message_traits::datatype<Message>();
+  (*latched)["md5sum"] = ros::message_traits::md5sum<Message>();
+  (*latched)["message_definition"] = ros::message_traits::definition<Message>();
+  (*latched)["latching"] = "1";
+  (*latched)["callerid"] = callerid;
+  return latched;
+}
+
 }  // namespace
 
-BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame,
-                         const std::vector<Body>& bodies, std::string node_namespace)
-    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(world_frame, "", bodies) {
+BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
+                         std::string node_namespace)
+    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(config.world_frame, "", bodies) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
   // /tf_static is latched: a player hands it to late subscribers as a live node would.
   // rosbag stores a given connection header as it is: without type, md5sum and definition, Python's
   // rosbag (rosbag info, scripts) cannot read the bag.
-  auto latched = boost::make_shared<ros::M_string>();
-  (*latched)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
-  (*latched)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
-  (*latched)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
-  (*latched)["latching"] = "1";
-  (*latched)["callerid"] = node_namespace_;
   const ros::Time start = simStamp(0.0);
+  WorldCommand config_command;
+  config_command.kind = WorldCommand::Kind::Config;
+  config_command.world = config;
+  bag_.write(node_namespace_ + "/" + node_interface::kCommands, start,
+             toMessage(config_command, 0, 0.0, start, config.world_frame),
+             latchedHeader<rigid_body_sim::Command>(node_namespace_));
   tf2_msgs::TFMessage message;
   message.transforms = snapshots_.staticTransforms(start);
-  bag_.write("/tf_static", start, message, latched);
+  bag_.write("/tf_static", start, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
   bag_.write(markerTopic(node_namespace_), start, snapshots_.staticMarkers(start));
 }
 
@@ -69,7 +82,7 @@ void BagRecorder::commit() {
 
 std::unique_ptr<SampleSink> openBag(const std::string& path, const WorldConfig& config,
                                     const std::vector<Body>& bodies) {
-  return std::make_unique<BagRecorder>(path, config.world_frame, bodies);
+  return std::make_unique<BagRecorder>(path, config, bodies);
 }
 
 }  // namespace rigid_body_sim

@@ -85,16 +85,4 @@ RollerConfig fromReconfigure(const std::string& body, const RollerReconfigureCon
   return out;
 }
 
-bool initialChanged(const RodConfig& a, const RodConfig& b) {
-  const RodMotion& p = a.initial;
-  const RodMotion& q = b.initial;
-  return p.x != q.x || p.y != q.y || p.theta != q.theta || p.vx != q.vx || p.vy != q.vy || p.omega != q.omega;
-}
-
-bool initialChanged(const RollerConfig& a, const RollerConfig& b) {
-  const RollerInitial& p = a.initial;
-  const RollerInitial& q = b.initial;
-  return p.x0 != q.x0 || p.v0 != q.v0 || p.theta0 != q.theta0 || p.omega0 != q.omega0;
-}
-
 }  // namespace rigid_body_sim

@@ -76,17 +76,43 @@ void sweep(const WorldConfig& config, const SweepArgs& args, const OfflineOption
 void handOverToRosProgram(char** argv) {
   const auto program = std::filesystem::read_symlink("/proc/self/exe").parent_path() / kRosProgram;
   execv(program.c_str(), argv);
-  throw std::runtime_error("--bag needs " + program.string() + ": " + std::strerror(errno));
+  throw std::runtime_error("--bag and --replay need " + program.string() + ": " + std::strerror(errno));
+}
+
+// Exactly one of CONFIG and --replay; no sweep of a replay.
+void checkSource(const std::string& config_path, const std::string& replay, const SweepArgs& args) {
+  if (config_path.empty() && replay.empty()) {
+    throw ConfigError("CONFIG is required (simulate --help lists the options)");
+  }
+  if (!config_path.empty() && !replay.empty()) {
+    throw ConfigError(kCommandLine, "CONFIG", "'" + config_path + "'",
+                      "no CONFIG with --replay (the bag has it)");
+  }
+  if (!replay.empty() && !args.specs.empty()) {
+    throw ConfigError(kCommandLine, "--sweep", "'" + args.specs[0] + "'", "no sweep with --replay");
+  }
+}
+
+// --replay: the run of a bag's commands, for its duration unless --duration says otherwise.
+void replay(const std::string& bag, bool duration_given, OfflineOptions options, const RunReader& read_run) {
+  const RecordedRun run = read_run(bag);
+  if (!duration_given) options.duration = run.end_time;
+  std::cout << formatSummary(replayRun(run.commands, options));
 }
 
 }  // namespace
 
-int runSimulate(int argc, char** argv, const SinkOpener& open_bag) {
+int runSimulate(int argc, char** argv, const SinkOpener& open_bag, const RunReader& read_run) {
   CLI::App app{"Offline rigid_body_sim run: CSV per body, optional bag, no ROS master needed.", "simulate"};
   std::string config_path;
   OfflineOptions options;
   SweepArgs sweep_args;
-  app.add_option("CONFIG", config_path, "YAML configuration (the node's parameters)")->required();
+  std::string replay_bag;
+  app.add_option("CONFIG", config_path, "YAML configuration (the node's parameters)");
+  app.add_option(
+      "--replay", replay_bag,
+      "rebuild the run recorded in this bag from its /sim/commands instead of a CONFIG (duration: the "
+      "bag's)");
   app.add_option("--duration", options.duration, "simulated seconds")->capture_default_str();
   app.add_option("--sample-rate", options.sample_rate,
                  "samples per simulated second, a divisor of rate (default: publish_rate)");
@@ -109,8 +135,13 @@ int runSimulate(int argc, char** argv, const SinkOpener& open_bag) {
   }
 
   try {
+    checkSource(config_path, replay_bag, sweep_args);
     checkModes(sweep_args, options);
-    if (!options.bag.empty() && !open_bag) handOverToRosProgram(argv);
+    if ((!options.bag.empty() || !replay_bag.empty()) && !open_bag) handOverToRosProgram(argv);
+    if (!replay_bag.empty()) {
+      replay(replay_bag, app.count("--duration") > 0, options, read_run);
+      return 0;
+    }
     const auto config = loadWorldConfigFile(config_path);
     for (const auto& note : autoSubstepNotes(config)) std::cerr << "simulate: note: " << note << "\n";
     for (const auto& warning : slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";

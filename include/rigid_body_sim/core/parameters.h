@@ -2,6 +2,7 @@
 // and what it is called in YAML, ROS parameters and dynamic_reconfigure.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -84,6 +85,14 @@ struct BodyConfig {
 enum class BodyKind { Rod, Roller };
 BodyKind kindOf(const BodyConfig& body);
 
+// True when the initial conditions differ (the body restarts), false when only parameters changed.
+bool initialChanged(const RodConfig& a, const RodConfig& b);
+bool initialChanged(const RollerConfig& a, const RollerConfig& b);
+
+// The most bodies a world holds, from its config file or spawned while it runs: each brings a thread-safe
+// publisher, a reconfigure server and markers to the node, and a CSV file to `simulate`.
+constexpr std::size_t kMaxBodies = 1000;
+
 struct WorldConfig {
   double rate = 1000.0;        // physics steps per simulated second
   double publish_rate = 50.0;  // samples per simulated second
@@ -108,9 +117,10 @@ std::string fixedFrameOf(const std::string& name, BodyKind kind);
 std::string fixedFrameOf(const BodyConfig& body);
 
 // Checks the world keys, every body, name validity, that every TF frame (world_frame, each body and its
-// fixed frame) is distinct, and that publish_rate divides rate. A body cannot be named like a world key
-// nor like one of `reserved_names`: the names of the node's private namespace, which the bodies share
-// (its options, topics and services; a body named `rate` would shadow the world's rate).
+// fixed frame) is distinct, that there are 1 to kMaxBodies bodies, and that publish_rate divides rate. A body
+// cannot be named like a world key nor like one of `reserved_names`: the names of the node's private
+// namespace, which the bodies share (its options, topics and services; a body named `rate` would shadow the
+// world's rate).
 void validate(const WorldConfig& config, const std::vector<std::string>& reserved_names = {});
 
 // Sub-steps per simulated second above which a valid config is reported as slow.

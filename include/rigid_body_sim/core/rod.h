@@ -60,6 +60,7 @@ class Rod {
   void setParams(const RodParams& params);    // applies from the next step; the state is kept
   void setInitial(const RodMotion& initial);  // restarts from it
   void reset();                               // back to the initial state
+  void setState(const RodMotion& state);      // moves it there now; the initial state is kept
 
   const RodParams& params() const { return params_; }
   const RodMotion& initial() const { return initial_; }

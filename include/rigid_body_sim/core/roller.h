@@ -73,6 +73,9 @@ class Roller {
   void setInitial(const RollerInitial& initial);
   // Back to the initial conditions.
   void reset();
+  // Moves it to `state` now, its mode following from v and omega as at a start; the initial conditions and
+  // the lap count are kept.
+  void setState(const RollerMotion& state);
 
   const RollerParams& params() const { return params_; }
   const RollerInitial& initial() const { return initial_; }

@@ -1,11 +1,14 @@
 // Any number of named bodies stepped on one clock. Time is an integer step count: t = n / rate.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "rigid_body_sim/core/command.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/roller.h"
@@ -28,10 +31,26 @@ std::string toString(WorldEvent::Kind kind);
 
 class World {
  public:
-  explicit World(const WorldConfig& config);  // validates; throws ConfigError
+  // Validates (with the names a body may not take beside the world keys); throws ConfigError.
+  explicit World(const WorldConfig& config, std::vector<std::string> reserved_names = {});
 
   void step();   // one step of dt = 1 / rate for every body
   void reset();  // every body back to its initial conditions; time goes on
+
+  // Applies a change made while the world runs (command.step must be stepCount()). The world it would make
+  // is validated exactly like a config file (names, reserved names, distinct frames, ranges, relations, at
+  // most kMaxBodies bodies), a SetState's fields like the matching initial conditions; a refusal throws
+  // ConfigError (one line) and changes nothing.
+  //   Config: every body anew from the command's world (same rate and publish_rate); time goes on.
+  //   Reconfigure: new parameters; the body restarts only when its initial conditions changed.
+  //   Spawn: a new body (last in bodies()) starting from its initial conditions now.
+  //   Delete: the body goes (the world keeps at least one).
+  //   SetState: the body moves now; its initial conditions stay (a roller's mode follows from v and omega).
+  //   Reset: every body back to its initial conditions; time goes on.
+  void apply(const WorldCommand& command);
+
+  // The world as it runs now: what a config file of it says (spawned, deleted, reconfigured bodies included).
+  const WorldConfig& config() const { return config_; }
 
   std::int64_t stepCount() const { return steps_; }
   double time() const;  // stepCount() / rate
@@ -41,11 +60,20 @@ class World {
   std::vector<Body>& bodies() { return bodies_; }
   const std::vector<Body>& bodies() const { return bodies_; }
   Body* find(const std::string& name);
+  std::optional<std::size_t> indexOf(const std::string& name) const;
 
   // Events since the last takeEvents().
   std::vector<WorldEvent> takeEvents();
 
  private:
+  std::size_t existingIndex(const WorldCommand& command) const;  // of command.body; throws ConfigError
+  // command.config with the world's gravity, checked to be the body the command names.
+  BodyConfig bodyOf(const WorldCommand& command) const;
+  void validateWouldBe(const WorldConfig& config) const;
+  void setState(std::size_t index, const std::vector<StateValue>& state);
+
+  WorldConfig config_;
+  std::vector<std::string> reserved_names_;
   double rate_;
   double dt_;
   std::int64_t steps_ = 0;

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "rigid_body_sim/core/command.h"
 #include "rigid_body_sim/core/parameters.h"
 
 namespace rigid_body_sim {
@@ -16,6 +17,15 @@ WorldConfig parseWorldConfig(const YAML::Node& root);
 
 // Parses YAML text (`source` names it in messages); a YAML syntax error is a ConfigError too.
 WorldConfig parseWorldConfigText(const std::string& text, const std::string& source);
+
+// A body's YAML map as a config file's `bodies` holds it (the same keys, defaults and checks of the body
+// alone; the world checks names and frames and sets its gravity), named `name`. A YAML syntax error is a
+// ConfigError too.
+BodyConfig parseBodyText(const std::string& name, const std::string& text);
+
+// A state to set on a body: a YAML map of numbers by state field name (x: 1.5). Names and
+// ranges are the world's to check (World::apply); here: a map, of numbers, finite or not.
+std::vector<StateValue> parseStateText(const std::string& body, const std::string& text);
 
 // Reads a file; a missing file or a YAML syntax error is a ConfigError too.
 WorldConfig loadWorldConfigFile(const std::string& path);

@@ -22,16 +22,22 @@ class CsvWriter {
   ~CsvWriter();  // removes the temporary files of an uncommitted run
   CsvWriter(const CsvWriter&) = delete;
   CsvWriter& operator=(const CsvWriter&) = delete;
+  // A row for each body; a body not seen before gets its file (a replay's spawned bodies). Throws
+  // std::runtime_error for a name that comes back as another type of body (one header per file).
   void write(double t, const std::vector<Body>& bodies);
   // Flushes and renames every file to its final name; throws std::runtime_error on a write error.
   void commit();
 
  private:
   struct File {
+    std::string name;
+    BodyKind kind;
     std::string final_path;
     std::string temp_path;
     std::unique_ptr<std::ofstream> stream;
   };
+  File& fileOf(const Body& body);  // opens it on first sight
+  std::string out_dir_;
   void removeTemporaries();
   std::vector<File> files_;
   bool committed_ = false;

@@ -43,6 +43,9 @@ class FiniteGuard {
   // not finite itself is held again at the next afterStep.
   void release(std::size_t index, const Body& body);
   void releaseAll(const std::vector<Body>& bodies);
+  // The world's list of bodies changed: one spawned (appended), one deleted.
+  void add(const Body& body);
+  void remove(std::size_t index);
 
  private:
   std::vector<std::variant<Rod, Roller>> last_finite_;

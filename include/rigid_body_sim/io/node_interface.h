@@ -21,6 +21,11 @@ inline constexpr const char* kReset = "reset";
 inline constexpr const char* kPause = "pause";
 inline constexpr const char* kUnpause = "unpause";
 inline constexpr const char* kStep = "step";
+inline constexpr const char* kSpawn = "spawn";
+inline constexpr const char* kDelete = "delete";
+inline constexpr const char* kSetState = "set_state";
+inline constexpr const char* kGetConfig = "get_config";
+inline constexpr const char* kCommands = "commands";  // every accepted change of the world, latched
 
 // A body's state topic, relative to the node's private namespace.
 inline std::string stateTopic(const std::string& body) { return body + "/state"; }
@@ -41,7 +46,8 @@ inline const std::vector<std::string>& optionNames() {
 inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
-    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep});
+    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep, kSpawn, kDelete, kSetState, kGetConfig,
+                           kCommands});
     return all;
   }();
   return names;

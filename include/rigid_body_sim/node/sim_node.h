@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -18,8 +19,12 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include "rigid_body_sim/Delete.h"
+#include "rigid_body_sim/GetConfig.h"
 #include "rigid_body_sim/RodReconfigureConfig.h"
 #include "rigid_body_sim/RollerReconfigureConfig.h"
+#include "rigid_body_sim/SetState.h"
+#include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
@@ -42,14 +47,41 @@ class SimNode {
   // kMasterForgotStatus.
   int run();
 
+  // The one way to change the running world (the services, the reconfigure servers, the interactive tools):
+  // applies `command` at the current step (command.step is set here), logs it (INFO) and publishes it on
+  // ~commands, then updates what depends on the world (state topics, reconfigure servers, static TF,
+  // markers). A refusal returns false: one WARN line, the same line in *why; nothing changes and nothing is
+  // published on ~commands.
+  bool applyCommand(WorldCommand command, std::string* why = nullptr);
+
  private:
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
   using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
+  struct BodyServer {  // one of the two, by the body's type
+    std::unique_ptr<RodServer> rod;
+    std::unique_ptr<RollerServer> roller;
+  };
 
   void advertise();
-  void startReconfigureServers();
-  template <class Model, class Config, class Request>
-  void reconfigure(std::size_t index, Request& request);
+  ros::Publisher advertiseState(const Body& body);
+  void startReconfigureServer(const BodyConfig& body);
+  template <class Config, class Request>
+  void onReconfigure(const std::string& name, Request& request);
+  // Builds a command with `build` (which may throw ConfigError: a refusal like any other) and applies it.
+  template <class Build>
+  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why);
+  bool refuse(const std::string& kind, const std::string& body, const std::string& reason, std::string* why);
+  void publishCommandLocked(const WorldCommand& command);
+  // After an accepted command: publishers, the guard and the scene follow the world. Caller holds mutex_.
+  void followWorldLocked(const WorldCommand& command, const WorldConfig& before);
+  // After an accepted command, without mutex_ (a server's first callback takes it): reconfigure servers.
+  void followWorldServers(const WorldCommand& command);
+  // Static TF and the markers anew for the bodies there are now (they left rviz or changed place or look).
+  void rebuildSceneLocked();
+  bool onSpawn(Spawn::Request& request, Spawn::Response& response);
+  bool onDelete(Delete::Request& request, Delete::Response& response);
+  bool onSetState(SetState::Request& request, SetState::Response& response);
+  bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -75,10 +107,9 @@ class SimNode {
   ros::NodeHandle private_node_;
   XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
-  WorldConfig config_;  // the current config of every body (what reconfigure changes)
 
   std::mutex mutex_;  // guards everything below that the stepping thread touches
-  World world_;
+  World world_;       // also the running config (what ~get_config returns)
   FiniteGuard guard_;
   std::int64_t steps_per_publish_;
   std::int64_t last_published_step_ = -1;
@@ -92,6 +123,8 @@ class SimNode {
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
 
+  ros::Publisher command_publisher_;
+  std::uint32_t commands_published_ = 0;  // the next command's index (header.seq); 0 is the config
   ros::Publisher marker_publisher_;
   ros::Publisher clock_publisher_;
   ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
@@ -100,9 +133,10 @@ class SimNode {
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;
-  boost::recursive_mutex reconfigure_mutex_;  // the servers' own; updateConfig needs it to be ours
-  std::vector<std::unique_ptr<RodServer>> rod_servers_;
-  std::vector<std::unique_ptr<RollerServer>> roller_servers_;
+  // The servers' own (held while they call back; updateConfig needs it to be ours). applyCommand takes it
+  // before mutex_, always in this order: a reconfigure callback arrives holding it.
+  boost::recursive_mutex reconfigure_mutex_;
+  std::map<std::string, BodyServer> servers_;  // by body name
 
   std::atomic<bool> stopping_{false};
   std::atomic<int> exit_status_{0};

@@ -1,5 +1,6 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
-// the node's (launch files name it `sim`): /tf, /tf_static, /sim/markers, /sim/<body>/state. This is the
+// the node's (launch files name it `sim`): /tf, /tf_static, /sim/markers, /sim/<body>/state, and
+// /sim/commands with the config (so that `simulate --replay` takes the bag). This is the
 // sink of `simulate --bag` (io/offline_run.h), stamped in simulated time.
 #pragma once
 
@@ -17,8 +18,8 @@ namespace rigid_body_sim {
 class BagRecorder : public SampleSink {
  public:
   // Writes to `path`.active, renamed to `path` by commit(), as `rosbag record` does; starts with the
-  // fixed frames and markers of `bodies` (at t = 0).
-  BagRecorder(const std::string& path, const std::string& world_frame, const std::vector<Body>& bodies,
+  // config command of `config` and the fixed frames and markers of `bodies` (at t = 0).
+  BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
               std::string node_namespace = "/sim");
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;

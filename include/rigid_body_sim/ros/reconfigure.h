@@ -18,8 +18,4 @@ RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& r
 RollerConfig fromReconfigure(const std::string& body, const RollerReconfigureConfig& request,
                              const RollerConfig& current);
 
-// True when the initial conditions differ (the body restarts), false when only parameters changed.
-bool initialChanged(const RodConfig& a, const RodConfig& b);
-bool initialChanged(const RollerConfig& a, const RollerConfig& b);
-
 }  // namespace rigid_body_sim

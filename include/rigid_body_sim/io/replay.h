@@ -1,0 +1,40 @@
+// A run rebuilt from its commands alone (`simulate --replay`): the world of the first (the config), then
+// every command at its step, sampled into the same CSV files as a run of a config.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/offline_run.h"
+
+namespace rigid_body_sim {
+
+// What a recording holds for a replay: its commands in order, and the simulated time of its last message.
+struct RecordedRun {
+  std::vector<WorldCommand> commands;
+  double end_time = 0.0;
+};
+
+// Reads a recording (the ROS layer reads bags: ros/command_log.h); throws ConfigError with one line.
+using RunReader = std::function<RecordedRun(const std::string& path)>;
+
+struct ReplaySummary {
+  double end_time = 0.0;
+  std::int64_t steps = 0;
+  std::size_t commands_applied = 0;
+  std::vector<std::string> bodies;  // every body that existed at some point: each has its CSV file
+};
+
+// Steps from count 0 to options.duration; at each count c it samples (when c is a sampling instant: t =
+// j / sample_rate), then applies every command with step c, then steps, as the node does. options.bag is not
+// supported (refused). Throws ConfigError (one line) when the first command is not the config at step 0,
+// or a command cannot be applied (named by its index, kind, body and step), std::runtime_error on an output
+// failure. The CSV files are only written when the whole replay succeeds.
+ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options);
+
+std::string formatSummary(const ReplaySummary& summary);
+
+}  // namespace rigid_body_sim
