@@ -20,8 +20,9 @@ import yaml
 Config = Dict[str, Any]
 
 WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world"}
-ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "integrator": "euler_cromer",
-                                "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
+ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0,
+                                "integrator": "euler_cromer", "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0,
+                                "theta0": 0.3, "omega0": 0.0}
 ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
                                    "incline_length": 5.0, "mu_s": 0.3, "mu_d": 0.2, "x0": 0.0, "v0": 0.0,
                                    "theta0": 0.0, "omega0": 0.0}
@@ -69,6 +70,7 @@ class RodSpec:
     length: float
     mass: float
     k: float
+    floor_length: float = 0.0  # m of floor from x = 0; 0: unbounded
 
 
 @dataclass(frozen=True)
@@ -104,7 +106,7 @@ def body_spec(config: Config, name: str) -> BodySpec:
     body = config["bodies"][name]
     if body_type(config, name) == "rod":
         rod = {**ROD_DEFAULTS, **body}
-        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]))
+        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]), float(rod["floor_length"]))
     roller = {**ROLLER_DEFAULTS, **body}
     shape = body.get("shape", "custom" if "inertia_factor" in body else ROLLER_DEFAULTS["shape"])
     c = float(body.get("inertia_factor", INERTIA_FACTORS.get(shape, math.nan)))

@@ -22,7 +22,9 @@ Config& configOf(WorldConfig& world, std::size_t index) {
 }
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
-bool placementChanged(const RodConfig&, const RodConfig&) { return false; }
+bool placementChanged(const RodConfig& a, const RodConfig& b) {
+  return a.params.floor_length != b.params.floor_length;
+}
 bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
   return a.params.incline_angle != b.params.incline_angle ||
          a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
@@ -47,7 +49,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
       pacer_(config_.rate, options_.real_time_factor) {
   use_sim_time_ = ros::param::param("/use_sim_time", false);
-  wall_start_ = ros::Time(ros::WallTime::now().toSec());
+  anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
   advertise();
   startReconfigureServers();
@@ -123,7 +125,7 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
       publishStaticLocked();
     }
   } catch (const ConfigError& error) {
-    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+    ROS_WARN_STREAM("refused reconfigure, simulation unchanged: " << error.what());
   }
   request = toReconfigure(current);
 }
@@ -149,7 +151,7 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     paused_ = false;
-    pacer_.restart(wallNow(), world_.stepCount());
+    anchorLocked();
   }
   wake_.notify_all();
   return true;
@@ -169,7 +171,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.success = true;
     response.message = "ok";
   }
-  if (!response.success) ROS_ERROR_STREAM("~step " << response.message);
+  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
   response.t = world_.time();
   return true;
 }
@@ -179,7 +181,18 @@ double SimNode::wallNow() const {
 }
 
 ros::Time SimNode::stampOf(double t) const {
-  return use_sim_time_ ? simStamp(t) : wall_start_ + ros::Duration(t);
+  return use_sim_time_ ? simStamp(t) : stamp_anchor_ + ros::Duration(t - time_anchor_);
+}
+
+// The pace and the wall-clock stamps start from now and the current step: stepping starts (after any
+// start_delay) or resumes at wall-clock pace, and so the stamps of what follows are current. Never earlier
+// than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
+// the clock): stamps stay strictly increasing.
+void SimNode::anchorLocked() {
+  pacer_.restart(wallNow(), world_.stepCount());
+  const ros::WallTime wall = ros::WallTime::now();
+  stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
+  time_anchor_ = world_.time();
 }
 
 void SimNode::stepOnceLocked() {
@@ -243,9 +256,9 @@ void SimNode::stepLoop() {
   publishClockLocked();
   wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
                  [this] { return stopping_.load(); });
+  anchorLocked();
   publishStaticLocked();
   publishLocked();
-  pacer_.restart(wallNow(), world_.stepCount());
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
   while (!stopping_ && ros::ok()) {
     if (paused_) {

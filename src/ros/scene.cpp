@@ -22,6 +22,8 @@ constexpr double kFloorLength = 40.0;  // along world x
 constexpr double kFloorBehind = 2.0;   // of floor behind x = 0
 constexpr double kFloorMargin = 1.0;   // of floor beyond the outermost lane on either side
 constexpr double kFloorThickness = 0.02;
+constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
+constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
 constexpr double kRodThickness = 0.05;   // also a rod's "radius" for its label
@@ -53,6 +55,7 @@ std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
 }
 
 const std_msgs::ColorRGBA kFloorColour = rgba(0.75f, 0.75f, 0.75f);
+const std_msgs::ColorRGBA kBoundedFloorColour = rgba(0.5f, 0.5f, 0.5f);
 const std_msgs::ColorRGBA kSlopeColour = rgba(0.55f, 0.4f, 0.25f);
 const std_msgs::ColorRGBA kSpokeColour = rgba(0.1f, 0.1f, 0.1f);
 const std_msgs::ColorRGBA kLabelColour = rgba(1, 1, 1);
@@ -172,9 +175,9 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies) {
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
-    if (std::holds_alternative<Rod>(body.model)) {
-      placements.push_back(
-          {fixedFrameOf(body), uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0});
+    if (const auto* rod = std::get_if<Rod>(&body.model)) {
+      placements.push_back({fixedFrameOf(body), uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0),
+                            0.0, rod->params().floor_length});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
@@ -223,6 +226,19 @@ visualization_msgs::MarkerArray Scene::fixedMarkers(const ros::Time& stamp) cons
   floor.color = kFloorColour;
   array.markers.push_back(floor);
   for (std::size_t i = 0; i < placements_.size(); ++i) {
+    // A rod's bounded floor: a darker strip over x in [0, floor_length] of its floor frame.
+    const double floor_length = placements_[i].floor_length;
+    if (floor_length > 0.0) {
+      auto strip = marker(kNsFloor, static_cast<int>(i) + 1, visualization_msgs::Marker::CUBE,
+                          placements_[i].frame, stamp);
+      strip.pose.position.x = floor_length / 2;
+      strip.pose.position.y = kBoundedFloorRaise - kFloorThickness / 2;
+      strip.scale.x = floor_length;
+      strip.scale.y = kFloorThickness;
+      strip.scale.z = kBoundedFloorWidth;
+      strip.color = kBoundedFloorColour;
+      array.markers.push_back(strip);
+    }
     const double length = placements_[i].slope_length;
     if (length <= 0.0) continue;
     auto slope =

@@ -59,6 +59,7 @@ class SimNode {
   void publishClockLocked();
   void publishStaticLocked();
   ros::Time stampOf(double t) const;
+  void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
 
   ros::NodeHandle node_;
@@ -77,7 +78,8 @@ class SimNode {
   StepPacer pacer_;
   std::condition_variable wake_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
-  ros::Time wall_start_;
+  ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
+  double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
 
   ros::Publisher marker_publisher_;

@@ -26,6 +26,7 @@ struct BodyPlacement {
   std::string frame;  // <body>_floor or <body>_slope
   Eigen::Isometry3d world_from_frame;
   double slope_length = 0.0;  // m; 0 for a rod's floor
+  double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
 };
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies);
 
@@ -41,7 +42,7 @@ class Scene {
   const std::string& worldFrame() const { return world_frame_; }
   const std::vector<BodyPlacement>& placements() const { return placements_; }
 
-  visualization_msgs::MarkerArray fixedMarkers(const ros::Time& stamp) const;  // floor, slopes
+  visualization_msgs::MarkerArray fixedMarkers(const ros::Time& stamp) const;  // floors, slopes
   // Appends the markers of body `index`, whose centre is at world_from_body, and extends its trail.
   void addBodyMarkers(std::size_t index, const Body& body, const Eigen::Isometry3d& world_from_body,
                       const ros::Time& stamp, visualization_msgs::MarkerArray& markers);
