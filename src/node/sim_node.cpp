@@ -53,6 +53,12 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
   advertise();
   startReconfigureServers();
+  interactive_ = std::make_unique<InteractiveControls>(
+      private_node_.resolveName("interactive"),
+      [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
+        return onDrop(body, initial, why);
+      });
+  interactive_->show(config_);
 }
 
 SimNode::~SimNode() {
@@ -105,7 +111,7 @@ void SimNode::startReconfigureServers() {
 // Applies a reconfigure request to one body if it validates; otherwise logs one line and changes
 // nothing. The request is rewritten to what runs, so that the server shows the truth.
 template <class Model, class Config, class Request>
-void SimNode::reconfigure(std::size_t index, Request& request) {
+std::optional<std::string> SimNode::reconfigure(std::size_t index, Request& request) {
   std::lock_guard<std::mutex> lock(mutex_);
   const std::string& name = config_.bodies[index].name;
   Config& current = configOf<Config>(config_, index);
@@ -124,10 +130,50 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
       snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
       publishStaticLocked();
     }
+    if (interactive_) interactive_->show(config_);
   } catch (const ConfigError& error) {
     ROS_WARN_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+    request = toReconfigure(current);
+    return std::string(error.what());
   }
   request = toReconfigure(current);
+  return std::nullopt;
+}
+
+// A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
+// refused, and the server then shows what runs (as dynparam and the panel see it).
+bool SimNode::onDrop(const std::string& body, const std::map<std::string, double>& initial,
+                     std::string* why) {
+  boost::recursive_mutex::scoped_lock servers(reconfigure_mutex_);  // as the servers hold it in a callback
+  std::size_t rods = 0, rollers = 0;
+  for (std::size_t i = 0; i < config_.bodies.size(); ++i) {
+    const bool rod = std::holds_alternative<RodConfig>(config_.bodies[i].config);
+    if (config_.bodies[i].name == body) {
+      return rod ? reconfigureKeys<Rod, RodConfig>(i, *rod_servers_[rods], initial, why)
+                 : reconfigureKeys<Roller, RollerConfig>(i, *roller_servers_[rollers], initial, why);
+    }
+    ++(rod ? rods : rollers);
+  }
+  *why = "no body '" + body + "'";
+  return false;
+}
+
+template <class Model, class Config, class Server>
+bool SimNode::reconfigureKeys(std::size_t index, Server& server, const std::map<std::string, double>& keys,
+                              std::string* why) {
+  auto request = toReconfigure(configOf<Config>(config_, index));
+  dynamic_reconfigure::Config asked;
+  for (const auto& [key, value] : keys) {
+    dynamic_reconfigure::DoubleParameter parameter;
+    parameter.name = key;
+    parameter.value = value;
+    asked.doubles.push_back(parameter);
+  }
+  request.__fromMessage__(asked);
+  const auto refusal = reconfigure<Model, Config>(index, request);
+  server.updateConfig(request);
+  if (refusal) *why = *refusal;
+  return !refusal;
 }
 
 bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {

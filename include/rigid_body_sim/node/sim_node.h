@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -23,6 +24,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
 
@@ -43,8 +45,14 @@ class SimNode {
 
   void advertise();
   void startReconfigureServers();
+  // Applies a request if it validates (else logs one line and returns the reason); rewrites it to what runs.
   template <class Model, class Config, class Request>
-  void reconfigure(std::size_t index, Request& request);
+  std::optional<std::string> reconfigure(std::size_t index, Request& request);
+  // Initial conditions dropped in rviz: through reconfigure() as if asked of the body's server.
+  bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
+  template <class Model, class Config, class Server>
+  bool reconfigureKeys(std::size_t index, Server& server, const std::map<std::string, double>& keys,
+                       std::string* why);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -91,6 +99,7 @@ class SimNode {
   boost::recursive_mutex reconfigure_mutex_;  // the servers' own; updateConfig needs it to be ours
   std::vector<std::unique_ptr<RodServer>> rod_servers_;
   std::vector<std::unique_ptr<RollerServer>> roller_servers_;
+  std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
   std::thread stepper_;
