@@ -24,7 +24,6 @@ namespace rigid_body_sim {
 namespace {
 
 constexpr int kSliderTicks = 1000;
-const char* const kRefusalStyle = "color: rgb(230, 90, 60);";  // not rviz's own warning / error colours
 const char* const kNoteStyle = "color: palette(mid);";
 
 // A spin box for any double: shows the shortest text that reads back the same number, takes any number
@@ -183,6 +182,7 @@ void BodySection::addField(const dynamic_reconfigure::ParamDescription& param, d
     widget = box;
   } else if (param.type == "double") {
     auto* row = new QWidget(this);
+    row->setObjectName(object + ".row");  // its spin box has the key's name
     auto* row_layout = new QHBoxLayout(row);
     row_layout->setContentsMargins(0, 0, 0, 0);
     auto* box = new NumberBox(row);

@@ -78,6 +78,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   layout->addWidget(status_);
 
   auto* scroll = new QScrollArea(this);
+  scroll->setObjectName("sections");
   scroll->setWidgetResizable(true);
   scroll->setFrameShape(QFrame::NoFrame);
   auto* sections = new QWidget(scroll);
@@ -155,7 +156,7 @@ void SimPanel::discover() {
       [this, prefix](const std::pair<bool, Bodies>& found) {
         discovering_ = false;
         if (prefix == ns_ + "/") follow(found.second);
-        if (!found.first) status_->setText("no ROS master");
+        if (!found.first) showStatus("no ROS master", true);
       });
 }
 
@@ -190,7 +191,11 @@ void SimPanel::callEmpty(const std::string& service, const QString& done) {
         return ros::service::call(name, srv);
       },
       [this, name, done](const bool& ok) {
-        status_->setText(ok ? done : QString::fromStdString("no answer from " + name));
+        if (ok) {
+          showStatus(done);
+        } else {
+          showStatus(QString::fromStdString("no answer from " + name), true);
+        }
       });
 }
 
@@ -212,7 +217,7 @@ void SimPanel::step() {
              << srv.response.t << " s";
         return text.str();
       },
-      [this](const std::string& text) { status_->setText(QString::fromStdString(text)); });
+      [this](const std::string& text) { showStatus(QString::fromStdString(text)); });
 }
 
 void SimPanel::onTime(double t) {
@@ -237,34 +242,39 @@ void SimPanel::showClock() {
       QString("t = %1 s   real-time factor %2").arg(times_.back().second, 0, 'f', 3).arg(factor, 0, 'f', 2));
 }
 
-// The node's WARN and ERROR lines that name one of its bodies (a refused reconfigure or drop) go to that
-// body's section; others (a refused ~step) to the status line.
+// The node's WARN and ERROR lines (a refused reconfigure, drop or ~step) go to the status line, and those
+// that name a body to its section too.
 void SimPanel::onLog(const rosgraph_msgs::Log::ConstPtr& line) {
   if (line->name != ns_ || line->level < rosgraph_msgs::Log::WARN) return;
   for (const auto& [name, section] : sections_) {
-    if (line->msg.find("body '" + name + "'") != std::string::npos) {
+    if (line->msg.find("body '" + name + "'") != std::string::npos)
       section->showMessage(QString::fromStdString(line->msg), true);
-      return;
-    }
   }
-  status_->setText(QString::fromStdString(line->msg));
+  showStatus(QString::fromStdString(line->msg), true);  // in sight, wherever the sections are scrolled
 }
 
-// With RBS_PANEL_LAYOUT set: each named widget's place on the screen and its text, one per line
-// ("name x y width height text"), rewritten when something changed. The GUI test clicks and reads by it.
+void SimPanel::showStatus(const QString& text, bool refusal) {
+  status_->setText(text);
+  status_->setStyleSheet(refusal ? kRefusalStyle : "");
+}
+
+// With RBS_PANEL_LAYOUT set: each named widget's visible part on the screen and its text, one per line
+// ("name x y width height text"; width and height 0 when scrolled out of sight), rewritten when something
+// changed. The GUI test (test/pictures/rviz_panel.py) clicks and reads by it.
 void SimPanel::writeLayout() {
   if (layout_file_.empty()) return;
   std::ostringstream out;
   for (QWidget* w : findChildren<QWidget*>()) {
     if (w->objectName().isEmpty() || w->objectName().startsWith("qt_") || !w->isVisible()) continue;
-    const QPoint at = w->mapToGlobal(QPoint(0, 0));
+    const QRect shown = w->visibleRegion().boundingRect();  // empty when scrolled out of sight
+    const QPoint at = w->mapToGlobal(shown.topLeft());
     QString text;
     if (auto* label = qobject_cast<QLabel*>(w)) text = label->text();
     if (auto* spin = qobject_cast<QAbstractSpinBox*>(w)) text = spin->text();
     if (auto* box = qobject_cast<QComboBox*>(w)) text = box->currentText();
     if (auto* line = qobject_cast<QLineEdit*>(w)) text = line->text();
-    out << w->objectName().toStdString() << ' ' << at.x() << ' ' << at.y() << ' ' << w->width() << ' '
-        << w->height() << ' ' << text.simplified().toStdString() << '\n';
+    out << w->objectName().toStdString() << ' ' << at.x() << ' ' << at.y() << ' ' << shown.width() << ' '
+        << shown.height() << ' ' << text.simplified().toStdString() << '\n';
   }
   if (out.str() == layout_written_) return;
   layout_written_ = out.str();

@@ -63,6 +63,10 @@ class BodySection : public QGroupBox {
   std::vector<ros::Subscriber> subscribers_;
 };
 
+// How the panel shows a refusal: a colour apart from rviz's own warning and error colours (the screenshot
+// test looks for those in the display tree) and from the text's.
+inline constexpr const char* kRefusalStyle = "color: rgb(230, 90, 60);";
+
 // Text of a value as the panel shows it: the shortest form that reads back the same number.
 QString numberText(double value);
 

@@ -45,6 +45,7 @@ class SimPanel : public rviz::Panel {
   void onTime(double t);
   void showClock();
   void onLog(const rosgraph_msgs::Log::ConstPtr& line);
+  void showStatus(const QString& text, bool refusal = false);
   void writeLayout();  // the widgets' places, for the GUI test (RBS_PANEL_LAYOUT)
 
   std::string ns_ = "/sim";
