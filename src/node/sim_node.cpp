@@ -54,7 +54,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   advertise();
   startReconfigureServers();
   interactive_ = std::make_unique<InteractiveControls>(
-      private_node_.resolveName("interactive"),
+      private_node_.resolveName(node_interface::kInteractive),
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
         return onDrop(body, initial, why);
       });

@@ -20,6 +20,7 @@ inline constexpr const char* kReset = "reset";
 inline constexpr const char* kPause = "pause";
 inline constexpr const char* kUnpause = "unpause";
 inline constexpr const char* kStep = "step";
+inline constexpr const char* kInteractive = "interactive";  // the interactive marker server's namespace
 
 // A body's state topic, relative to the node's namespace.
 inline std::string stateTopic(const std::string& body) { return body + "/state"; }
@@ -33,7 +34,7 @@ inline const std::vector<std::string>& optionNames() {
 inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
-    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep});
+    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep, kInteractive});
     return all;
   }();
   return names;
