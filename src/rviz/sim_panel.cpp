@@ -24,6 +24,7 @@ namespace {
 constexpr int kDiscoverMs = 1000;
 constexpr int kClockMs = 200;
 constexpr double kFactorWindow = 1.0;  // wall seconds over which the real-time factor is measured
+constexpr double kStoppedAfter = 0.5;  // wall seconds without a state: simulated time stands still
 const std::string kDescriptions = "/parameter_descriptions";
 
 QPushButton* button(const QString& text, const QString& name, const QString& tip, QWidget* parent) {
@@ -227,7 +228,8 @@ void SimPanel::onTime(double t) {
   times_.emplace_back(now, t);
 }
 
-// t, and the simulated seconds per wall second over the last kFactorWindow (0 while nothing comes).
+// t, and the simulated seconds per wall second over the last kFactorWindow; "stopped" once no state has
+// come for kStoppedAfter (paused, or the node is gone).
 void SimPanel::showClock() {
   const double now = wallNow();
   while (times_.size() > 1 && times_[1].first < now - kFactorWindow) times_.pop_front();
@@ -235,11 +237,14 @@ void SimPanel::showClock() {
     clock_->setText("t = ?  (no state from " + QString::fromStdString(ns_) + ")");
     return;
   }
+  const QString t = QString("t = %1 s   ").arg(times_.back().second, 0, 'f', 3);
+  if (now - times_.back().first > kStoppedAfter) {
+    clock_->setText(t + "stopped");
+    return;
+  }
   const double span = now - times_.front().first;
-  const double factor =
-      span > 0.25 * kFactorWindow ? (times_.back().second - times_.front().second) / span : 0.0;
-  clock_->setText(
-      QString("t = %1 s   real-time factor %2").arg(times_.back().second, 0, 'f', 3).arg(factor, 0, 'f', 2));
+  const double factor = span > 0 ? (times_.back().second - times_.front().second) / span : 0.0;
+  clock_->setText(t + QString("real-time factor %1").arg(factor, 0, 'f', 2));
 }
 
 // The node's WARN and ERROR lines (a refused reconfigure, drop or ~step) go to the status line, and those
