@@ -126,13 +126,13 @@ def state_fields(msg: Any) -> List[str]:
 
 
 def body_of_state_topic(topic: str) -> Union[str, None]:
-    """`rod` for /sim/rod/state; None for any other topic."""
+    """`rod` for /sim/rod/state (and for /left/sim/rod/state, in a namespace); None for any other topic."""
     parts = topic.strip("/").split("/")
-    return parts[1] if len(parts) == 3 and parts[0] == "sim" and parts[2] == "state" else None
+    return parts[-2] if len(parts) >= 3 and parts[-3] == "sim" and parts[-1] == "state" else None
 
 
 def read_states(bag_path: str) -> Dict[str, List[Any]]:
-    """{body: its state messages in the bag's order} from the topics /sim/<body>/state."""
+    """{body: its state messages in the bag's order} from the topics [/<ns>]/sim/<body>/state."""
     import rosbag  # only for bags: a run of CSV files needs no ROS
 
     states: Dict[str, List[Any]] = {}

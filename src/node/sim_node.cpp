@@ -6,6 +6,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
@@ -15,6 +16,7 @@ namespace {
 // Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
 constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
+constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
 
 template <class Config>
 Config& configOf(WorldConfig& world, std::size_t index) {
@@ -36,25 +38,21 @@ bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node),
       private_node_(private_node),
-      options_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeOptions(params);
-      }()),
-      config_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeConfig(params);
-      }()),
+      start_params_(privateParams(private_node)),
+      options_(parseNodeOptions(start_params_)),
+      config_(parseNodeConfig(start_params_)),
       world_(config_),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
       pacer_(config_.rate, options_.real_time_factor) {
+  checkFrames(options_, config_);
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
-  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
   advertise();
   startReconfigureServers();
   interactive_ = std::make_unique<InteractiveControls>(
-      private_node_.resolveName(node_interface::kInteractive),
+      private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
         return onDrop(body, initial, why);
       });
@@ -65,12 +63,17 @@ SimNode::~SimNode() {
   stopping_ = true;
   wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
+  if (watcher_.joinable()) watcher_.join();
 }
 
 void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
+  if (node_.getNamespace() != "/") {
+    namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
+    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
+  }
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
       state_publishers_.push_back(
@@ -127,7 +130,8 @@ std::optional<std::string> SimNode::reconfigure(std::size_t index, Request& requ
     current = wanted;
     if (moved) {
       // The slope's place (and the body's look) changed: new static frames and markers.
-      snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+      snapshots_ =
+          std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies());
       publishStaticLocked();
     }
     if (interactive_) interactive_->show(config_);
@@ -280,6 +284,7 @@ void SimNode::publishLocked() {
   // at a publishing instant the bodies' frames move with the next publication.
   if (stamp > last_tf_stamp_) {
     tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
     last_tf_stamp_ = stamp;
   }
   marker_publisher_.publish(snapshot.markers);
@@ -291,7 +296,10 @@ void SimNode::publishLocked() {
 
 void SimNode::publishStaticLocked() {
   const ros::Time stamp = stampOf(world_.time());
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stamp));
+  tf2_msgs::TFMessage fixed;
+  fixed.transforms = snapshots_->staticTransforms(stamp);
+  static_broadcaster_.sendTransform(fixed.transforms);
+  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
   marker_publisher_.publish(snapshots_->restartMarkers(stamp));
 }
 
@@ -338,14 +346,41 @@ void SimNode::stepLoop() {
   }
 }
 
-void SimNode::run() {
+void SimNode::watchMaster() {
+  while (!stopping_ && ros::ok()) {
+    if (askMaster() == MasterView::Forgot) {
+      restoreParameters();
+      ROS_ERROR(
+          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
+          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
+          ros::master::getURI().c_str(), kMasterForgotStatus);
+      exit_status_ = kMasterForgotStatus;
+      ros::requestShutdown();
+      return;
+    }
+    for (int tenth = 0; tenth < 10 && !stopping_; ++tenth) std::this_thread::sleep_for(kWatchTick);
+  }
+}
+
+// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
+// so that a respawned node starts on the same config (unless something has set them meanwhile).
+void SimNode::restoreParameters() {
+  if (ros::param::has(private_node_.getNamespace())) return;
+  ros::param::set(private_node_.getNamespace(), start_params_);
+  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+}
+
+int SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
+  watcher_ = std::thread([this] { watchMaster(); });
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
   stepper_.join();
+  watcher_.join();
+  return exit_status_;
 }
 
 }  // namespace rigid_body_sim

@@ -22,7 +22,7 @@ std::string markerTopic(const std::string& node_namespace) {
 
 BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame,
                          const std::vector<Body>& bodies, std::string node_namespace)
-    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(world_frame, bodies) {
+    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(world_frame, "", bodies) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
   // /tf_static is latched: a player hands it to late subscribers as a live node would.

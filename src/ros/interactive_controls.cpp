@@ -150,8 +150,9 @@ std::vector<InteractiveMarker> rollerMarkers(const BodyConfig& body, const Rolle
 
 }  // namespace
 
-InteractiveControls::InteractiveControls(const std::string& server_ns, DropHandler on_drop)
-    : server_(server_ns), on_drop_(std::move(on_drop)) {}
+InteractiveControls::InteractiveControls(const std::string& server_ns, std::string frame_prefix,
+                                         DropHandler on_drop)
+    : server_(server_ns), frame_prefix_(std::move(frame_prefix)), on_drop_(std::move(on_drop)) {}
 
 std::map<std::string, double> InteractiveControls::dropped(const BodyConfig& body, const std::string& marker,
                                                            const geometry_msgs::Pose& pose) {
@@ -184,10 +185,11 @@ void InteractiveControls::show(const WorldConfig& config) {
 }
 
 void InteractiveControls::insert(const BodyConfig& body) {
-  const auto markers = std::holds_alternative<RodConfig>(body.config)
-                           ? rodMarkers(body, std::get<RodConfig>(body.config))
-                           : rollerMarkers(body, std::get<RollerConfig>(body.config));
-  for (const auto& marker : markers) {
+  auto markers = std::holds_alternative<RodConfig>(body.config)
+                     ? rodMarkers(body, std::get<RodConfig>(body.config))
+                     : rollerMarkers(body, std::get<RollerConfig>(body.config));
+  for (auto& marker : markers) {
+    marker.header.frame_id = frame_prefix_ + fixedFrameOf(body);
     server_.insert(
         marker, [this](const auto& feedback) { onFeedback(feedback); }, InteractiveMarkerFeedback::MOUSE_UP);
   }

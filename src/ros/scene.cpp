@@ -108,11 +108,12 @@ double laneSpacing(const std::vector<Body>& bodies) {
   return std::max(kMinLaneSpacing, kLaneRadii * largest_radius);
 }
 
-visualization_msgs::Marker rollerShapeMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id,
+                                             const ros::Time& stamp) {
   const RollerParams& p = std::get<Roller>(body.model).params();
   const double d = 2.0 * p.radius;
   if (p.shape == Shape::Ring) {
-    auto ring = marker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, body.name, stamp);
+    auto ring = marker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame, stamp);
     ring.scale.x = kRingWidth * p.radius;
     for (int i = 0; i <= kRingSegments; ++i) {
       const double a = 2.0 * kPi * i / kRingSegments;
@@ -123,23 +124,24 @@ visualization_msgs::Marker rollerShapeMarker(const Body& body, int id, const ros
   const bool cylinder = p.shape == Shape::Cylinder;
   auto shape = marker(kNsBody, id,
                       cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
-                      body.name, stamp);
+                      frame, stamp);
   shape.scale.x = shape.scale.y = d;
   shape.scale.z = cylinder ? kCylinderLength * d : d;
   return shape;
 }
 
-visualization_msgs::Marker bodyMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id,
+                                      const ros::Time& stamp) {
   visualization_msgs::Marker m;
   if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    m = marker(kNsBody, id, visualization_msgs::Marker::CYLINDER, body.name, stamp);
+    m = marker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame, stamp);
     // A marker cylinder lies along its z; the rod lies along its frame's x.
     m.pose.orientation.y = std::sin(kPi / 4);
     m.pose.orientation.w = std::cos(kPi / 4);
     m.scale.x = m.scale.y = kRodThickness;
     m.scale.z = rod->params().length;
   } else {
-    m = rollerShapeMarker(body, id, stamp);
+    m = rollerShapeMarker(body, frame, id, stamp);
   }
   m.color = bodyColour(body);
   return m;
@@ -147,9 +149,10 @@ visualization_msgs::Marker bodyMarker(const Body& body, int id, const ros::Time&
 
 // A dark bar through the centre along the body's x: it turns with the body, so rolling and slipping
 // can be told apart at a glance.
-visualization_msgs::Marker spokeMarker(const Body& body, int id, const ros::Time& stamp) {
+visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id,
+                                       const ros::Time& stamp) {
   const double r = radiusOf(body);
-  auto spoke = marker(kNsSpoke, id, visualization_msgs::Marker::CUBE, body.name, stamp);
+  auto spoke = marker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame, stamp);
   spoke.scale.x = kSpokeLength * r;
   spoke.scale.y = kSpokeWidth * r;
   spoke.scale.z = kSpokeLength * r;
@@ -169,22 +172,23 @@ std::string labelText(const Body& body) {
 
 }  // namespace
 
-std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies) {
+std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
   const double lane_spacing = laneSpacing(bodies);
   int rods = 0;
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
     if (const auto* rod = std::get_if<Rod>(&body.model)) {
-      placements.push_back({fixedFrameOf(body), uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0),
-                            0.0, rod->params().floor_length});
+      placements.push_back({frame_prefix + fixedFrameOf(body),
+                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
+                            rod->params().floor_length});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
     const double lane_y = kFirstLaneY + lane_spacing * rollers++;
-    placements.push_back(
-        {fixedFrameOf(body), uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
+    placements.push_back({frame_prefix + fixedFrameOf(body),
+                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
   }
   return placements;
 }
@@ -202,9 +206,11 @@ Eigen::Isometry3d frameFromBody(const Body& body) {
   return pose;
 }
 
-Scene::Scene(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points)
+Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+             std::size_t trail_points)
     : world_frame_(std::move(world_frame)),
-      placements_(placeBodies(bodies)),
+      frame_prefix_(std::move(frame_prefix)),
+      placements_(placeBodies(bodies, frame_prefix_)),
       trail_points_(trail_points),
       trails_(bodies.size()) {}
 
@@ -273,8 +279,8 @@ void Scene::addBodyMarkers(std::size_t index, const Body& body, const Eigen::Iso
   label.color = kLabelColour;
   label.text = labelText(body);
 
-  markers.markers.push_back(bodyMarker(body, id, stamp));
-  markers.markers.push_back(spokeMarker(body, id, stamp));
+  markers.markers.push_back(bodyMarker(body, bodyFrame(body), id, stamp));
+  markers.markers.push_back(spokeMarker(body, bodyFrame(body), id, stamp));
   markers.markers.push_back(trail_marker);
   markers.markers.push_back(label);
 }

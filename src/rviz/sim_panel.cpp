@@ -43,7 +43,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
 
   auto* node_row = new QHBoxLayout();
   node_row->addWidget(new QLabel("node", this));
-  node_edit_ = new QLineEdit(QString::fromStdString(ns_), this);
+  node_edit_ = new QLineEdit(QString::fromStdString(node_), this);
   node_edit_->setObjectName("node");
   node_edit_->setToolTip("the namespace of sim_node (its ~pause, ~step, ~<body> ...)");
   node_row->addWidget(node_edit_, 1);
@@ -100,6 +100,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
 SimPanel::~SimPanel() = default;
 
 void SimPanel::onInitialize() {
+  ns_ = ros::names::resolve(node_);
   log_subscriber_ = ros::NodeHandle().subscribe("/rosout", 100, &SimPanel::onLog, this);
   discover_timer_.start(kDiscoverMs);
   clock_timer_.start(kClockMs);
@@ -116,14 +117,15 @@ void SimPanel::load(const rviz::Config& config) {
 
 void SimPanel::save(rviz::Config config) const {
   rviz::Panel::save(config);
-  config.mapSetValue("Node", QString::fromStdString(ns_));
+  config.mapSetValue("Node", QString::fromStdString(node_));
   config.mapSetValue("Step Count", step_count_->value());
 }
 
-void SimPanel::setNode(const std::string& ns) {
-  if (ns == ns_) return;
-  ns_ = ns;
-  node_edit_->setText(QString::fromStdString(ns_));
+void SimPanel::setNode(const std::string& node) {
+  if (node == node_) return;
+  node_ = node;
+  ns_ = ros::names::resolve(node_);
+  node_edit_->setText(QString::fromStdString(node_));
   follow({});
   Q_EMIT configChanged();
 }

@@ -15,6 +15,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -32,12 +33,16 @@ namespace rigid_body_sim {
 
 class SimNode {
  public:
+  // The exit status after the master restarted and forgot the node (roslaunch's respawn starts it again).
+  static constexpr int kMasterForgotStatus = 3;
+
   // Loads and validates the private parameters; throws ConfigError with the one refusal line.
   SimNode(ros::NodeHandle node, ros::NodeHandle private_node);
   ~SimNode();
 
-  // Starts the stepping thread and spins the callbacks until shutdown.
-  void run();
+  // Starts the stepping thread and spins the callbacks until shutdown; returns the exit status: 0, or
+  // kMasterForgotStatus.
+  int run();
 
  private:
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
@@ -59,6 +64,10 @@ class SimNode {
   bool onStep(Step::Request& request, Step::Response& response);
 
   void stepLoop();
+  // Every second: does the master still know this node? When a restarted master does not, puts the
+  // parameters this node started from back on it (for the respawned node) and shuts down.
+  void watchMaster();
+  void restoreParameters();
   // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
   void stepOnceLocked();
   // Holds a body that became non-finite at its last finite state and logs the one error about it.
@@ -72,6 +81,7 @@ class SimNode {
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
+  XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
   WorldConfig config_;  // the current config of every body (what reconfigure changes)
 
@@ -92,6 +102,8 @@ class SimNode {
 
   ros::Publisher marker_publisher_;
   ros::Publisher clock_publisher_;
+  ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
+  ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
   std::vector<ros::Publisher> state_publishers_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
@@ -102,7 +114,9 @@ class SimNode {
   std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
+  std::atomic<int> exit_status_{0};
   std::thread stepper_;
+  std::thread watcher_;
 };
 
 }  // namespace rigid_body_sim

@@ -32,8 +32,9 @@ class InteractiveControls {
   using DropHandler = std::function<bool(const std::string& body,
                                          const std::map<std::string, double>& initial, std::string* why)>;
 
-  // Serves under `server_ns` (the node's private namespace + "/interactive").
-  InteractiveControls(const std::string& server_ns, DropHandler on_drop);
+  // Serves under `server_ns` (the node's private namespace + "/interactive"); the markers are in the bodies'
+  // fixed frames with `frame_prefix` in front (the node's frame_prefix).
+  InteractiveControls(const std::string& server_ns, std::string frame_prefix, DropHandler on_drop);
 
   // Shows every body of `config` at its initial conditions; removes the markers of bodies it no longer has.
   void show(const WorldConfig& config);
@@ -47,6 +48,7 @@ class InteractiveControls {
   void insert(const BodyConfig& body);
 
   interactive_markers::InteractiveMarkerServer server_;
+  std::string frame_prefix_;
   DropHandler on_drop_;
   std::map<std::string, BodyConfig> bodies_;  // what is shown, by body name
 };

@@ -6,6 +6,8 @@
 //   `<body>_slope` (x down the slope, y normal to it, origin at the top of the slope);
 // - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes world y = 1 + 0.5 j (wider for
 //   large radii): side by side, never overlapping; every slope ends on the floor at its lower end.
+// Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
+// instances publish distinct frames on one /tf.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +30,7 @@ struct BodyPlacement {
   double slope_length = 0.0;  // m; 0 for a rod's floor
   double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
 };
-std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies);
+std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix = "");
 
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
@@ -37,9 +39,11 @@ Eigen::Isometry3d frameFromBody(const Body& body);
 // that turns with it, its bounded trail and a label with its mode and energy.
 class Scene {
  public:
-  Scene(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points = 400);
+  Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+        std::size_t trail_points = 400);
 
   const std::string& worldFrame() const { return world_frame_; }
+  std::string bodyFrame(const Body& body) const { return frame_prefix_ + body.name; }
   const std::vector<BodyPlacement>& placements() const { return placements_; }
 
   visualization_msgs::MarkerArray fixedMarkers(const ros::Time& stamp) const;  // floors, slopes
@@ -51,6 +55,7 @@ class Scene {
 
  private:
   std::string world_frame_;
+  std::string frame_prefix_;
   std::vector<BodyPlacement> placements_;
   std::size_t trail_points_;
   std::vector<std::deque<Eigen::Vector3d>> trails_;

@@ -24,7 +24,10 @@ struct Snapshot {
 // Builds snapshots; keeps the bounded trail of every body between calls.
 class SnapshotBuilder {
  public:
-  SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies, std::size_t trail_points = 400);
+  // frame_prefix goes in front of every frame but world_frame (the node's option; empty in a bag of
+  // simulate).
+  SnapshotBuilder(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+                  std::size_t trail_points = 400);
 
   std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
   visualization_msgs::MarkerArray staticMarkers(const ros::Time& stamp) const;  // floor, slopes

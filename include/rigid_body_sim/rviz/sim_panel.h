@@ -1,7 +1,7 @@
 // rviz panel rigid_body_sim/SimPanel: a thin client of sim_node. Pause / Run / Step (a count) / Reset
 // through the node's services; simulated time and the real-time factor achieved, from its state topics;
-// a section per body (BodySection), following the bodies the node serves. The node's namespace (/sim) is
-// a setting saved in the .rviz file.
+// a section per body (BodySection), following the bodies the node serves. The node's name (sim: relative
+// to rviz's namespace, as sim.launch's ns:= puts both in one) is a setting saved in the .rviz file.
 #pragma once
 
 #include <deque>
@@ -37,7 +37,7 @@ class SimPanel : public rviz::Panel {
   void save(rviz::Config config) const override;
 
  private:
-  void setNode(const std::string& ns);
+  void setNode(const std::string& node);
   void discover();  // asks the master which bodies the node serves
   void follow(const std::map<std::string, std::string>& bodies);  // name -> state message type
   void callEmpty(const std::string& service, const QString& done);
@@ -48,7 +48,8 @@ class SimPanel : public rviz::Panel {
   void showStatus(const QString& text, bool refusal = false);
   void writeLayout();  // the widgets' places, for the GUI test (RBS_PANEL_LAYOUT)
 
-  std::string ns_ = "/sim";
+  std::string node_ = "sim";  // as set (saved in the .rviz file)
+  std::string ns_;            // resolved: the prefix of the node's services and topics
   std::unique_ptr<CallQueue> calls_;
   QLineEdit* node_edit_;
   QSpinBox* step_count_;
