@@ -32,8 +32,8 @@ INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0,
 # The units of the numeric keys by body type, for axis labels ("" for a pure number), as the .cfg files'
 # descriptions give them.
 KEY_UNITS: Dict[str, Dict[str, str]] = {
-    "rod": {"length": "m", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m", "vx0": "m/s", "vy0": "m/s",
-            "theta0": "rad", "omega0": "rad/s"},
+    "rod": {"length": "m", "mass": "kg", "k": "N/m", "floor_length": "m", "x0": "m", "y0": "m", "vx0": "m/s",
+            "vy0": "m/s", "theta0": "rad", "omega0": "rad/s"},
     "roller": {"inertia_factor": "", "radius": "m", "mass": "kg", "incline_angle": "rad", "incline_length": "m",
                "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
 }
