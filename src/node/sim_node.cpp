@@ -46,6 +46,22 @@ std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   return index;
 }
 
+// A body's config with some numeric keys set as a reconfigure request would set them (the same parsing).
+template <class Config>
+Config withReconfigured(const std::string& body, const Config& current,
+                        const std::map<std::string, double>& keys) {
+  auto request = toReconfigure(current);
+  dynamic_reconfigure::Config asked;
+  for (const auto& [key, value] : keys) {
+    dynamic_reconfigure::DoubleParameter parameter;
+    parameter.name = key;
+    parameter.value = value;
+    asked.doubles.push_back(parameter);
+  }
+  request.__fromMessage__(asked);
+  return fromReconfigure(body, request, current);
+}
+
 }  // namespace
 
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
@@ -70,6 +86,12 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   start.world = world_.config();
   publishCommandLocked(start);  // nothing runs yet: no lock to take
   for (const auto& body : world_.config().bodies) startReconfigureServer(body);
+  interactive_ = std::make_unique<InteractiveControls>(
+      private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
+      [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
+        return onDrop(body, initial, why);
+      });
+  interactive_->show(world_.config());
 }
 
 SimNode::~SimNode() {
@@ -192,6 +214,7 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
                     << " (t = " << formatNumber(world_.time()) << " s)");
     publishCommandLocked(command);
     followWorldLocked(command, before);
+    if (interactive_) interactive_->show(world_.config());  // the handles where the bodies now start
   }
   followWorldServers(command);
   if (why) *why = "ok";
@@ -249,6 +272,34 @@ void SimNode::rebuildSceneLocked() {
   snapshots_ =
       std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
   publishStaticLocked();
+}
+
+// A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
+// refused, the same log, and the server then shows what runs (as dynparam and the panel see it).
+bool SimNode::onDrop(const std::string& body, const std::map<std::string, double>& initial,
+                     std::string* why) {
+  return applyBuilt(
+      toString(WorldCommand::Kind::Reconfigure), body,
+      [&] {
+        BodyConfig current;
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          const std::size_t index = indexIn(world_.config(), body);
+          if (index == world_.config().bodies.size())
+            throw ConfigError(body, "name", "'" + body + "'", "a body of the world");
+          current = world_.config().bodies[index];
+        }
+        WorldCommand command;
+        command.kind = WorldCommand::Kind::Reconfigure;
+        command.body = body;
+        command.config = std::visit(
+            [&](const auto& config) {
+              return BodyConfig{body, withReconfigured(body, config, initial)};
+            },
+            current.config);
+        return command;
+      },
+      why);
 }
 
 bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {

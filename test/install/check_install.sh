@@ -6,6 +6,8 @@
 #   roslaunch rigid_body_sim sim.launch  duration:=3 record:=true on a master of its own: exit 0, the bag
 #                                        in ROS_HOME; with bag:=run.bag, run.bag in the current folder
 #   rosrun rigid_body_sim bag_summary.py summarises that bag; plot_run.py plots it
+#   rospack plugins --attrib=plugin rviz lists the installed plugin_description.xml (the rviz panel), and its
+#                                        library is installed with every library it needs found
 # Usage: check_install.sh INSTALL_DIR
 set -euo pipefail
 install=$(cd "$1" && pwd)
@@ -53,6 +55,12 @@ grep -q "/sim/rod/state" "$work/summary.txt" || fail "bag_summary.py: no rod sta
 rosrun rigid_body_sim plot_run.py "$config" "$work/run.bag" --out-dir "$work/plots_bag" >/dev/null \
   || fail "plot_run.py on the bag"
 [ -s "$work/plots_bag/rod.png" ] || fail "no rod.png from the bag"
+
+rospack plugins --attrib=plugin rviz | grep -qx "rigid_body_sim $share/plugin_description.xml" \
+  || fail "rviz does not see the installed plugin_description.xml: $(rospack plugins --attrib=plugin rviz)"
+panel=$install/lib/librigid_body_sim_rviz.so
+[ -f "$panel" ] || fail "the panel's library is not installed ($panel)"
+! ldd "$panel" | grep "not found" || fail "the panel's library misses libraries"
 echo "check_install: ok ($install)"
 EOF
 env -i HOME="$HOME" PATH=/usr/bin:/bin LANG=C.UTF-8 ROS_HOME="$work/ros_home" ROS_IP=127.0.0.1 \

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# rviz under Xvfb: test/pictures/rviz_screenshot.py in a virtual 1280x800 screen, with software OpenGL.
-# Usage: rviz_screenshot.sh DEVEL_SPACE OUT.png [more options of rviz_screenshot.py]
+# rviz under Xvfb: test/pictures/rviz_screenshot.py (or $RVIZ_SCRIPT beside it: rviz_panel.py) in a virtual
+# 1600x900 screen, with software OpenGL.
+# Usage: rviz_screenshot.sh DEVEL_SPACE OUT.png [more options of the script]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 devel=$(cd "$1" && pwd); out=$2; shift 2
@@ -11,5 +12,5 @@ export ROS_IP=127.0.0.1 ROS_HOME=$(mktemp -d) LIBGL_ALWAYS_SOFTWARE=1
 unset ROS_HOSTNAME
 trap 'rm -rf "$ROS_HOME"' EXIT
 exec_status=0
-xvfb-run -a -s "-screen 0 1280x800x24" /usr/bin/python3 "$here/rviz_screenshot.py" --out "$out" "$@" || exec_status=$?
+xvfb-run -a -s "-screen 0 1600x900x24" /usr/bin/python3 "$here/${RVIZ_SCRIPT:-rviz_screenshot.py}" --out "$out" "$@" || exec_status=$?
 exit $exec_status

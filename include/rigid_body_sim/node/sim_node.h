@@ -29,6 +29,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
 
@@ -82,6 +83,8 @@ class SimNode {
   bool onDelete(Delete::Request& request, Delete::Response& response);
   bool onSetState(SetState::Request& request, SetState::Response& response);
   bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
+  // Initial conditions dropped in rviz: a reconfigure of those keys, through applyCommand like any other.
+  bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -136,7 +139,8 @@ class SimNode {
   // The servers' own (held while they call back; updateConfig needs it to be ours). applyCommand takes it
   // before mutex_, always in this order: a reconfigure callback arrives holding it.
   boost::recursive_mutex reconfigure_mutex_;
-  std::map<std::string, BodyServer> servers_;  // by body name
+  std::map<std::string, BodyServer> servers_;         // by body name
+  std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
   std::atomic<int> exit_status_{0};

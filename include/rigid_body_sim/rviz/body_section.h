@@ -1,0 +1,73 @@
+// One body's section of the SimPanel: its keys as widgets built from its dynamic_reconfigure server's
+// descriptions (a key added to a .cfg appears without code), showing the server's values; edits go to the
+// server (set_parameters), so that a refused value snaps back to what runs, and the refusal is shown. Also
+// the body's mode and energy, from its state topic.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <QGroupBox>
+#include <QLabel>
+
+#include <dynamic_reconfigure/Config.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
+#include <ros/ros.h>
+
+#include "rigid_body_sim/RodState.h"
+#include "rigid_body_sim/RollerState.h"
+
+class QFormLayout;
+
+namespace rigid_body_sim {
+
+class CallQueue;
+
+class BodySection : public QGroupBox {
+  Q_OBJECT
+ public:
+  // `server` is the body's reconfigure namespace (e.g. /sim/rod), `state_type` its state message type;
+  // `on_time` receives the simulated time of every state.
+  BodySection(const std::string& name, const std::string& server, const std::string& state_type,
+              CallQueue& calls, std::function<void(double)> on_time, QWidget* parent = nullptr);
+
+  const std::string& name() const { return name_; }
+  const std::string& stateType() const { return state_type_; }
+  // A line the node logged about this body (its refusal of a request): shown under the keys.
+  void showMessage(const QString& text, bool refusal);
+
+ private:
+  struct Field {
+    std::string type;  // bool, int, double, str (dynamic_reconfigure's names)
+    std::function<void(const dynamic_reconfigure::Config&)> show;
+  };
+
+  void build(const dynamic_reconfigure::ConfigDescription& description);
+  void addField(const dynamic_reconfigure::ParamDescription& param, double min, double max);
+  void showValues(const dynamic_reconfigure::Config& values);
+  void request(dynamic_reconfigure::Config asked, const std::string& key, const QString& asked_text);
+  void onRodState(const RodState& state);
+  void onRollerState(const RollerState& state);
+
+  std::string name_, server_, state_type_;
+  CallQueue& calls_;
+  std::function<void(double)> on_time_;
+  QFormLayout* form_;
+  QLabel* motion_;   // mode and energy
+  QLabel* message_;  // the last refusal (or acceptance) of a request
+  std::map<std::string, Field> fields_;
+  std::vector<std::string> order_;      // the keys in the .cfg's order
+  dynamic_reconfigure::Config values_;  // what the server shows
+  std::vector<ros::Subscriber> subscribers_;
+};
+
+// How the panel shows a refusal: a colour apart from rviz's own warning and error colours (the screenshot
+// test looks for those in the display tree) and from the text's.
+inline constexpr const char* kRefusalStyle = "color: rgb(230, 90, 60);";
+
+// Text of a value as the panel shows it: the shortest form that reads back the same number.
+QString numberText(double value);
+
+}  // namespace rigid_body_sim

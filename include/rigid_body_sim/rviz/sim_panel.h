@@ -1,0 +1,67 @@
+// rviz panel rigid_body_sim/SimPanel: a thin client of sim_node. Pause / Run / Step (a count) / Reset
+// through the node's services; simulated time and the real-time factor achieved, from its state topics;
+// a section per body (BodySection), following the bodies the node serves. The node's name (sim: relative
+// to rviz's namespace, as sim.launch's ns:= puts both in one) is a setting saved in the .rviz file.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include <QLabel>
+#include <QLineEdit>
+#include <QSpinBox>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+#include <rviz/panel.h>
+
+#include "rigid_body_sim/rviz/call_queue.h"
+
+namespace rigid_body_sim {
+
+class BodySection;
+
+class SimPanel : public rviz::Panel {
+  Q_OBJECT
+ public:
+  explicit SimPanel(QWidget* parent = nullptr);
+  ~SimPanel() override;
+
+  void onInitialize() override;
+  void load(const rviz::Config& config) override;
+  void save(rviz::Config config) const override;
+
+ private:
+  void setNode(const std::string& node);
+  void discover();  // asks the master which bodies the node serves
+  void follow(const std::map<std::string, std::string>& bodies);  // name -> state message type
+  void callEmpty(const std::string& service, const QString& done);
+  void step();
+  void onTime(double t);
+  void showClock();
+  void onLog(const rosgraph_msgs::Log::ConstPtr& line);
+  void showStatus(const QString& text, bool refusal = false);
+  void writeLayout();  // the widgets' places, for the GUI test (RBS_PANEL_LAYOUT)
+
+  std::string node_ = "sim";  // as set (saved in the .rviz file)
+  std::string ns_;            // resolved: the prefix of the node's services and topics
+  std::unique_ptr<CallQueue> calls_;
+  QLineEdit* node_edit_;
+  QSpinBox* step_count_;
+  QLabel* clock_;
+  QLabel* status_;
+  QVBoxLayout* sections_layout_;
+  std::map<std::string, BodySection*> sections_;
+  bool discovering_ = false;
+  QTimer discover_timer_, clock_timer_;
+  std::deque<std::pair<double, double>> times_;  // (wall s, simulated s) of recent states
+  ros::Subscriber log_subscriber_;
+  std::string layout_file_, layout_written_;
+};
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,212 @@
+#include "rigid_body_sim/ros/interactive_controls.h"
+
+#include <cmath>
+#include <utility>
+
+#include <visualization_msgs/InteractiveMarker.h>
+#include <visualization_msgs/InteractiveMarkerControl.h>
+#include <visualization_msgs/Marker.h>
+
+namespace rigid_body_sim {
+
+namespace {
+
+using visualization_msgs::InteractiveMarker;
+using visualization_msgs::InteractiveMarkerControl;
+using visualization_msgs::InteractiveMarkerFeedback;
+using visualization_msgs::Marker;
+
+const std::string kVelocitySuffix = "/velocity";
+constexpr double kGhostAlpha = 0.45;  // the handles are see-through: the body shows through them
+constexpr double kTipSize = 0.1;      // m, the velocity handle's knob
+constexpr double kRodGhostThickness = 0.08;
+
+geometry_msgs::Quaternion aboutZ(double angle) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(angle / 2);
+  q.w = std::cos(angle / 2);
+  return q;
+}
+
+// The angle about z of a rotation (rviz may add rounding off the z axis: its projection on the plane).
+double angleAboutZ(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+geometry_msgs::Point point(double x, double y) {
+  geometry_msgs::Point p;
+  p.x = x;
+  p.y = y;
+  return p;
+}
+
+std_msgs::ColorRGBA colour(float r, float g, float b) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = kGhostAlpha;
+  return c;
+}
+
+// A control whose axis (rviz: the control's x axis) is the frame's z: planar moves and turns about z.
+InteractiveMarkerControl zAxisControl(const std::string& name, std::uint8_t mode) {
+  InteractiveMarkerControl control;
+  control.name = name;
+  control.interaction_mode = mode;
+  control.orientation.w = std::sqrt(0.5);
+  control.orientation.y = std::sqrt(0.5);
+  return control;
+}
+
+// A control along the frame's x axis (a roller slides down its slope).
+InteractiveMarkerControl xAxisControl(const std::string& name) {
+  InteractiveMarkerControl control;
+  control.name = name;
+  control.interaction_mode = InteractiveMarkerControl::MOVE_AXIS;
+  control.orientation.w = 1.0;
+  return control;
+}
+
+// The arrow from the body's initial position to the handle (in the handle's frame: it ends at the origin).
+Marker velocityArrow(double dx, double dy) {
+  Marker arrow;
+  arrow.type = Marker::ARROW;
+  arrow.points = {point(-dx, -dy), point(0, 0)};
+  arrow.scale.x = 0.03;  // shaft diameter
+  arrow.scale.y = 0.07;  // head diameter
+  arrow.scale.z = 0.1;   // head length
+  arrow.color = colour(1.0f, 0.55f, 0.0f);
+  arrow.color.a = 0.9f;
+  return arrow;
+}
+
+Marker knob() {
+  Marker tip;
+  tip.type = Marker::SPHERE;
+  tip.scale.x = tip.scale.y = tip.scale.z = kTipSize;
+  tip.color = colour(1.0f, 0.55f, 0.0f);
+  tip.color.a = 0.9f;
+  return tip;
+}
+
+InteractiveMarker baseMarker(const BodyConfig& body, const std::string& name,
+                             const std::string& description) {
+  InteractiveMarker marker;
+  marker.header.frame_id = fixedFrameOf(body);
+  marker.name = name;
+  marker.description = description;
+  marker.pose.orientation.w = 1.0;
+  return marker;
+}
+
+std::vector<InteractiveMarker> rodMarkers(const BodyConfig& body, const RodConfig& rod) {
+  const RodMotion& a = rod.initial;
+  InteractiveMarker place = baseMarker(body, body.name, body.name + ": drag to place, ring to turn");
+  place.pose.position = point(a.x, a.y);
+  place.pose.orientation = aboutZ(a.theta);
+  place.scale = static_cast<float>(std::max(0.5, rod.params.length));
+  InteractiveMarkerControl move = zAxisControl("move", InteractiveMarkerControl::MOVE_PLANE);
+  Marker ghost;
+  ghost.type = Marker::CUBE;
+  ghost.scale.x = rod.params.length;
+  ghost.scale.y = ghost.scale.z = kRodGhostThickness;
+  ghost.color = colour(1.0f, 0.9f, 0.2f);
+  move.markers.push_back(ghost);
+  place.controls = {move, zAxisControl("turn", InteractiveMarkerControl::ROTATE_AXIS)};
+
+  const double dx = a.vx * kVelocityArrowScale, dy = a.vy * kVelocityArrowScale;
+  InteractiveMarker throw_ = baseMarker(body, body.name + kVelocitySuffix, "");
+  throw_.pose.position = point(a.x + dx, a.y + dy);
+  throw_.scale = 0.3f;
+  InteractiveMarkerControl aim = zAxisControl("aim", InteractiveMarkerControl::MOVE_PLANE);
+  aim.markers = {knob(), velocityArrow(dx, dy)};
+  throw_.controls = {aim};
+  return {place, throw_};
+}
+
+std::vector<InteractiveMarker> rollerMarkers(const BodyConfig& body, const RollerConfig& roller) {
+  const double r = roller.params.radius;
+  InteractiveMarker place = baseMarker(body, body.name, body.name + ": slide along the slope");
+  place.pose.position = point(roller.initial.x0, r);
+  place.scale = static_cast<float>(std::max(0.5, 4.0 * r));
+  InteractiveMarkerControl slide = xAxisControl("slide");
+  Marker ghost;
+  ghost.type = Marker::SPHERE;
+  ghost.scale.x = ghost.scale.y = ghost.scale.z = 2.4 * r;
+  ghost.color = colour(1.0f, 0.9f, 0.2f);
+  slide.markers.push_back(ghost);
+  place.controls = {slide};
+
+  const double dx = roller.initial.v0 * kVelocityArrowScale;
+  InteractiveMarker throw_ = baseMarker(body, body.name + kVelocitySuffix, "");
+  throw_.pose.position = point(roller.initial.x0 + dx, r);
+  throw_.scale = 0.3f;
+  InteractiveMarkerControl aim = xAxisControl("aim");
+  aim.markers = {knob(), velocityArrow(dx, 0.0)};
+  throw_.controls = {aim};
+  return {place, throw_};
+}
+
+}  // namespace
+
+InteractiveControls::InteractiveControls(const std::string& server_ns, std::string frame_prefix,
+                                         DropHandler on_drop)
+    : server_(server_ns), frame_prefix_(std::move(frame_prefix)), on_drop_(std::move(on_drop)) {}
+
+std::map<std::string, double> InteractiveControls::dropped(const BodyConfig& body, const std::string& marker,
+                                                           const geometry_msgs::Pose& pose) {
+  const bool velocity = marker == body.name + kVelocitySuffix;
+  const double x = pose.position.x, y = pose.position.y;
+  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
+    const RodMotion& a = rod->initial;
+    if (velocity) return {{"vx0", (x - a.x) / kVelocityArrowScale}, {"vy0", (y - a.y) / kVelocityArrowScale}};
+    return {{"x0", x}, {"y0", y}, {"theta0", angleAboutZ(pose.orientation)}};
+  }
+  const RollerInitial& a = std::get<RollerConfig>(body.config).initial;
+  if (velocity) return {{"v0", (x - a.x0) / kVelocityArrowScale}};
+  return {{"x0", x}};
+}
+
+void InteractiveControls::show(const WorldConfig& config) {
+  std::map<std::string, BodyConfig> now;
+  for (const BodyConfig& body : config.bodies) {
+    now.emplace(body.name, body);
+    insert(body);
+  }
+  for (const auto& [name, body] : bodies_) {
+    if (!now.count(name)) {
+      server_.erase(name);
+      server_.erase(name + kVelocitySuffix);
+    }
+  }
+  bodies_ = std::move(now);
+  server_.applyChanges();
+}
+
+void InteractiveControls::insert(const BodyConfig& body) {
+  auto markers = std::holds_alternative<RodConfig>(body.config)
+                     ? rodMarkers(body, std::get<RodConfig>(body.config))
+                     : rollerMarkers(body, std::get<RollerConfig>(body.config));
+  for (auto& marker : markers) {
+    marker.header.frame_id = frame_prefix_ + fixedFrameOf(body);
+    server_.insert(
+        marker, [this](const auto& feedback) { onFeedback(feedback); }, InteractiveMarkerFeedback::MOUSE_UP);
+  }
+}
+
+// On a drop the handler applies the initial conditions and, if they run, shows every body anew through
+// show(); a refused drop puts both markers of the body back where its initial conditions are.
+void InteractiveControls::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback) {
+  const std::string name = feedback->marker_name.substr(0, feedback->marker_name.find('/'));
+  const auto found = bodies_.find(name);
+  if (found == bodies_.end()) return;
+  const BodyConfig body = found->second;  // the handler may replace bodies_ (through show)
+  std::string why;
+  if (!on_drop_(name, dropped(body, feedback->marker_name, feedback->pose), &why)) {
+    insert(body);
+    server_.applyChanges();
+  }
+}
+
+}  // namespace rigid_body_sim

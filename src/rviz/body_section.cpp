@@ -1,0 +1,340 @@
+#include "rigid_body_sim/rviz/body_section.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <regex>
+#include <utility>
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLineEdit>
+#include <QSlider>
+#include <QSpinBox>
+
+#include <dynamic_reconfigure/Reconfigure.h>
+
+#include "rigid_body_sim/rviz/call_queue.h"
+
+namespace rigid_body_sim {
+
+namespace {
+
+constexpr int kSliderTicks = 1000;
+const char* const kNoteStyle = "color: palette(mid);";
+
+// A spin box for any double: shows the shortest text that reads back the same number, takes any number
+// typed (1e-3 included), and reports a value only when the edit is done (Enter, focus out, arrows).
+class NumberBox : public QDoubleSpinBox {
+ public:
+  explicit NumberBox(QWidget* parent) : QDoubleSpinBox(parent) {
+    setDecimals(std::numeric_limits<double>::max_exponent10);  // no rounding of what is typed
+    setKeyboardTracking(false);
+    setAccelerated(true);
+  }
+  QString textFromValue(double value) const override { return numberText(value); }
+  double valueFromText(const QString& text) const override { return text.trimmed().toDouble(); }
+  QValidator::State validate(QString& text, int&) const override {
+    bool ok = false;
+    text.trimmed().toDouble(&ok);
+    return ok ? QValidator::Acceptable : QValidator::Intermediate;
+  }
+};
+
+template <class Parameter>
+const Parameter* parameterNamed(const std::vector<Parameter>& parameters, const std::string& name) {
+  for (const auto& p : parameters) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+// The constants of an enum from a description's edit_method (a Python dict literal): (name, value text).
+std::vector<std::pair<std::string, std::string>> enumConstants(const std::string& edit_method) {
+  std::vector<std::pair<std::string, std::string>> constants;
+  static const std::regex constant(R"('name':\s*'([^']*)'.*?'value':\s*('[^']*'|[^,}]+))");
+  for (std::sregex_iterator it(edit_method.begin(), edit_method.end(), constant), end; it != end; ++it) {
+    std::string value = (*it)[2];
+    if (value.size() >= 2 && value.front() == '\'') value = value.substr(1, value.size() - 2);
+    constants.emplace_back((*it)[1], value);
+  }
+  return constants;
+}
+
+QString valueText(const dynamic_reconfigure::Config& config, const std::string& key) {
+  if (const auto* p = parameterNamed(config.doubles, key)) return numberText(p->value);
+  if (const auto* p = parameterNamed(config.ints, key)) return QString::number(p->value);
+  if (const auto* p = parameterNamed(config.bools, key)) return p->value ? "true" : "false";
+  if (const auto* p = parameterNamed(config.strs, key)) return QString::fromStdString(p->value);
+  return "?";
+}
+
+}  // namespace
+
+QString numberText(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return QString::fromLatin1(buffer, static_cast<int>(result.ptr - buffer));
+}
+
+BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
+                         CallQueue& calls, std::function<void(double)> on_time, QWidget* parent)
+    : QGroupBox(QString::fromStdString(name), parent),
+      name_(name),
+      server_(server),
+      state_type_(state_type),
+      calls_(calls),
+      on_time_(std::move(on_time)) {
+  setObjectName(QString::fromStdString(name));
+  auto* layout = new QVBoxLayout(this);
+  motion_ = new QLabel("waiting for its state", this);
+  motion_->setObjectName(QString::fromStdString(name + ".motion"));
+  layout->addWidget(motion_);
+  form_ = new QFormLayout();
+  form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+  layout->addLayout(form_);
+  message_ = new QLabel(this);
+  message_->setObjectName(QString::fromStdString(name + ".message"));
+  message_->setWordWrap(true);
+  message_->hide();
+  layout->addWidget(message_);
+
+  ros::NodeHandle nh;
+  subscribers_.push_back(nh.subscribe<dynamic_reconfigure::ConfigDescription>(
+      server_ + "/parameter_descriptions", 1,
+      [this](const dynamic_reconfigure::ConfigDescription::ConstPtr& d) { build(*d); }));
+  subscribers_.push_back(nh.subscribe<dynamic_reconfigure::Config>(
+      server_ + "/parameter_updates", 1, [this](const dynamic_reconfigure::Config::ConstPtr& c) {
+        values_ = *c;
+        showValues(values_);
+      }));
+  const std::string state_topic = server_ + "/state";
+  if (state_type_ == "rigid_body_sim/RodState") {
+    subscribers_.push_back(
+        nh.subscribe<RodState>(state_topic, 1, [this](const RodState::ConstPtr& s) { onRodState(*s); }));
+  } else if (state_type_ == "rigid_body_sim/RollerState") {
+    subscribers_.push_back(nh.subscribe<RollerState>(
+        state_topic, 1, [this](const RollerState::ConstPtr& s) { onRollerState(*s); }));
+  }
+}
+
+void BodySection::showMessage(const QString& text, bool refusal) {
+  message_->setText(text);
+  message_->setStyleSheet(refusal ? kRefusalStyle : kNoteStyle);
+  message_->setVisible(!text.isEmpty());
+}
+
+// The widgets, once per description (the server sends it when it starts, latched).
+void BodySection::build(const dynamic_reconfigure::ConfigDescription& description) {
+  while (form_->rowCount() > 0) form_->removeRow(0);
+  fields_.clear();
+  order_.clear();
+  for (const auto& group : description.groups) {
+    for (const auto& param : group.parameters) {
+      const auto* min = parameterNamed(description.min.doubles, param.name);
+      const auto* max = parameterNamed(description.max.doubles, param.name);
+      const double inf = std::numeric_limits<double>::infinity();
+      addField(param, min ? min->value : -inf, max ? max->value : inf);
+    }
+  }
+  showValues(values_);
+}
+
+// One key: an enum as a combo box, a number as a spin box (and a slider when its .cfg gives it a finite
+// range), a bool as a check box, other text as a line. Its tool tip is the .cfg's description.
+void BodySection::addField(const dynamic_reconfigure::ParamDescription& param, double min, double max) {
+  const std::string key = param.name;
+  const QString object = QString::fromStdString(name_ + "." + key);
+  QWidget* widget = nullptr;
+  Field field{param.type, {}};
+  const auto constants = enumConstants(param.edit_method);
+  if (!constants.empty()) {
+    auto* box = new QComboBox(this);
+    for (const auto& [label, value] : constants)
+      box->addItem(QString::fromStdString(label), QString::fromStdString(value));
+    field.show = [box, key](const dynamic_reconfigure::Config& c) {
+      const int index = box->findData(valueText(c, key));
+      QSignalBlocker block(box);
+      box->setCurrentIndex(index);
+    };
+    connect(box, QOverload<int>::of(&QComboBox::activated), this,
+            [this, box, key, type = param.type](int index) {
+              const std::string value = box->itemData(index).toString().toStdString();
+              dynamic_reconfigure::Config asked;
+              if (type == "str") {
+                asked.strs.resize(1);
+                asked.strs[0].name = key;
+                asked.strs[0].value = value;
+              } else if (type == "int") {
+                asked.ints.resize(1);
+                asked.ints[0].name = key;
+                asked.ints[0].value = std::stoi(value);
+              } else {
+                asked.doubles.resize(1);
+                asked.doubles[0].name = key;
+                asked.doubles[0].value = std::stod(value);
+              }
+              request(asked, key, QString::fromStdString(value));
+            });
+    widget = box;
+  } else if (param.type == "double") {
+    auto* row = new QWidget(this);
+    row->setObjectName(object + ".row");  // its spin box has the key's name
+    auto* row_layout = new QHBoxLayout(row);
+    row_layout->setContentsMargins(0, 0, 0, 0);
+    auto* box = new NumberBox(row);
+    box->setObjectName(object);
+    const bool bounded = std::isfinite(min) && std::isfinite(max) && max > min;
+    box->setRange(bounded ? min : std::numeric_limits<double>::lowest(),
+                  bounded ? max : std::numeric_limits<double>::max());
+    row_layout->addWidget(box, 1);
+    QSlider* slider = nullptr;
+    if (bounded) {
+      slider = new QSlider(Qt::Horizontal, row);
+      slider->setRange(0, kSliderTicks);
+      slider->setTracking(false);
+      row_layout->addWidget(slider, 1);
+      connect(slider, &QSlider::valueChanged, box, [box, min, max](int tick) {
+        box->setValue(min + (max - min) * tick / kSliderTicks);  // the box sends it
+      });
+    }
+    field.show = [box, slider, key, min, max](const dynamic_reconfigure::Config& c) {
+      const auto* p = parameterNamed(c.doubles, key);
+      if (!p) return;
+      QSignalBlocker block(box);
+      box->setValue(p->value);
+      box->setSingleStep(p->value != 0 ? std::pow(10.0, std::floor(std::log10(std::abs(p->value)))) / 10
+                                       : 0.1);
+      if (slider) {
+        QSignalBlocker block_slider(slider);
+        slider->setValue(static_cast<int>(std::lround((p->value - min) / (max - min) * kSliderTicks)));
+      }
+    };
+    connect(box, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, key](double value) {
+      dynamic_reconfigure::Config asked;
+      asked.doubles.resize(1);
+      asked.doubles[0].name = key;
+      asked.doubles[0].value = value;
+      request(asked, key, numberText(value));
+    });
+    widget = row;
+  } else if (param.type == "int") {
+    auto* box = new QSpinBox(this);
+    box->setKeyboardTracking(false);
+    box->setRange(std::isfinite(min) ? static_cast<int>(min) : std::numeric_limits<int>::min(),
+                  std::isfinite(max) ? static_cast<int>(max) : std::numeric_limits<int>::max());
+    field.show = [box, key](const dynamic_reconfigure::Config& c) {
+      if (const auto* p = parameterNamed(c.ints, key)) {
+        QSignalBlocker block(box);
+        box->setValue(p->value);
+      }
+    };
+    connect(box, QOverload<int>::of(&QSpinBox::valueChanged), this, [this, key](int value) {
+      dynamic_reconfigure::Config asked;
+      asked.ints.resize(1);
+      asked.ints[0].name = key;
+      asked.ints[0].value = value;
+      request(asked, key, QString::number(value));
+    });
+    widget = box;
+  } else if (param.type == "bool") {
+    auto* box = new QCheckBox(this);
+    field.show = [box, key](const dynamic_reconfigure::Config& c) {
+      if (const auto* p = parameterNamed(c.bools, key)) {
+        QSignalBlocker block(box);
+        box->setChecked(p->value);
+      }
+    };
+    connect(box, &QCheckBox::toggled, this, [this, key](bool value) {
+      dynamic_reconfigure::Config asked;
+      asked.bools.resize(1);
+      asked.bools[0].name = key;
+      asked.bools[0].value = value;
+      request(asked, key, value ? "true" : "false");
+    });
+    widget = box;
+  } else {
+    auto* line = new QLineEdit(this);
+    field.show = [line, key](const dynamic_reconfigure::Config& c) {
+      if (const auto* p = parameterNamed(c.strs, key)) line->setText(QString::fromStdString(p->value));
+    };
+    connect(line, &QLineEdit::editingFinished, this, [this, line, key] {
+      dynamic_reconfigure::Config asked;
+      asked.strs.resize(1);
+      asked.strs[0].name = key;
+      asked.strs[0].value = line->text().toStdString();
+      request(asked, key, line->text());
+    });
+    widget = line;
+  }
+  if (widget->objectName().isEmpty()) widget->setObjectName(object);
+  widget->setToolTip(QString::fromStdString(param.description));
+  auto* label = new QLabel(QString::fromStdString(key), this);
+  label->setToolTip(QString::fromStdString(param.description));
+  form_->addRow(label, widget);
+  fields_[key] = std::move(field);
+  order_.push_back(key);
+}
+
+void BodySection::showValues(const dynamic_reconfigure::Config& values) {
+  for (auto& [key, field] : fields_) field.show(values);
+}
+
+// Sends one key to the server. Its answer is what runs: shown at once, so that a refused value snaps back;
+// a refusal is named here until the node's own line about it arrives (SimPanel routes it to showMessage).
+void BodySection::request(dynamic_reconfigure::Config asked, const std::string& key,
+                          const QString& asked_text) {
+  const std::string service = server_ + "/set_parameters";
+  struct Answer {
+    bool called = false;
+    dynamic_reconfigure::Config shown;
+  };
+  calls_.post<Answer>(
+      this,
+      [service, asked] {
+        dynamic_reconfigure::Reconfigure srv;
+        srv.request.config = asked;
+        Answer answer;
+        answer.called = ros::service::call(service, srv);
+        answer.shown = srv.response.config;
+        return answer;
+      },
+      [this, key, asked_text](const Answer& answer) {
+        if (!answer.called) {
+          showMessage(QString::fromStdString("no answer from " + server_ + "/set_parameters"), true);
+          showValues(values_);
+          return;
+        }
+        values_ = answer.shown;
+        showValues(values_);
+        const QString now = valueText(values_, key);
+        if (now == asked_text) {
+          showMessage("", false);
+        } else {
+          showMessage(QString("refused %1 = %2: snapped back to %3")
+                          .arg(QString::fromStdString(key), asked_text, now),
+                      true);
+        }
+      });
+}
+
+void BodySection::onRodState(const RodState& state) {
+  // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values).
+  const auto* length = parameterNamed(values_.doubles, "length");
+  const double lowest_end = state.y - (length ? 0.5 * length->value : 0.0) * std::abs(std::sin(state.theta));
+  motion_->setText(QString("%1 · E = %2 J")
+                       .arg(lowest_end < 0 ? "on the floor" : "in the air")
+                       .arg(state.energy, 0, 'f', 3));
+  on_time_(state.t);
+}
+
+void BodySection::onRollerState(const RollerState& state) {
+  motion_->setText(
+      QString("%1 · E = %2 J").arg(QString::fromStdString(state.mode)).arg(state.energy, 0, 'f', 3));
+  on_time_(state.t);
+}
+
+}  // namespace rigid_body_sim

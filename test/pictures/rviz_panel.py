@@ -1,0 +1,280 @@
+#!/usr/bin/env python3
+"""The Simulation panel (rigid_body_sim/SimPanel) in a real rviz, driven with xdotool: sim.launch with
+rviz/sim.rviz on config/demo.yaml, under Xvfb (test/pictures/rviz_screenshot.sh with RVIZ_SCRIPT=rviz_panel.py).
+- rviz loads the panel with no plugin error, and it shows a section for every body;
+- Pause stops simulated time (~step now succeeds; no later state; the panel's clock says stopped); Run
+  starts it again;
+- Reset, a rod k typed into the rod's section and Step with a typed count: the server shows k, and the rod
+  after the steps is, field for field, simulate's rod (config/demo.yaml's rod with that k) at that time;
+- a refused k (-5) snaps back to the value that runs, the node logs one WARN line, and the panel shows the
+  refusal (its words in the panel's text, its colour in the picture).
+Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every check passes, 1 otherwise;
+writes OUT (a screenshot at the end) and OUT's stem + ".txt" (the findings)."""
+import argparse
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from typing import Any, Dict, List, Tuple
+
+import numpy as np
+import yaml
+
+import rviz_screenshot as shot
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PACKAGE = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
+from sim_tools import free_port, load_config, state_fields, wait_for  # noqa: E402
+
+REFUSAL_COLOUR = (230, 90, 60)  # the panel's refusal text (kRefusalStyle, body_section.h)
+TYPED_K = 2000.0
+STEPS = 1500  # 1.5 s: the rod reaches the floor, and k matters
+Widget = Tuple[int, int, int, int, str]  # x, y, width, height (the part in sight), text
+
+
+class Panel:
+    """The panel's widgets, read from its layout file, and xdotool's hands on them."""
+
+    def __init__(self, layout_file: str) -> None:
+        self.layout_file = layout_file
+
+    def widgets(self) -> Dict[str, Widget]:
+        found: Dict[str, Widget] = {}
+        try:
+            with open(self.layout_file) as f:
+                for line in f:
+                    parts = line.rstrip("\n").split(" ", 5)
+                    if len(parts) >= 5:
+                        found[parts[0]] = (int(parts[1]), int(parts[2]), int(parts[3]), int(parts[4]),
+                                           parts[5] if len(parts) > 5 else "")
+        except FileNotFoundError:
+            pass
+        return found
+
+    def text(self, name: str) -> str:
+        return self.widgets().get(name, (0, 0, 0, 0, ""))[4]
+
+    def in_sight(self, name: str) -> bool:
+        w = self.widgets().get(name)
+        return w is not None and w[2] >= 10 and w[3] >= 10
+
+    def click(self, name: str) -> None:
+        x, y, w, h, _ = self.widgets()[name]
+        xdotool("mousemove", str(x + w // 2), str(y + h // 2), "click", "1")
+
+    def type_into(self, name: str, text: str) -> None:
+        """Clicks a field, replaces its text and presses Enter (the edit is done)."""
+        self.click(name)
+        xdotool("key", "ctrl+a")
+        xdotool("type", "--delay", "40", "--", text)
+        xdotool("key", "Return")
+
+    def scroll_to(self, name: str, timeout: float) -> None:
+        """Turns the mouse wheel over the sections' left margin (no field there) until `name` is in sight."""
+        x, y, _, h, _ = self.widgets()["sections"]
+        end = time.monotonic() + timeout
+        while not self.in_sight(name):
+            before = self.widgets()
+            xdotool("mousemove", str(x + 3), str(y + h // 2), "click", "5")
+            try:
+                wait_for("the sections to move", lambda: self.widgets() != before, max(0.1, end - time.monotonic()))
+            except TimeoutError:
+                raise TimeoutError(f"{name} not in sight at the end of the panel's scrolling") from None
+
+
+def xdotool(*args: str) -> None:
+    subprocess.run(["xdotool", *args], check=True)
+
+
+class Findings:
+    def __init__(self) -> None:
+        self.lines: List[str] = []
+        self.ok = True
+
+    def check(self, what: str, ok: bool) -> bool:
+        self.lines.append(f"{'ok  ' if ok else 'FAIL'} {what}")
+        self.ok = self.ok and ok
+        print(self.lines[-1], flush=True)
+        return ok
+
+
+def simulated_rod(simulate: str, config_path: str, k: float, duration: float) -> Dict[str, float]:
+    """simulate's rod (the config's rod alone, with k) at `duration`: its CSV's last row."""
+    config = load_config(config_path)
+    rod = dict(config["bodies"]["rod"], k=k)
+    world = {key: value for key, value in config.items() if key != "bodies"}
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "rod.yaml")
+        with open(path, "w") as f:
+            yaml.safe_dump(dict(world, bodies={"rod": rod}), f)
+        subprocess.run([simulate, path, "--duration", repr(duration), "--out-dir", folder], check=True,
+                       stdout=subprocess.DEVNULL)
+        with open(os.path.join(folder, "rod.csv")) as f:
+            rows = list(csv.DictReader(f))
+    return {key: float(value) for key, value in rows[-1].items()}
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--config", default=os.path.join(PACKAGE, "config", "demo.yaml"))
+    parser.add_argument("--simulate", required=True, help="the simulate executable (the reference)")
+    parser.add_argument("--out", required=True, help="the screenshot at the end (PNG)")
+    parser.add_argument("--timeout", type=float, default=180.0, help="wall seconds for everything")
+    args = parser.parse_args()
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    stem = os.path.splitext(args.out)[0]
+    layout = tempfile.NamedTemporaryFile(prefix="panel_layout_", suffix=".txt", delete=False).name
+    os.remove(layout)  # the panel writes it
+    os.environ["RBS_PANEL_LAYOUT"] = layout
+    port = free_port()
+    os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+    log = open(stem + "_roslaunch.log", "w")
+    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", "sim.launch",
+                               f"config:={args.config}", "rviz:=true"], stdout=log, stderr=subprocess.STDOUT)
+    findings = Findings()
+    try:
+        run(args, Panel(layout), launch, findings)
+    except (TimeoutError, RuntimeError) as error:
+        findings.check(f"no time-out: {error}", False)
+    finally:
+        if os.environ.get("DISPLAY"):
+            subprocess.run(["import", "-window", "root", args.out], check=False)
+        launch.send_signal(2)
+        try:
+            launch.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            launch.kill()
+        log.close()
+        if os.path.exists(layout):
+            os.remove(layout)
+    with open(stem + ".txt", "w") as f:
+        f.write("\n".join(findings.lines) + "\n")
+    return 0 if findings.ok else 1
+
+
+def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings) -> None:
+    import rosgraph
+    import rospy
+    from dynamic_reconfigure.msg import Config as ReconfigureConfig
+    from rigid_body_sim.msg import RodState
+    from rigid_body_sim.srv import Step
+    from rosgraph_msgs.msg import Log
+
+    start = time.monotonic()
+
+    def left() -> float:
+        return max(1.0, args.timeout - (time.monotonic() - start))
+
+    def wait(what: str, predicate: Any, timeout: float = 20.0) -> None:
+        shot.wait_while_running(what, predicate, min(timeout, left()), launch)
+
+    config = load_config(args.config)
+    master = rosgraph.Master("/rviz_panel_test")
+    wait("the ROS master", master.is_online)
+    rospy.init_node("rviz_panel_test", disable_signals=True)
+    rods: List[Any] = []
+    server_k: List[float] = []
+    warnings: List[str] = []
+    rospy.Subscriber("/sim/rod/state", RodState, rods.append, queue_size=1000)
+    rospy.Subscriber("/sim/rod/parameter_updates", ReconfigureConfig,
+                     lambda c: server_k.extend(p.value for p in c.doubles if p.name == "k"), queue_size=10)
+    rospy.Subscriber("/rosout", Log, lambda m: warnings.append(m.msg)
+                     if m.name == "/sim" and m.level == Log.WARN else None, queue_size=100)
+    step_service = rospy.ServiceProxy("/sim/step", Step)
+
+    # --- loaded: every body's section, no plugin error
+    wait("the panel (its layout file)", lambda: "pause" in panel.widgets(), 90.0)
+    wait("a section for every body", lambda: all(f"{name}.motion" in panel.widgets() for name in config["bodies"]))
+    wait("states on the panel's clock", lambda: panel.text("clock").startswith("t = ") and "?" not in
+         panel.text("clock"))
+    errors = shot.rviz_error_lines()
+    findings.check(f"rviz loads the panel: no ERROR line in its log ({len(errors)})", not errors)
+    for line in errors:
+        findings.check(f"  {line[:100]}", False)
+
+    # --- Pause: ~step now succeeds (it refuses while running), no state after it, the clock stopped
+    probe: List[Any] = []
+
+    def paused() -> bool:  # ~step refuses while the simulation runs
+        probe.append(step_service(1))
+        return bool(probe[-1].success)
+    panel.click("pause")
+    wait("~step to succeed after Pause", paused)
+    t_paused = probe[-1].t
+    wait(f"the state at t = {t_paused:.3f} s (~step publishes where it ends)",
+         lambda: any(m.t == t_paused for m in rods))
+    wait("the panel's clock stopped at that time", lambda: panel.text("clock") == f"t = {t_paused:.3f} s stopped")
+    latest = max(m.t for m in rods)
+    findings.check(f"Pause: no state after t = {t_paused:.3f} s (latest {latest:.3f} s); the panel shows it",
+                   latest == t_paused)
+
+    # --- Run: time goes on
+    panel.click("run")
+    wait("states after Run", lambda: max(m.t for m in rods) > t_paused + 0.5)
+    findings.check("Run: simulated time goes on", True)
+
+    # --- Pause, Reset, type k for the rod and a step count, Step: the rod is simulate's with that k
+    panel.click("pause")
+    wait("~step to succeed after the second Pause", paused)
+    panel.click("reset")
+    wait("Reset done", lambda: panel.text("status") == "reset")
+    panel.scroll_to("rod.k", 20.0)
+    panel.type_into("rod.k", "2000")
+    wait("the rod's server to show k = 2000", lambda: bool(server_k) and server_k[-1] == TYPED_K)
+    wait("the panel to show k = 2000", lambda: panel.text("rod.k") == "2000")
+    findings.check("k typed in the panel: the rod's server shows 2000", True)
+    panel.type_into("step_count", str(STEPS))
+    wait("the step count", lambda: panel.text("step_count") == str(STEPS))
+    t_reset = probe[-1].t
+    panel.click("step")
+    t_end = t_reset + STEPS / config["rate"]
+    wait("the state after Step", lambda: any(abs(m.t - t_end) < 1e-9 for m in rods))
+    got = next(m for m in rods if abs(m.t - t_end) < 1e-9)
+    want = simulated_rod(args.simulate, args.config, TYPED_K, STEPS / config["rate"])
+    other = simulated_rod(args.simulate, args.config, float(config["bodies"]["rod"]["k"]), STEPS / config["rate"])
+    fields = [f for f in state_fields(got) if f != "t"]
+    same = [f for f in fields if getattr(got, f) == want[f]]
+    findings.check(f"Step {STEPS} after k = 2000: the rod equals simulate's ({len(same)} of {len(fields)} fields)",
+                   len(same) == len(fields))
+    findings.check("  and k mattered (simulate with the old k differs)", any(other[f] != want[f] for f in fields))
+    wait("the panel to report the steps", lambda: f"after {STEPS} steps" in panel.text("status"))
+    findings.check(f"Step: the panel says so ({panel.text('status')})", True)
+
+    # --- refused: k = -5 snaps back, one WARN line, the refusal shown
+    before = len(warnings)
+    panel.type_into("rod.k", "-5")
+    wait("the node's WARN line", lambda: len(warnings) > before)
+    wait("the panel to show the refusal", lambda: "'k'" in panel.text("rod.message") and "'k'" in panel.text("status"))
+    wait("the panel's k back at 2000", lambda: panel.text("rod.k") == "2000")
+    findings.check(f"refused k = -5: the node logged one WARN line ({len(warnings) - before})",
+                   len(warnings) - before == 1 and "value -5" in warnings[-1])
+    findings.check(f"  the server still shows k = {server_k[-1]:g}", server_k[-1] == TYPED_K)
+    findings.check(f"  the panel shows: {panel.text('rod.message')[:90]}", "refused" in panel.text("rod.message"))
+    findings.check(f"  and in its status line: {panel.text('status')[:80]}", "'k'" in panel.text("status"))
+    findings.check("  the picture shows it", refusal_in_picture(args.out, panel.widgets()["status"]))
+
+
+def refusal_in_picture(path: str, message: Widget) -> bool:
+    """The refusal's colour in the message's place on a screenshot (rviz draws it a frame later: looked for
+    until there, 10 s at most)."""
+    x, y, w, h, _ = message
+    found: List[int] = [0]
+
+    def drawn() -> bool:
+        subprocess.run(["import", "-window", "root", path], check=True)
+        region = shot.read_png(path)[y:y + h, x:x + w].astype(int)
+        found[0] = int((np.abs(region - REFUSAL_COLOUR).max(axis=-1) <= 40).sum())
+        return found[0] >= 20
+    try:
+        wait_for("the refusal's colour", drawn, 10.0, 0.5)
+    except TimeoutError:
+        pass
+    print(f"refusal colour: {found[0]} px", flush=True)
+    return found[0] >= 20
+
+
+if __name__ == "__main__":
+    sys.exit(main())
