@@ -1,5 +1,6 @@
 #include "rigid_body_sim/node/sim_node.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -45,10 +46,14 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       world_(config_),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
+      steps_per_markers_(steps_per_publish_ *
+                         std::max<std::int64_t>(1, std::llround(config_.publish_rate /
+                                                                markerRate(options_, config_.publish_rate)))),
       pacer_(config_.rate, options_.real_time_factor) {
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   wall_start_ = ros::Time(ros::WallTime::now().toSec());
-  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
+  const TrailOptions trail{options_.trail_length, markerRate(options_, config_.publish_rate)};
+  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies(), trail);
   advertise();
   startReconfigureServers();
 }
@@ -62,6 +67,7 @@ SimNode::~SimNode() {
 void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
+  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
@@ -117,11 +123,7 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
     guard_.release(index, world_.bodies()[index]);
     const bool moved = placementChanged(wanted, current);
     current = wanted;
-    if (moved) {
-      // The slope's place (and the body's look) changed: new static frames and markers.
-      snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies());
-      publishStaticLocked();
-    }
+    if (moved) rebuildSceneLocked();  // the slope's place or the body's look changed
   } catch (const ConfigError& error) {
     ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
   }
@@ -133,7 +135,9 @@ bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.reset();
   world_.takeEvents();
   guard_.releaseAll(world_.bodies());
-  publishStaticLocked();  // DELETEALL, then the fixed markers again; trails start anew
+  // Trails start anew: the viewer drops the old ones.
+  snapshots_->scene().clearTrails();
+  if (markers_watched_) marker_publisher_.publish(snapshots_->scene().clearMarkers(stampOf(world_.time())));
   publishLocked();
   ROS_INFO("reset: every body back to its initial conditions at t = %.6f s", world_.time());
   return true;
@@ -223,17 +227,38 @@ void SimNode::publishLocked() {
     tf_broadcaster_.sendTransform(snapshot.tf.transforms);
     last_tf_stamp_ = stamp;
   }
-  marker_publisher_.publish(snapshot.markers);
+  publishMarkersLocked(stamp);
   for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
     std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
   }
   last_published_step_ = world_.stepCount();
 }
 
-void SimNode::publishStaticLocked() {
-  const ros::Time stamp = stampOf(world_.time());
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stamp));
-  marker_publisher_.publish(snapshots_->restartMarkers(stamp));
+void SimNode::publishMarkersLocked(const ros::Time& stamp) {
+  Scene& scene = snapshots_->scene();
+  const bool watched = marker_publisher_.getNumSubscribers() > 0;
+  if (!watched) {
+    if (markers_watched_) scene.clearTrails();  // a viewer that comes sees trails from then on
+    markers_watched_ = false;
+    return;
+  }
+  markers_watched_ = true;
+  scene.sample(world_.bodies());
+  if (world_.stepCount() % steps_per_markers_ == 0) {
+    marker_publisher_.publish(scene.changes(stamp, world_.bodies()));
+  }
+}
+
+void SimNode::publishSceneLocked() {
+  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stampOf(world_.time())));
+  scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+}
+
+void SimNode::rebuildSceneLocked() {
+  if (snapshots_->scene().rebuild(world_.bodies())) {
+    scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+  }
+  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stampOf(world_.time())));
 }
 
 void SimNode::stepLoop() {
@@ -243,7 +268,7 @@ void SimNode::stepLoop() {
   publishClockLocked();
   wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
                  [this] { return stopping_.load(); });
-  publishStaticLocked();
+  publishSceneLocked();
   publishLocked();
   pacer_.restart(wallNow(), world_.stepCount());
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));

@@ -1,5 +1,6 @@
 #include "rigid_body_sim/ros/bag_recorder.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <boost/make_shared.hpp>
@@ -14,31 +15,40 @@ std::string stateTopic(const std::string& node_namespace, const std::string& bod
   return node_namespace + "/" + node_interface::stateTopic(body);
 }
 
-std::string markerTopic(const std::string& node_namespace) {
-  return node_namespace + "/" + node_interface::kMarkers;
+std::string nodeTopic(const std::string& node_namespace, const char* name) {
+  return node_namespace + "/" + name;
+}
+
+// rosbag stores a given connection header as it is: without type, md5sum and definition, Python's rosbag
+// (rosbag info, scripts) cannot read the bag. Latched: a player hands the message to late subscribers as a
+// live node would.
+template <class Message>
+boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["type"] = ros::message_traits::datatype<Message>();
+  (*header)["md5sum"] = ros::message_traits::md5sum<Message>();
+  (*header)["message_definition"] = ros::message_traits::definition<Message>();
+  (*header)["latching"] = "1";
+  (*header)["callerid"] = callerid;
+  return header;
 }
 
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame,
                          const std::vector<Body>& bodies, std::string node_namespace)
-    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(world_frame, bodies) {
+    : path_(path),
+      node_namespace_(std::move(node_namespace)),
+      snapshots_(world_frame, bodies),
+      marker_rate_(TrailOptions().pieces_rate) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
-  // /tf_static is latched: a player hands it to late subscribers as a live node would.
-  // rosbag stores a given connection header as it is: without type, md5sum and definition, Python's
-  // rosbag (rosbag info, scripts) cannot read the bag.
-  auto latched = boost::make_shared<ros::M_string>();
-  (*latched)["type"] = ros::message_traits::datatype<tf2_msgs::TFMessage>();
-  (*latched)["md5sum"] = ros::message_traits::md5sum<tf2_msgs::TFMessage>();
-  (*latched)["message_definition"] = ros::message_traits::definition<tf2_msgs::TFMessage>();
-  (*latched)["latching"] = "1";
-  (*latched)["callerid"] = node_namespace_;
   const ros::Time start = simStamp(0.0);
   tf2_msgs::TFMessage message;
   message.transforms = snapshots_.staticTransforms(start);
-  bag_.write("/tf_static", start, message, latched);
-  bag_.write(markerTopic(node_namespace_), start, snapshots_.staticMarkers(start));
+  bag_.write("/tf_static", start, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
+  bag_.write(nodeTopic(node_namespace_, node_interface::kScene), start, snapshots_.scene().sceneMarkers(),
+             latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
 }
 
 BagRecorder::~BagRecorder() {
@@ -51,7 +61,15 @@ void BagRecorder::write(const World& world) {
   const ros::Time stamp = simStamp(t);
   const Snapshot snapshot = snapshots_.build(t, stamp, world.bodies());
   bag_.write("/tf", stamp, snapshot.tf);
-  bag_.write(markerTopic(node_namespace_), stamp, snapshot.markers);
+  // The trails grow at every sample and are written at the marker rate, as the node publishes them.
+  Scene& scene = snapshots_.scene();
+  scene.sample(world.bodies());
+  const auto marker_instant = static_cast<long long>(std::floor(t * marker_rate_ + 1e-9));
+  if (marker_instant > last_marker_instant_) {
+    bag_.write(nodeTopic(node_namespace_, node_interface::kMarkers), stamp,
+               scene.changes(stamp, world.bodies()));
+    last_marker_instant_ = marker_instant;
+  }
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
     const std::string topic = stateTopic(node_namespace_, world.bodies()[i].name);
     std::visit([&](const auto& msg) { bag_.write(topic, stamp, msg); }, snapshot.states[i]);

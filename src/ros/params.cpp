@@ -1,5 +1,6 @@
 #include "rigid_body_sim/ros/params.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -83,7 +84,21 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
   options.publish_clock = boolOption(yaml, names::kPublishClock, options.publish_clock);
   options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
   options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
+  if (yaml[names::kMarkerRate]) {
+    options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});
+  }
+  options.trail_length = numberOption(yaml, names::kTrailLength, options.trail_length, {0.0, 3600.0});
   return options;
+}
+
+double markerRate(const NodeOptions& options, double publish_rate) {
+  if (!options.marker_rate) return std::min(TrailOptions().pieces_rate, publish_rate);
+  const Range range{0.0, publish_rate, true};
+  if (!range.contains(*options.marker_rate)) {
+    throw ConfigError(kNode, node_interface::kMarkerRate, formatNumber(*options.marker_rate),
+                      range.describe() + " (at most publish_rate)");
+  }
+  return *options.marker_rate;
 }
 
 WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace) {

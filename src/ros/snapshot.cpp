@@ -2,9 +2,8 @@
 
 namespace rigid_body_sim {
 
-SnapshotBuilder::SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies,
-                                 std::size_t trail_points)
-    : scene_(std::move(world_frame), bodies, trail_points) {}
+SnapshotBuilder::SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies, TrailOptions trail)
+    : scene_(std::move(world_frame), bodies, trail) {}
 
 std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(const ros::Time& stamp) const {
   std::vector<geometry_msgs::TransformStamped> transforms;
@@ -15,18 +14,13 @@ std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(c
   return transforms;
 }
 
-visualization_msgs::MarkerArray SnapshotBuilder::staticMarkers(const ros::Time& stamp) const {
-  return scene_.fixedMarkers(stamp);
-}
-
-Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) {
+Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const {
   Snapshot snapshot;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     const BodyPlacement& placement = scene_.placements()[i];
     const Eigen::Isometry3d world_from_body = placement.world_from_frame * frameFromBody(body);
     snapshot.tf.transforms.push_back(toTransform(world_from_body, scene_.worldFrame(), body.name, stamp));
-    scene_.addBodyMarkers(i, body, world_from_body, stamp, snapshot.markers);
     snapshot.states.push_back(toStateMsg(t, body));
     std::visit(
         [&](auto& msg) {
@@ -35,8 +29,6 @@ Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vec
         },
         snapshot.states.back());
   }
-  // The floor and slopes too, every time: an rviz started after the node still sees them (a few markers).
-  for (const auto& m : scene_.fixedMarkers(stamp).markers) snapshot.markers.markers.push_back(m);
   return snapshot;
 }
 

@@ -14,8 +14,11 @@ inline constexpr const char* kRealTimeFactor = "real_time_factor";
 inline constexpr const char* kPublishClock = "publish_clock";
 inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kStartDelay = "start_delay";
+inline constexpr const char* kMarkerRate = "marker_rate";
+inline constexpr const char* kTrailLength = "trail_length";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
 inline constexpr const char* kMarkers = "markers";
+inline constexpr const char* kScene = "scene";
 inline constexpr const char* kReset = "reset";
 inline constexpr const char* kPause = "pause";
 inline constexpr const char* kUnpause = "unpause";
@@ -25,7 +28,8 @@ inline constexpr const char* kStep = "step";
 inline std::string stateTopic(const std::string& body) { return body + "/state"; }
 
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration, kStartDelay};
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,
+                                                 kStartDelay,     kMarkerRate,   kTrailLength};
   return names;
 }
 
@@ -33,7 +37,7 @@ inline const std::vector<std::string>& optionNames() {
 inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
-    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep});
+    all.insert(all.end(), {kMarkers, kScene, kReset, kPause, kUnpause, kStep});
     return all;
   }();
   return names;

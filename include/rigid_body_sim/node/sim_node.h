@@ -57,7 +57,13 @@ class SimNode {
   void guardLocked();
   void publishLocked();
   void publishClockLocked();
-  void publishStaticLocked();
+  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
+  void publishMarkersLocked(const ros::Time& stamp);
+  // The fixed frames on /tf_static and the latched ~scene.
+  void publishSceneLocked();
+  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
+  // the scene are sent again. Trails go on by body name.
+  void rebuildSceneLocked();
   ros::Time stampOf(double t) const;
   double wallNow() const;
 
@@ -70,6 +76,8 @@ class SimNode {
   World world_;
   FiniteGuard guard_;
   std::int64_t steps_per_publish_;
+  std::int64_t steps_per_markers_;  // a whole number of publishing intervals
+  bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
   std::int64_t last_published_step_ = -1;
   ros::Time last_clock_;     // the last /clock published (zero: none yet)
   ros::Time last_tf_stamp_;  // the stamp of the last transforms on /tf
@@ -81,6 +89,7 @@ class SimNode {
   bool use_sim_time_ = false;
 
   ros::Publisher marker_publisher_;
+  ros::Publisher scene_publisher_;
   ros::Publisher clock_publisher_;
   std::vector<ros::Publisher> state_publishers_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;

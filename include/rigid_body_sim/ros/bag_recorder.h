@@ -1,6 +1,7 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
-// the node's (launch files name it `sim`): /tf, /tf_static, /sim/markers, /sim/<body>/state. This is the
-// sink of `simulate --bag` (io/offline_run.h), stamped in simulated time.
+// the node's (launch files name it `sim`): /tf, /tf_static, /sim/scene (latched, once), /sim/markers (trail
+// pieces and labels at the default marker rate), /sim/<body>/state. This is the sink of `simulate --bag`
+// (io/offline_run.h), stamped in simulated time.
 #pragma once
 
 #include <memory>
@@ -17,20 +18,23 @@ namespace rigid_body_sim {
 class BagRecorder : public SampleSink {
  public:
   // Writes to `path`.active, renamed to `path` by commit(), as `rosbag record` does; starts with the
-  // fixed frames and markers of `bodies` (at t = 0).
+  // fixed frames and the scene of `bodies` (at t = 0).
   BagRecorder(const std::string& path, const std::string& world_frame, const std::vector<Body>& bodies,
               std::string node_namespace = "/sim");
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
 
-  void write(const World& world) override;  // TF, markers and every state at world.time()
+  void write(
+      const World& world) override;  // TF, every state and (at marker instants) markers at world.time()
   void commit() override;
 
  private:
   std::string path_;
   std::string node_namespace_;
   SnapshotBuilder snapshots_;
+  double marker_rate_;                  // Hz
+  long long last_marker_instant_ = -1;  // floor(t * marker_rate_) of the last markers written
   rosbag::Bag bag_;
   bool open_ = false;
 };
