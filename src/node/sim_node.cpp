@@ -55,7 +55,6 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   const TrailOptions trail{options_.trail_length, markerRate(options_, config_.publish_rate)};
   snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies(), trail);
   advertise();
-  startReconfigureServers();
 }
 
 SimNode::~SimNode() {
@@ -85,9 +84,12 @@ void SimNode::advertise() {
 }
 
 // The YAML's values go to each server before its callback is set, so that they win over the .cfg
-// defaults; the first callback then finds nothing to change.
+// defaults; the first callback then finds nothing to change. Called once stepping has started: each server
+// takes some 40 calls to the master, and the first states need not wait for a thousand bodies' servers.
+// A body's config changes only through its own server's callback, so reading it before that server exists
+// needs no lock.
 void SimNode::startReconfigureServers() {
-  for (std::size_t i = 0; i < config_.bodies.size(); ++i) {
+  for (std::size_t i = 0; i < config_.bodies.size() && ros::ok() && !stopping_; ++i) {
     const ros::NodeHandle body_node(private_node_, config_.bodies[i].name);
     if (std::holds_alternative<RodConfig>(config_.bodies[i].config)) {
       auto server = std::make_unique<RodServer>(reconfigure_mutex_, body_node);
@@ -308,6 +310,7 @@ void SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
+  startReconfigureServers();
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
