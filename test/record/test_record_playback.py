@@ -173,7 +173,8 @@ class NodeOutput(unittest.TestCase):
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 recorded.setdefault(topic, []).append(msg)
-        topics = {"/tf", "/tf_static", "/sim/markers"} | {f"/sim/{name}/state" for name in self.config["bodies"]}
+        topics = {"/tf", "/tf_static", "/sim/scene", "/sim/markers"}
+        topics |= {f"/sim/{name}/state" for name in self.config["bodies"]}
         self.assertEqual(set(recorded), topics)
 
         states = {name: recorded[f"/sim/{name}/state"] for name in self.config["bodies"]}
