@@ -12,7 +12,7 @@ THETA0_RODS = 1001
 
 screenshot: build
 	mkdir -p docs/images
-	test/pictures/rviz_screenshot.sh $(BUILD) $(PICTURES_OUT)/rviz.png
+	test/pictures/rviz_screenshot.sh $(BUILD)/devel $(PICTURES_OUT)/rviz.png
 	cp $(PICTURES_OUT)/rviz.png docs/images/rviz.png
 
 pictures: screenshot

@@ -207,8 +207,12 @@ def plot_rods(run: Run, specs: Specs, path: str) -> None:
             half = 0.5 * p.length * np.array([math.cos(d["theta"][i]), math.sin(d["theta"][i])])
             ends = np.array([[d["x"][i], d["y"][i]] - half, [d["x"][i], d["y"][i]] + half])
             ax.plot(ends[:, 0], ends[:, 1], color="tab:red" if contact[i] else "tab:blue", lw=1.0, alpha=0.7)
-        ax.plot(d["x"], d["y"], color="black", lw=0.8, label="centre")
-        ax.axhline(0.0, color="saddlebrown", lw=2)
+        ax.plot(broken_at_restarts(d, "x", "vx"), broken_at_restarts(d, "y", "vx"), color="black", lw=0.8,
+                label="centre")
+        if p.floor_length > 0:
+            ax.plot([0.0, p.floor_length], [0.0, 0.0], color="saddlebrown", lw=2)
+        else:
+            ax.axhline(0.0, color="saddlebrown", lw=2)
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
@@ -219,9 +223,10 @@ def plot_rods(run: Run, specs: Specs, path: str) -> None:
     save(fig, path)
 
 
-def broken_at_restarts(d: Columns, key: str) -> Array:
-    """A column with NaN between laps, so that a restart is not drawn as a line back to the top."""
-    parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], d["x"], d["v"])]
+def broken_at_restarts(d: Columns, key: str, speed: str = "v") -> Array:
+    """A column with NaN between laps, so that a restart is not drawn as a line back to the start (`speed`:
+    the velocity along x, v for a roller, vx for a rod)."""
+    parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], d["x"], d[speed])]
     return np.concatenate([np.append(part, np.nan) for part in parts])[:-1]
 
 

@@ -20,8 +20,9 @@ import yaml
 Config = Dict[str, Any]
 
 WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world"}
-ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "integrator": "euler_cromer",
-                                "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
+ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0,
+                                "integrator": "euler_cromer", "x0": 0.0, "y0": 4.0, "vx0": 2.0, "vy0": 0.0,
+                                "theta0": 0.3, "omega0": 0.0}
 ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
                                    "incline_length": 5.0, "mu_s": 0.3, "mu_d": 0.2, "x0": 0.0, "v0": 0.0,
                                    "theta0": 0.0, "omega0": 0.0}
@@ -31,8 +32,8 @@ INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0,
 # The units of the numeric keys by body type, for axis labels ("" for a pure number), as the .cfg files'
 # descriptions give them.
 KEY_UNITS: Dict[str, Dict[str, str]] = {
-    "rod": {"length": "m", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m", "vx0": "m/s", "vy0": "m/s",
-            "theta0": "rad", "omega0": "rad/s"},
+    "rod": {"length": "m", "mass": "kg", "k": "N/m", "floor_length": "m", "x0": "m", "y0": "m", "vx0": "m/s",
+            "vy0": "m/s", "theta0": "rad", "omega0": "rad/s"},
     "roller": {"inertia_factor": "", "radius": "m", "mass": "kg", "incline_angle": "rad", "incline_length": "m",
                "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
 }
@@ -69,6 +70,7 @@ class RodSpec:
     length: float
     mass: float
     k: float
+    floor_length: float = 0.0  # m of floor from x = 0; 0: unbounded
 
 
 @dataclass(frozen=True)
@@ -104,7 +106,7 @@ def body_spec(config: Config, name: str) -> BodySpec:
     body = config["bodies"][name]
     if body_type(config, name) == "rod":
         rod = {**ROD_DEFAULTS, **body}
-        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]))
+        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]), float(rod["floor_length"]))
     roller = {**ROLLER_DEFAULTS, **body}
     shape = body.get("shape", "custom" if "inertia_factor" in body else ROLLER_DEFAULTS["shape"])
     c = float(body.get("inertia_factor", INERTIA_FACTORS.get(shape, math.nan)))
@@ -124,13 +126,13 @@ def state_fields(msg: Any) -> List[str]:
 
 
 def body_of_state_topic(topic: str) -> Union[str, None]:
-    """`rod` for /sim/rod/state; None for any other topic."""
+    """`rod` for /sim/rod/state (and for /left/sim/rod/state, in a namespace); None for any other topic."""
     parts = topic.strip("/").split("/")
-    return parts[1] if len(parts) == 3 and parts[0] == "sim" and parts[2] == "state" else None
+    return parts[-2] if len(parts) >= 3 and parts[-3] == "sim" and parts[-1] == "state" else None
 
 
 def read_states(bag_path: str) -> Dict[str, List[Any]]:
-    """{body: its state messages in the bag's order} from the topics /sim/<body>/state."""
+    """{body: its state messages in the bag's order} from the topics [/<ns>]/sim/<body>/state."""
     import rosbag  # only for bags: a run of CSV files needs no ROS
 
     states: Dict[str, List[Any]] = {}

@@ -83,6 +83,15 @@ TEST(ConfigDefaults, MissingKeysTakeTheTextsValues) {
   EXPECT_EQ(ball.params.incline_angle, 0.349);
 }
 
+TEST(ConfigDefaults, FloorIsUnboundedUnlessGiven) {
+  // The text's floor: no floor_length (or 0) is unbounded, and x0 may be anywhere on it.
+  EXPECT_EQ(rodOf(parse("bodies: {rod: {type: rod, x0: -3}}")).params.floor_length, 0.0);
+  EXPECT_EQ(rodOf(parse("bodies: {rod: {type: rod, floor_length: 0, x0: -3}}")).params.floor_length, 0.0);
+  const RodConfig bounded = rodOf(parse("bodies: {rod: {type: rod, floor_length: 12.5, x0: 12.5}}"));
+  EXPECT_EQ(bounded.params.floor_length, 12.5);
+  EXPECT_EQ(bounded.initial.x, 12.5);  // both ends of the floor are on it
+}
+
 TEST(ConfigDefaults, GravityReachesEveryBody) {
   const WorldConfig config = parse("gravity: 1.62\nbodies: {rod: {type: rod}, ball: {type: roller}}");
   EXPECT_EQ(rodOf(config).params.gravity, 1.62);
@@ -199,6 +208,15 @@ INSTANTIATE_TEST_SUITE_P(
                  "bodies: {b: {type: roller, x0: 6, incline_length: 5}}",
                  {"'x0'", "6", "incline_length = 5"}},
         BadInput{"negative x0", "bodies: {b: {type: roller, x0: -1}}", {"'x0'", "-1"}},
+        BadInput{"rod x0 past its floor",
+                 "bodies: {rod: {type: rod, floor_length: 5, x0: 6}}",
+                 {"'rod'", "'x0'", "6", "floor_length = 5"}},
+        BadInput{"rod x0 before its floor",
+                 "bodies: {rod: {type: rod, floor_length: 5, x0: -0.5}}",
+                 {"'x0'", "-0.5", "[0, floor_length = 5]"}},
+        BadInput{"negative floor_length",
+                 "bodies: {rod: {type: rod, floor_length: -1}}",
+                 {"'rod'", "'floor_length'", "-1", "[0, 1e+06]"}},
         BadInput{"seed and theta0", "bodies: {rod: {type: rod, seed: 1, theta0: 0.5}}", {"'seed'", "theta0"}},
         BadInput{"fractional seed", "bodies: {rod: {type: rod, seed: 1.5}}", {"'seed'", "whole number"}},
         BadInput{"zero rate", "rate: 0\nbodies: {rod: {type: rod}}", {"(world)", "'rate'", "value 0"}},

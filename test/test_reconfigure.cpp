@@ -1,9 +1,11 @@
 // The .cfg files against the core: every number of a reconfigure server is a numeric key of the core, with
-// the same range and default (an open bound of the core is the .cfg's closed one: dynamic_reconfigure has
-// no open ranges, and validation refuses the bound itself), and a config goes to a request and back
-// unchanged.
+// the same default and no range of its own (minus to plus infinity: a server clamps a request into its
+// range before the node sees it, so that any bound would turn a refused value into another value, refused
+// for the wrong number or silently accepted; the core's ranges are the only ones), and a config goes to a
+// request and back unchanged.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <set>
 #include <string>
 
@@ -15,6 +17,8 @@ using namespace rigid_body_sim;
 
 namespace {
 
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
 template <class Request, class Config>
 void expectNumbersAreTheCoreKeys(const std::vector<NumericKey<Config>>& keys, Config defaults) {
   using Number = typename Request::template ParamDescription<double>;
@@ -25,8 +29,8 @@ void expectNumbersAreTheCoreKeys(const std::vector<NumericKey<Config>>& keys, Co
     numbers.insert(number->name);
     const NumericKey<Config>* key = findKey(keys, number->name);
     ASSERT_NE(key, nullptr) << number->name << " is in the .cfg but is no key of the core";
-    EXPECT_EQ(Request::__getMin__().*(number->field), key->range.min) << number->name << ": min";
-    EXPECT_EQ(Request::__getMax__().*(number->field), key->range.max) << number->name << ": max";
+    EXPECT_EQ(Request::__getMin__().*(number->field), -kInfinity) << number->name << ": min";
+    EXPECT_EQ(Request::__getMax__().*(number->field), kInfinity) << number->name << ": max";
     EXPECT_EQ(Request::__getDefault__().*(number->field), key->field(defaults))
         << number->name << ": default";
   }
@@ -44,6 +48,23 @@ TEST(ReconfigureCfg, RodNumbersAreTheCoreKeys) {
 TEST(ReconfigureCfg, RollerNumbersAreTheCoreKeys) {
   expectNumbersAreTheCoreKeys<RollerReconfigureConfig>(rollerNumericKeys(), RollerConfig{});
   EXPECT_EQ(RollerReconfigureConfig::__getDefault__().shape, toString(RollerParams{}.shape));
+}
+
+// A server clamps every request (config.__clamp__()) before its callback: a value far outside the core's
+// range must reach the node unchanged, to be refused naming it.
+TEST(ReconfigureCfg, ClampingLeavesEveryValueAsAsked) {
+  RodReconfigureConfig rod;
+  rod.k = -5.0;
+  rod.floor_length = -1e300;
+  rod.__clamp__();
+  EXPECT_EQ(rod.k, -5.0);
+  EXPECT_EQ(rod.floor_length, -1e300);
+  RollerReconfigureConfig roller;
+  roller.mu_s = -1.0;
+  roller.incline_angle = 4.0;
+  roller.__clamp__();
+  EXPECT_EQ(roller.mu_s, -1.0);
+  EXPECT_EQ(roller.incline_angle, 4.0);
 }
 
 TEST(Reconfigure, RodConfigGoesThereAndBack) {

@@ -527,6 +527,70 @@ TEST(RodApi, SetInitialAndReset) {
   EXPECT_EQ(maxAbsDiff(rod.state(), again.state()), 0.0);
 }
 
+// ---- a bounded floor: x in [0, floor_length]; leaving it restarts the rod, as a roller's slope end does
+// ----
+
+RodParams onFloorOf(double floor_length) {
+  RodParams p = textParams();
+  p.floor_length = floor_length;
+  return p;
+}
+
+// The first step after which the centre of an unbounded twin is off [0, floor_length] (1-based), or -1.
+int firstStepOff(const RodMotion& initial, double floor_length, int max_steps) {
+  Rod twin(textParams(), initial);
+  for (int k = 1; k <= max_steps; ++k) {
+    twin.step(kTextDt);
+    if (twin.state().x < 0.0 || twin.state().x > floor_length) return k;
+  }
+  return -1;
+}
+
+void checkFloorRestarts(const RodMotion& initial, double floor_length) {
+  const int k_off = firstStepOff(initial, floor_length, 20000);
+  ASSERT_GT(k_off, 1);
+  Rod unbounded(textParams(), initial);
+  Rod rod(onFloorOf(floor_length), initial);
+  for (int lap = 1; lap <= 2; ++lap) {
+    unbounded = Rod(textParams(), initial);
+    for (int k = 1; k <= k_off; ++k) {
+      const bool restarted = rod.step(kTextDt);
+      unbounded.step(kTextDt);
+      ASSERT_EQ(restarted, k == k_off) << "lap " << lap << " k = " << k;
+      // On the floor the run is the unbounded one, bit for bit.
+      if (k < k_off)
+        ASSERT_EQ(maxAbsDiff(rod.state(), unbounded.state()), 0.0) << "lap " << lap << " k = " << k;
+    }
+    EXPECT_EQ(maxAbsDiff(rod.state(), initial), 0.0) << "lap " << lap << ": not back at its initial state";
+  }
+}
+
+TEST(RodFloor, UnboundedIsTheTextsFloor) {
+  Rod text(textParams(), textInitial(0.3));
+  Rod unbounded(onFloorOf(0.0), textInitial(0.3));
+  for (int n = 0; n < 10000; ++n) {
+    EXPECT_FALSE(unbounded.step(kTextDt));
+    text.step(kTextDt);
+  }
+  EXPECT_EQ(maxAbsDiff(unbounded.state(), text.state()), 0.0);
+  EXPECT_GT(unbounded.state().x, 15.0);  // far beyond any floor a demo would give it
+}
+
+TEST(RodFloor, RunningPastTheFarEndRestarts) { checkFloorRestarts(textInitial(0.3), 5.0); }
+
+TEST(RodFloor, RunningPastTheNearEndRestarts) {
+  checkFloorRestarts(RodMotion{2.0, 4.0, 1.0, -1.5, 0.0, 3.0}, 5.0);
+}
+
+TEST(RodFloor, BothEndsOfTheFloorAreOnIt) {
+  // Dropped flat without horizontal motion, the centre stays exactly where it is, bounce after bounce.
+  for (const double x0 : {0.0, 5.0}) {
+    Rod rod(onFloorOf(5.0), RodMotion{x0, 2.0, 0.0, 0.0, 0.0, 0.0});
+    for (int n = 0; n < 5000; ++n) ASSERT_FALSE(rod.step(kTextDt)) << "x0 = " << x0 << ", step " << n;
+    EXPECT_EQ(rod.state().x, x0);
+  }
+}
+
 TEST(RodApi, DerivedQuantities) {
   RodParams p = textParams();
   p.length = 2.0;

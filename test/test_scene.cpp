@@ -64,7 +64,7 @@ Eigen::Vector3d worldPositionOf(const World& world, std::size_t i) {
 
 TEST(Scene, StartsWithDeleteAllAndDrawsEveryBodyLockedToItsOwnFrame) {
   const World world(demoConfig());
-  const Scene scene("world", world.bodies());
+  const Scene scene("world", "", world.bodies());
   const MarkerArray& markers = scene.sceneMarkers();
   ASSERT_FALSE(markers.markers.empty());
   EXPECT_EQ(markers.markers.front().action, Marker::DELETEALL);
@@ -83,7 +83,7 @@ TEST(Scene, StartsWithDeleteAllAndDrawsEveryBodyLockedToItsOwnFrame) {
 
 TEST(Scene, IsRebuiltOnlyWhenTheBodiesOrTheirLookChange) {
   World world(demoConfig());
-  Scene scene("world", world.bodies());
+  Scene scene("world", "", world.bodies());
   const MarkerArray first = scene.sceneMarkers();
   for (int i = 0; i < 2000; ++i) world.step();
   EXPECT_FALSE(scene.rebuild(world.bodies())) << "motion is TF's: the scene stays";
@@ -105,7 +105,7 @@ TEST(Scene, IsRebuiltOnlyWhenTheBodiesOrTheirLookChange) {
 TEST(Scene, TrailPiecesCarryOnlyNewPointsAndJoinIntoTheTrajectory) {
   World world(demoConfig());
   const TrailOptions options{8.0, 10.0};
-  Scene scene("world", world.bodies(), options);
+  Scene scene("world", "", world.bodies(), options);
   std::vector<std::vector<Eigen::Vector3d>> truth(world.bodies().size());
   std::map<int, std::vector<const Marker*>> pieces_of;  // by id / ring: the body's slot
   std::vector<MarkerArray> sent;
@@ -151,7 +151,7 @@ TEST(Scene, TrailPiecesCarryOnlyNewPointsAndJoinIntoTheTrajectory) {
 TEST(Scene, ARemovedBodyLosesItsTrailAndLabelAndAResetStartsTrailsAfresh) {
   World world(demoConfig());
   const TrailOptions options{2.0, 10.0};
-  Scene scene("world", world.bodies(), options);
+  Scene scene("world", "", world.bodies(), options);
   for (int publication = 0; publication < 3; ++publication) {
     world.step();
     scene.sample(world.bodies());
@@ -181,7 +181,7 @@ TEST(Scene, ARemovedBodyLosesItsTrailAndLabelAndAResetStartsTrailsAfresh) {
 
 TEST(Scene, NoTrailsWhenTheirLengthIsZero) {
   World world(demoConfig());
-  Scene scene("world", world.bodies(), TrailOptions{0.0, 10.0});
+  Scene scene("world", "", world.bodies(), TrailOptions{0.0, 10.0});
   for (int publication = 0; publication < 10; ++publication) {
     world.step();
     scene.sample(world.bodies());

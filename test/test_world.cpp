@@ -74,6 +74,27 @@ TEST(World, ReportsTheSlipToRollInstantInsideTheStep) {
   EXPECT_TRUE(world.takeEvents().empty());
 }
 
+TEST(World, ReportsARodRestartAtTheEndOfItsStep) {
+  WorldConfig config;
+  RodConfig rod;
+  rod.params.floor_length = 3.0;  // the text's rod runs past x = 3 in about 1.5 s
+  config.bodies.push_back({"rod", rod});
+  World world(config);
+  Rod unbounded(RodParams{}, rod.initial);
+  std::vector<WorldEvent> events;
+  while (events.empty() && world.time() < 10.0) {
+    world.step();
+    unbounded.step(world.dt());
+    events = world.takeEvents();
+  }
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, WorldEvent::Kind::Restarted);
+  EXPECT_EQ(events[0].body, "rod");
+  EXPECT_DOUBLE_EQ(events[0].t, world.time());
+  EXPECT_GT(unbounded.state().x, 3.0);  // the step that took the centre off the floor
+  EXPECT_EQ(std::get<Rod>(world.find("rod")->model).state().x, rod.initial.x);
+}
+
 TEST(World, ResetReturnsBodiesButNotTime) {
   World world(rodAndBall());
   for (int i = 0; i < 500; ++i) world.step();

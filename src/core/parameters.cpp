@@ -101,6 +101,7 @@ const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {
       {"length", [](RodConfig& c) -> double& { return c.params.length; }, positive(kMaxSize)},
       {"mass", [](RodConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
       {"k", [](RodConfig& c) -> double& { return c.params.k; }, positive(kMaxStiffness)},
+      {"floor_length", [](RodConfig& c) -> double& { return c.params.floor_length; }, closed(0, kMaxSize)},
       {"x0", [](RodConfig& c) -> double& { return c.initial.x; }, closed(-kMaxSize, kMaxSize)},
       {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(-kMaxSize, kMaxSize)},
       {"vx0", [](RodConfig& c) -> double& { return c.initial.vx; }, closed(-kMaxSpeed, kMaxSpeed)},
@@ -135,6 +136,11 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
 void validate(const std::string& body, const RodConfig& config) {
   checkRanges(body, config, rodNumericKeys());
   const RodParams& p = config.params;
+  const double x0 = config.initial.x;
+  if (p.floor_length > 0.0 && !(x0 >= 0.0 && x0 <= p.floor_length)) {
+    throw ConfigError(body, "x0", formatNumber(x0),
+                      "a position on the floor, in [0, floor_length = " + formatNumber(p.floor_length) + "]");
+  }
   if (!gravityRange().contains(p.gravity)) {
     throw ConfigError(body, "gravity", formatNumber(p.gravity), gravityRange().describe());
   }

@@ -27,7 +27,7 @@ std::optional<Integrator> integratorFromString(const std::string& name) {
 Rod::Rod(const RodParams& params, const RodMotion& initial)
     : params_(params), initial_(initial), state_(initial) {}
 
-void Rod::step(double dt) {
+bool Rod::step(double dt) {
   const int n = substepsFor(dt);
   const double h = dt / n;  // n == 1 leaves dt bit-exact, so the text's run is unchanged
   for (int i = 0; i < n; ++i) {
@@ -37,6 +37,13 @@ void Rod::step(double dt) {
       case Integrator::Rk4: state_ = rk4Step(params_, state_, h); break;
     }
   }
+  if (onFloor()) return false;
+  state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
+  return true;
+}
+
+bool Rod::onFloor() const {
+  return params_.floor_length <= 0.0 || (state_.x >= 0.0 && state_.x <= params_.floor_length);
 }
 
 void Rod::setParams(const RodParams& params) { params_ = params; }

@@ -23,7 +23,7 @@ std::string toString(WorldEvent::Kind kind) {
   switch (kind) {
     case WorldEvent::Kind::StartedRolling: return "started rolling";
     case WorldEvent::Kind::StartedSlipping: return "started slipping";
-    case WorldEvent::Kind::Restarted: return "left the slope and restarted";
+    case WorldEvent::Kind::Restarted: return "left the end of its slope or floor and restarted";
   }
   return "?";
 }
@@ -42,7 +42,7 @@ void World::step() {
   const double t0 = time();
   for (auto& body : bodies_) {
     if (auto* rod = std::get_if<Rod>(&body.model)) {
-      rod->step(dt_);
+      if (rod->step(dt_)) events_.push_back({t0 + dt_, body.name, WorldEvent::Kind::Restarted});
       continue;
     }
     const RollerStepEvents happened = std::get<Roller>(body.model).step(dt_);

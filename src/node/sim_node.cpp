@@ -7,6 +7,7 @@
 #include <rosgraph_msgs/Clock.h>
 
 #include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 
 namespace rigid_body_sim {
@@ -16,6 +17,7 @@ namespace {
 // Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
 constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
+constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
 
 template <class Config>
 Config& configOf(WorldConfig& world, std::size_t index) {
@@ -23,7 +25,9 @@ Config& configOf(WorldConfig& world, std::size_t index) {
 }
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
-bool placementChanged(const RodConfig&, const RodConfig&) { return false; }
+bool placementChanged(const RodConfig& a, const RodConfig& b) {
+  return a.params.floor_length != b.params.floor_length;
+}
 bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
   return a.params.incline_angle != b.params.incline_angle ||
          a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
@@ -35,14 +39,9 @@ bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
     : node_(node),
       private_node_(private_node),
-      options_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeOptions(params);
-      }()),
-      config_([&] {
-        auto params = privateParams(private_node);
-        return parseNodeConfig(params);
-      }()),
+      start_params_(privateParams(private_node)),
+      options_(parseNodeOptions(start_params_)),
+      config_(parseNodeConfig(start_params_)),
       world_(config_),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(config_.rate / config_.publish_rate)),
@@ -50,10 +49,12 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
                          std::max<std::int64_t>(1, std::llround(config_.publish_rate /
                                                                 markerRate(options_, config_.publish_rate)))),
       pacer_(config_.rate, options_.real_time_factor) {
+  checkFrames(options_, config_);
   use_sim_time_ = ros::param::param("/use_sim_time", false);
-  wall_start_ = ros::Time(ros::WallTime::now().toSec());
+  anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   const TrailOptions trail{options_.trail_length, markerRate(options_, config_.publish_rate)};
-  snapshots_ = std::make_unique<SnapshotBuilder>(config_.world_frame, world_.bodies(), trail);
+  snapshots_ =
+      std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies(), trail);
   advertise();
 }
 
@@ -61,6 +62,7 @@ SimNode::~SimNode() {
   stopping_ = true;
   wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
+  if (watcher_.joinable()) watcher_.join();
 }
 
 void SimNode::advertise() {
@@ -68,6 +70,10 @@ void SimNode::advertise() {
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
+  if (node_.getNamespace() != "/") {
+    namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
+    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
+  }
   for (const auto& body : world_.bodies()) {
     if (std::holds_alternative<Rod>(body.model)) {
       state_publishers_.push_back(
@@ -127,7 +133,7 @@ void SimNode::reconfigure(std::size_t index, Request& request) {
     current = wanted;
     if (moved) rebuildSceneLocked();  // the slope's place or the body's look changed
   } catch (const ConfigError& error) {
-    ROS_ERROR_STREAM("refused reconfigure, simulation unchanged: " << error.what());
+    ROS_WARN_STREAM("refused reconfigure, simulation unchanged: " << error.what());
   }
   request = toReconfigure(current);
 }
@@ -155,7 +161,7 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     paused_ = false;
-    pacer_.restart(wallNow(), world_.stepCount());
+    anchorLocked();
   }
   wake_.notify_all();
   return true;
@@ -175,7 +181,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
     response.success = true;
     response.message = "ok";
   }
-  if (!response.success) ROS_ERROR_STREAM("~step " << response.message);
+  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
   response.t = world_.time();
   return true;
 }
@@ -185,7 +191,18 @@ double SimNode::wallNow() const {
 }
 
 ros::Time SimNode::stampOf(double t) const {
-  return use_sim_time_ ? simStamp(t) : wall_start_ + ros::Duration(t);
+  return use_sim_time_ ? simStamp(t) : stamp_anchor_ + ros::Duration(t - time_anchor_);
+}
+
+// The pace and the wall-clock stamps start from now and the current step: stepping starts (after any
+// start_delay) or resumes at wall-clock pace, and so the stamps of what follows are current. Never earlier
+// than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
+// the clock): stamps stay strictly increasing.
+void SimNode::anchorLocked() {
+  pacer_.restart(wallNow(), world_.stepCount());
+  const ros::WallTime wall = ros::WallTime::now();
+  stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
+  time_anchor_ = world_.time();
 }
 
 void SimNode::stepOnceLocked() {
@@ -227,6 +244,7 @@ void SimNode::publishLocked() {
   // at a publishing instant the bodies' frames move with the next publication.
   if (stamp > last_tf_stamp_) {
     tf_broadcaster_.sendTransform(snapshot.tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
@@ -251,8 +269,15 @@ void SimNode::publishMarkersLocked(const ros::Time& stamp) {
   }
 }
 
+void SimNode::publishStaticTransformsLocked() {
+  tf2_msgs::TFMessage fixed;
+  fixed.transforms = snapshots_->staticTransforms(stampOf(world_.time()));
+  static_broadcaster_.sendTransform(fixed.transforms);
+  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
+}
+
 void SimNode::publishSceneLocked() {
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stampOf(world_.time())));
+  publishStaticTransformsLocked();
   scene_publisher_.publish(snapshots_->scene().sceneMarkers());
 }
 
@@ -260,7 +285,7 @@ void SimNode::rebuildSceneLocked() {
   if (snapshots_->scene().rebuild(world_.bodies())) {
     scene_publisher_.publish(snapshots_->scene().sceneMarkers());
   }
-  static_broadcaster_.sendTransform(snapshots_->staticTransforms(stampOf(world_.time())));
+  publishStaticTransformsLocked();
 }
 
 void SimNode::stepLoop() {
@@ -270,9 +295,9 @@ void SimNode::stepLoop() {
   publishClockLocked();
   wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
                  [this] { return stopping_.load(); });
+  anchorLocked();
   publishSceneLocked();
   publishLocked();
-  pacer_.restart(wallNow(), world_.stepCount());
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
   while (!stopping_ && ros::ok()) {
     if (paused_) {
@@ -306,15 +331,42 @@ void SimNode::stepLoop() {
   }
 }
 
-void SimNode::run() {
+void SimNode::watchMaster() {
+  while (!stopping_ && ros::ok()) {
+    if (askMaster() == MasterView::Forgot) {
+      restoreParameters();
+      ROS_ERROR(
+          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
+          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
+          ros::master::getURI().c_str(), kMasterForgotStatus);
+      exit_status_ = kMasterForgotStatus;
+      ros::requestShutdown();
+      return;
+    }
+    for (int tenth = 0; tenth < 10 && !stopping_; ++tenth) std::this_thread::sleep_for(kWatchTick);
+  }
+}
+
+// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
+// so that a respawned node starts on the same config (unless something has set them meanwhile).
+void SimNode::restoreParameters() {
+  if (ros::param::has(private_node_.getNamespace())) return;
+  ros::param::set(private_node_.getNamespace(), start_params_);
+  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
+}
+
+int SimNode::run() {
   ros::AsyncSpinner spinner(1);
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
+  watcher_ = std::thread([this] { watchMaster(); });
   startReconfigureServers();
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
   stepper_.join();
+  watcher_.join();
+  return exit_status_;
 }
 
 }  // namespace rigid_body_sim

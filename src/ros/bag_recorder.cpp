@@ -39,7 +39,7 @@ BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame
                          const std::vector<Body>& bodies, std::string node_namespace)
     : path_(path),
       node_namespace_(std::move(node_namespace)),
-      snapshots_(world_frame, bodies),
+      snapshots_(world_frame, "", bodies),
       marker_rate_(TrailOptions().pieces_rate) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;

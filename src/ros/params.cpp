@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/params.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -35,6 +36,26 @@ bool boolOption(const YAML::Node& params, const std::string& key, bool fallback)
   } catch (const YAML::Exception&) {
     throw ConfigError(kNode, key, "'" + params[key].Scalar() + "'", "true or false");
   }
+}
+
+// Empty, or letters, digits, _ and / starting with a letter, no empty level ("a//b"): what tf2 takes as
+// the start of a frame id.
+bool isFramePrefix(const std::string& prefix) {
+  if (prefix.empty()) return true;
+  if (!std::isalpha(static_cast<unsigned char>(prefix[0])) || prefix.find("//") != std::string::npos)
+    return false;
+  return std::all_of(prefix.begin(), prefix.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '/';
+  });
+}
+
+std::string framePrefixOption(const YAML::Node& params, const std::string& key) {
+  const std::string allowed = "empty, or letters, digits, _ and / starting with a letter (e.g. left/)";
+  if (!params[key]) return "";
+  if (!params[key].IsScalar()) throw ConfigError(kNode, key, "(not a text)", allowed);
+  const std::string prefix = params[key].Scalar();
+  if (!isFramePrefix(prefix)) throw ConfigError(kNode, key, "'" + prefix + "'", allowed);
+  return prefix;
 }
 
 bool isMap(XmlRpc::XmlRpcValue& value) { return value.getType() == XmlRpc::XmlRpcValue::TypeStruct; }
@@ -84,6 +105,7 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
   options.publish_clock = boolOption(yaml, names::kPublishClock, options.publish_clock);
   options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
   options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
+  options.frame_prefix = framePrefixOption(yaml, names::kFramePrefix);
   if (yaml[names::kMarkerRate]) {
     options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});
   }
@@ -99,6 +121,18 @@ double markerRate(const NodeOptions& options, double publish_rate) {
                       range.describe() + " (at most publish_rate)");
   }
   return *options.marker_rate;
+}
+
+void checkFrames(const NodeOptions& options, const WorldConfig& config) {
+  for (const auto& body : config.bodies) {
+    for (const std::string& frame : {body.name, fixedFrameOf(body)}) {
+      if (options.frame_prefix + frame == config.world_frame) {
+        throw ConfigError(
+            kNode, node_interface::kFramePrefix, "'" + options.frame_prefix + "'",
+            "a prefix that makes no frame '" + frame + "' into world_frame '" + config.world_frame + "'");
+      }
+    }
+  }
 }
 
 WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace) {

@@ -22,6 +22,8 @@ constexpr double kFloorLength = 40.0;  // along world x
 constexpr double kFloorBehind = 2.0;   // of floor behind x = 0
 constexpr double kFloorMargin = 1.0;   // of floor beyond the outermost lane on either side
 constexpr double kFloorThickness = 0.02;
+constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
+constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
 constexpr double kRodThickness = 0.05;   // also a rod's "radius" for its label
@@ -53,6 +55,7 @@ std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
 }
 
 const std_msgs::ColorRGBA kFloorColour = rgba(0.75f, 0.75f, 0.75f);
+const std_msgs::ColorRGBA kBoundedFloorColour = rgba(0.5f, 0.5f, 0.5f);
 const std_msgs::ColorRGBA kSlopeColour = rgba(0.55f, 0.4f, 0.25f);
 const std_msgs::ColorRGBA kSpokeColour = rgba(0.1f, 0.1f, 0.1f);
 const std_msgs::ColorRGBA kLabelColour = rgba(1, 1, 1);
@@ -110,11 +113,11 @@ double laneSpacing(const std::vector<Body>& bodies) {
   return std::max(kMinLaneSpacing, kLaneRadii * largest_radius);
 }
 
-visualization_msgs::Marker rollerShapeMarker(const Body& body, int id) {
+visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id) {
   const RollerParams& p = std::get<Roller>(body.model).params();
   const double d = 2.0 * p.radius;
   if (p.shape == Shape::Ring) {
-    auto ring = sceneMarker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, body.name);
+    auto ring = sceneMarker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame);
     ring.scale.x = kRingWidth * p.radius;
     for (int i = 0; i <= kRingSegments; ++i) {
       const double a = 2.0 * kPi * i / kRingSegments;
@@ -125,24 +128,24 @@ visualization_msgs::Marker rollerShapeMarker(const Body& body, int id) {
   const bool cylinder = p.shape == Shape::Cylinder;
   auto shape = sceneMarker(
       kNsBody, id, cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
-      body.name);
+      frame);
   shape.scale.x = shape.scale.y = d;
   shape.scale.z = cylinder ? kCylinderLength * d : d;
   return shape;
 }
 
 // Drawn in the body's own frame and locked to it: TF moves it, not the marker stream.
-visualization_msgs::Marker bodyMarker(const Body& body, int id) {
+visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id) {
   visualization_msgs::Marker m;
   if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, body.name);
+    m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame);
     // A marker cylinder lies along its z; the rod lies along its frame's x.
     m.pose.orientation.y = std::sin(kPi / 4);
     m.pose.orientation.w = std::cos(kPi / 4);
     m.scale.x = m.scale.y = kRodThickness;
     m.scale.z = rod->params().length;
   } else {
-    m = rollerShapeMarker(body, id);
+    m = rollerShapeMarker(body, frame, id);
   }
   m.color = bodyColour(body);
   m.frame_locked = true;
@@ -151,9 +154,9 @@ visualization_msgs::Marker bodyMarker(const Body& body, int id) {
 
 // A dark bar through the centre along the body's x: it turns with the body, so rolling and slipping
 // can be told apart at a glance. A roller's only.
-visualization_msgs::Marker spokeMarker(const Body& body, int id) {
+visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id) {
   const double r = radiusOf(body);
-  auto spoke = sceneMarker(kNsSpoke, id, visualization_msgs::Marker::CUBE, body.name);
+  auto spoke = sceneMarker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame);
   spoke.scale.x = kSpokeLength * r;
   spoke.scale.y = kSpokeWidth * r;
   spoke.scale.z = kSpokeLength * r;
@@ -190,6 +193,20 @@ visualization_msgs::Marker floorMarker(const std::string& world_frame,
   return floor;
 }
 
+// A rod's bounded floor: a darker strip over x in [0, floor_length] of its floor frame (ids after the
+// floor's 0).
+visualization_msgs::Marker boundedFloorMarker(const BodyPlacement& placement, int id) {
+  const double floor_length = placement.floor_length;
+  auto strip = sceneMarker(kNsFloor, id, visualization_msgs::Marker::CUBE, placement.frame);
+  strip.pose.position.x = floor_length / 2;
+  strip.pose.position.y = kBoundedFloorRaise - kFloorThickness / 2;
+  strip.scale.x = floor_length;
+  strip.scale.y = kFloorThickness;
+  strip.scale.z = kBoundedFloorWidth;
+  strip.color = kBoundedFloorColour;
+  return strip;
+}
+
 visualization_msgs::Marker slopeMarker(const BodyPlacement& placement, int id) {
   const double length = placement.slope_length;
   auto slope = sceneMarker(kNsSlope, id, visualization_msgs::Marker::CUBE, placement.frame);
@@ -214,22 +231,23 @@ Eigen::Vector3d worldPosition(const BodyPlacement& placement, const Body& body) 
 
 }  // namespace
 
-std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies) {
+std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
   const double lane_spacing = laneSpacing(bodies);
   int rods = 0;
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
-    if (std::holds_alternative<Rod>(body.model)) {
-      placements.push_back(
-          {fixedFrameOf(body), uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0});
+    if (const auto* rod = std::get_if<Rod>(&body.model)) {
+      placements.push_back({frame_prefix + fixedFrameOf(body),
+                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
+                            rod->params().floor_length});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
     const double lane_y = kFirstLaneY + lane_spacing * rollers++;
-    placements.push_back(
-        {fixedFrameOf(body), uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
+    placements.push_back({frame_prefix + fixedFrameOf(body),
+                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
   }
   return placements;
 }
@@ -252,8 +270,9 @@ int TrailOptions::ring() const {
   return std::max(1, static_cast<int>(std::ceil(seconds * pieces_rate - 1e-9)));
 }
 
-Scene::Scene(std::string world_frame, const std::vector<Body>& bodies, TrailOptions trail)
-    : world_frame_(std::move(world_frame)), trail_options_(trail) {
+Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+             TrailOptions trail)
+    : world_frame_(std::move(world_frame)), frame_prefix_(std::move(frame_prefix)), trail_options_(trail) {
   rebuild(bodies);
 }
 
@@ -266,7 +285,7 @@ Scene::Trail& Scene::trailOf(const std::string& body) {
 }
 
 bool Scene::rebuild(const std::vector<Body>& bodies) {
-  placements_ = placeBodies(bodies);
+  placements_ = placeBodies(bodies, frame_prefix_);
   std::map<std::string, Trail> kept;
   for (const auto& body : bodies) kept[body.name] = trailOf(body.name);
   for (const auto& [name, trail] : trails_) {
@@ -279,9 +298,13 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
   scene.markers.push_back(floorMarker(world_frame_, placements_));
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const int id = trails_.at(bodies[i].name).slot;
+    const std::string frame = bodyFrame(bodies[i]);
+    if (placements_[i].floor_length > 0.0)
+      scene.markers.push_back(boundedFloorMarker(placements_[i], id + 1));
     if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
-    scene.markers.push_back(bodyMarker(bodies[i], id));
-    if (std::holds_alternative<Roller>(bodies[i].model)) scene.markers.push_back(spokeMarker(bodies[i], id));
+    scene.markers.push_back(bodyMarker(bodies[i], frame, id));
+    if (std::holds_alternative<Roller>(bodies[i].model))
+      scene.markers.push_back(spokeMarker(bodies[i], frame, id));
   }
   if (scene == scene_) return false;
   scene_ = std::move(scene);

@@ -2,8 +2,9 @@
 
 namespace rigid_body_sim {
 
-SnapshotBuilder::SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies, TrailOptions trail)
-    : scene_(std::move(world_frame), bodies, trail) {}
+SnapshotBuilder::SnapshotBuilder(std::string world_frame, std::string frame_prefix,
+                                 const std::vector<Body>& bodies, TrailOptions trail)
+    : scene_(std::move(world_frame), std::move(frame_prefix), bodies, trail) {}
 
 std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(const ros::Time& stamp) const {
   std::vector<geometry_msgs::TransformStamped> transforms;
@@ -20,7 +21,8 @@ Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vec
     const Body& body = bodies[i];
     const BodyPlacement& placement = scene_.placements()[i];
     const Eigen::Isometry3d world_from_body = placement.world_from_frame * frameFromBody(body);
-    snapshot.tf.transforms.push_back(toTransform(world_from_body, scene_.worldFrame(), body.name, stamp));
+    snapshot.tf.transforms.push_back(
+        toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp));
     snapshot.states.push_back(toStateMsg(t, body));
     std::visit(
         [&](auto& msg) {

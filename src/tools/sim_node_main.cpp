@@ -11,10 +11,9 @@ int main(int argc, char** argv) {
   const ros::NodeHandle private_node("~");
   try {
     rigid_body_sim::SimNode sim(node, private_node);
-    sim.run();
+    return sim.run();
   } catch (const rigid_body_sim::ConfigError& error) {
     ROS_FATAL_STREAM("refused config: " << error.what());
     return 1;
   }
-  return 0;
 }

@@ -1,8 +1,10 @@
-// sim_node at run time on bad input: a table of reconfigure requests that the .cfg ranges let through
-// (values a range cannot express: 0 where > 0 is needed, NaN, relations between keys, names outside an
-// enum), `rosparam set` + `dynparam set_from_parameters`, and ~step with absurd counts. Each one must be
-// refused with exactly one error line on /rosout, the server must keep showing the values in use, the node
-// must stay alive, and afterwards the states must equal the core World's, as if nothing had been asked.
+// sim_node at run time on bad input: a table of reconfigure requests (values out of the core's ranges, which
+// the servers pass on unclamped: the .cfg has no ranges; 0 where > 0 is needed, NaN, relations between
+// keys, names outside an enum), `rosparam set` + `dynparam set_from_parameters`, and ~step with absurd
+// counts. Each one must be refused with exactly one line on /rosout at WARN (the caller's mistake, which
+// the caller is told), naming the value asked for; the server must keep showing the values in use, the
+// node must stay alive, and afterwards the states must equal the core World's, as if nothing had been
+// asked.
 #include <cstdlib>
 
 #include <dynamic_reconfigure/Reconfigure.h>
@@ -23,10 +25,22 @@ struct BadRequest {
   std::string body;
   std::vector<std::pair<std::string, double>> doubles;
   std::vector<std::pair<std::string, std::string>> strings;
+  std::string named = "";  // a fragment the refusal must hold (the value asked for)
 };
 
 const std::vector<BadRequest>& badRequests() {
   static const std::vector<BadRequest> rows = {
+      {"rod k = -5 (not clamped to a bound)", "rod", {{"k", -5.0}}, {}, "'k': value -5 is not allowed"},
+      {"rod k = -1e300", "rod", {{"k", -1e300}}, {}, "value -1e+300 is not"},
+      {"rod floor_length = -1", "rod", {{"floor_length", -1.0}}, {}, "'floor_length': value -1 is not"},
+      {"rod x0 off its bounded floor",
+       "rod",
+       {{"x0", 11.0}},
+       {},
+       "value 11 is not allowed (allowed: a position on the floor"},
+      {"rod floor_length below x0", "rod", {{"x0", 8.0}, {"floor_length", 6.0}}, {}, "floor_length = 6"},
+      {"sphere mu_s = -1 (not clamped to 0)", "sphere", {{"mu_s", -1.0}}, {}, "'mu_s': value -1 is not"},
+      {"sphere incline_angle = 4", "sphere", {{"incline_angle", 4.0}}, {}, "value 4 is not"},
       {"rod k = 0", "rod", {{"k", 0.0}}, {}},
       {"rod mass = 0", "rod", {{"mass", 0.0}}, {}},
       {"rod length = 0", "rod", {{"length", 0.0}}, {}},
@@ -50,15 +64,16 @@ const std::vector<BadRequest>& badRequests() {
   return rows;
 }
 
-// Error lines the node sends to /rosout.
-class ErrorLog {
+// The node's lines on /rosout at WARN and above, each with its level in front ("WARN: ...").
+class WarnLog {
  public:
-  explicit ErrorLog(ros::NodeHandle& nh)
+  explicit WarnLog(ros::NodeHandle& nh)
       : sub_(nh.subscribe<rosgraph_msgs::Log>(
             "/rosout", 1000, [this](const rosgraph_msgs::Log::ConstPtr& msg) {
-              if (msg->name != "/sim" || msg->level < rosgraph_msgs::Log::ERROR) return;
+              if (msg->name != "/sim" || msg->level < rosgraph_msgs::Log::WARN) return;
               std::lock_guard<std::mutex> lock(mutex_);
-              lines_.push_back(msg->msg);
+              lines_.push_back((msg->level == rosgraph_msgs::Log::WARN ? "WARN: " : "ERROR or worse: ") +
+                               msg->msg);
               arrived_.notify_all();
             })) {}
   bool waitConnected(double timeout) {
@@ -104,10 +119,13 @@ void expectSameConfig(const dynamic_reconfigure::Config& expected, const dynamic
   }
 }
 
-void expectOneLineNaming(const std::vector<std::string>& lines, const std::string& body) {
-  ASSERT_EQ(lines.size(), 1u) << "error lines: " << ::testing::PrintToString(lines);
+void expectOneWarningNaming(const std::vector<std::string>& lines, const std::string& body,
+                            const std::string& named = "") {
+  ASSERT_EQ(lines.size(), 1u) << "lines: " << ::testing::PrintToString(lines);
+  EXPECT_EQ(lines[0].rfind("WARN: ", 0), 0u) << lines[0];
   EXPECT_NE(lines[0].find("body '" + body + "'"), std::string::npos) << lines[0];
   EXPECT_NE(lines[0].find("is not allowed (allowed: "), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find(named), std::string::npos) << lines[0];
 }
 
 }  // namespace
@@ -117,7 +135,7 @@ TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
   const WorldConfig config = loadWorldConfigFile(configPath());
   World world(config);
   StateCollector c(nh, world);
-  ErrorLog errors(nh);
+  WarnLog errors(nh);
   ASSERT_TRUE(c.waitConnected(10.0));
   ASSERT_TRUE(errors.waitConnected(10.0));
   ASSERT_TRUE(ros::service::waitForService("/sim/step", 10000));
@@ -140,24 +158,30 @@ TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
   }
   ASSERT_TRUE(errors.take(0).empty()) << "an empty request was refused";
 
-  // --- dynamic_reconfigure requests the .cfg ranges let through
+  // --- dynamic_reconfigure requests
   for (const BadRequest& row : badRequests()) {
     SCOPED_TRACE(row.what);
     const auto returned = reconfigure(row, &called);
     ASSERT_TRUE(called) << "the node no longer answers";
     expectSameConfig(shown[row.body], returned);
-    expectOneLineNaming(errors.take(), row.body);
+    expectOneWarningNaming(errors.take(), row.body, row.named);
   }
 
-  // --- parameter-server values pushed with `dynparam set_from_parameters NODE _key:=value` (its way of
-  // copying parameters into a running server)
-  for (const auto& [body, assignment] : {std::pair<std::string, std::string>{"sphere", "_mu_d:=0.9"},
-                                         std::pair<std::string, std::string>{"rod", "_mass:=0.0"}}) {
-    SCOPED_TRACE(body + " " + assignment);
-    const std::string command = "rosrun dynamic_reconfigure dynparam set_from_parameters /sim/" + body + " " +
-                                assignment + " __name:=bad_input_dynparam_" + body + " >/dev/null";
+  // --- the command line: `dynparam set NODE KEY VALUE`, and parameter values pushed with
+  // `dynparam set_from_parameters NODE _key:=value` (its way of copying parameters into a running server)
+  struct CommandLine {
+    std::string body, verb, arguments, named;
+  };
+  for (const CommandLine& row :
+       {CommandLine{"rod", "set", "k -5", "'k': value -5 is not allowed"},
+        CommandLine{"sphere", "set_from_parameters", "_mu_d:=0.9", "value 0.9"},
+        CommandLine{"rod", "set_from_parameters", "_mass:=0.0", "'mass': value 0"}}) {
+    const std::string& body = row.body;
+    SCOPED_TRACE(body + " " + row.verb + " " + row.arguments);
+    const std::string command = "rosrun dynamic_reconfigure dynparam " + row.verb + " /sim/" + body + " " +
+                                row.arguments + " __name:=bad_input_dynparam_" + body + " >/dev/null";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    expectOneLineNaming(errors.take(), body);
+    expectOneWarningNaming(errors.take(), body, row.named);
     const auto returned = reconfigure({"", body, {}, {}}, &called);
     ASSERT_TRUE(called);
     expectSameConfig(shown[body], returned);
@@ -184,6 +208,7 @@ TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
     EXPECT_EQ(s.response.t, world.time()) << "a refused step moved the time";
     const auto lines = errors.take();
     ASSERT_EQ(lines.size(), 1u) << ::testing::PrintToString(lines);
+    EXPECT_EQ(lines[0].rfind("WARN: ", 0), 0u) << lines[0];
     EXPECT_NE(lines[0].find(std::to_string(steps)), std::string::npos) << lines[0];
   }
 

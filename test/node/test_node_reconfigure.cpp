@@ -1,6 +1,12 @@
 // sim_node's dynamic_reconfigure servers: accepted changes apply exactly as in the core World, refused
-// ones leave everything unchanged and the server shows the old values, new initial conditions restart.
+// ones leave everything unchanged and the server shows the old values, new initial conditions restart, a
+// rod's bounded floor restarts it as in the core, and the README's `dynparam set_from_parameters` example
+// works as written.
+#include <cstdlib>
+#include <sstream>
+
 #include "node_test_util.h"
+#include "test_util.h"
 
 using namespace rigid_body_sim;
 using namespace rigid_body_sim::test;
@@ -73,6 +79,28 @@ void stepAndCompare(StateCollector& c, World& world, std::uint32_t n, const std:
     if (::testing::Test::HasFailure()) return;
   }
   EXPECT_GE(compared, world.bodies().size());
+}
+
+// The README's command line that runs `dynparam set_from_parameters`, as written (its comment left out).
+std::string readmeSetFromParameters() {
+  for (const std::string& line : test::lines(test::slurp(RBS_README))) {
+    const auto start = line.find("rosrun dynamic_reconfigure dynparam set_from_parameters");
+    if (start != std::string::npos) return line.substr(start, line.find('#') - start);
+  }
+  return "";
+}
+
+// The `_key:=value` assignments of a command line.
+std::vector<std::pair<std::string, double>> assignments(const std::string& command) {
+  std::vector<std::pair<std::string, double>> found;
+  std::istringstream words(command);
+  for (std::string word; words >> word;) {
+    const auto equals = word.find(":=");
+    if (word[0] == '_' && word[1] != '_' && equals != std::string::npos) {
+      found.emplace_back(word.substr(1, equals - 1), std::stod(word.substr(equals + 2)));
+    }
+  }
+  return found;
 }
 
 }  // namespace
@@ -156,6 +184,37 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   ASSERT_FALSE(rods.empty());
   EXPECT_NEAR(3.0, rods.back().y, 1e-3);
   stepAndCompare(c, world, 300, "300 steps after y0 = 3");
+
+  // --- a bounded floor: the rod (about 0.6 m along now) runs off a 1 m floor and restarts, as in the core
+  world.takeEvents();
+  setAccepted("rod", "floor_length", 1.0);
+  RodParams bounded = rodOf(world, "rod").params();
+  bounded.floor_length = 1.0;
+  rodOf(world, "rod").setParams(bounded);
+  stepAndCompare(c, world, 1500, "after floor_length = 1");
+  int restarts = 0;
+  for (const auto& event : world.takeEvents()) restarts += event.body == "rod";
+  EXPECT_GE(restarts, 2) << "the rod did not run off its floor";
+
+  // --- the README's example, as written: every key it assigns applies
+  const std::string command = readmeSetFromParameters();
+  ASSERT_FALSE(command.empty()) << "no dynparam set_from_parameters line in the README";
+  ASSERT_EQ(std::system((command + " >/dev/null 2>&1").c_str()), 0) << command;
+  const std::string body = "sphere";
+  ASSERT_NE(command.find("/sim/" + body + " "), std::string::npos) << command;
+  const auto shown = callReconfigure(body, {}, {}, &called);
+  ASSERT_TRUE(called);
+  Roller& roller = rollerOf(world, body);
+  RollerConfig wanted{roller.params(), roller.initial()};
+  ASSERT_FALSE(assignments(command).empty()) << command;
+  for (const auto& [key, value] : assignments(command)) {
+    EXPECT_EQ(value, doubleOf(shown, key)) << command;
+    const auto* numeric = findKey(rollerNumericKeys(), key);
+    ASSERT_NE(numeric, nullptr) << key;
+    numeric->field(wanted) = value;
+  }
+  roller.setParams(wanted.params);  // the README changes parameters only, no initial condition
+  stepAndCompare(c, world, 500, "after the README's dynparam set_from_parameters");
 }
 
 RBS_ROSTEST_MAIN("test_node_reconfigure")

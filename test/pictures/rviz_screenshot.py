@@ -164,7 +164,7 @@ class Checker:
         return found
 
     def floor(self, covered: Array) -> None:
-        floor = next((m for (ns, _), m in self.scene.markers.items() if ns == "floor"), None)
+        floor = self.scene.markers.get(("floor", 0))  # the floor under everything (a rod's bounded one: id > 0)
         if floor is None:
             self.findings.append(flag("floor marker received", False))
             return

@@ -4,7 +4,7 @@ bag of the same run, and on a bag recorded from sim_node through sim.launch: it 
 numbers it marks agree with the closed forms of docs/DESIGN.md and with the CSV's own modes. On sweeps of one
 key (the rod's θ0) and of two (the bowler's v0 and omega0): a figure for each swept body and none for the
 others, and the values it draws and reports are the sweep.csv's, variant for variant.
-Needs RBS_SIMULATE (the simulate executable) and RBS_BUILD (the build folder, for sim.launch)."""
+Needs RBS_SIMULATE (the simulate executable) and RBS_DEVEL (the devel space, for sim.launch)."""
 import csv
 import json
 import math
@@ -254,7 +254,7 @@ class NodeBagTest(unittest.TestCase):
             env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_IP="127.0.0.1", ROS_HOME=tmp,
                        PATH="/usr/bin:" + os.environ.get("PATH", ""))
             env.pop("ROS_HOSTNAME", None)
-            launch = (f'source "{os.environ["RBS_BUILD"]}/devel/setup.bash" && roslaunch -p {port} rigid_body_sim '
+            launch = (f'source "{os.environ["RBS_DEVEL"]}/setup.bash" && roslaunch -p {port} rigid_body_sim '
                       f'sim.launch config:={CONFIG} duration:=2 record:=true bag:={bag}')
             subprocess.run(["bash", "-c", launch], env=env, timeout=120, check=True, stdout=subprocess.DEVNULL)
             out = os.path.join(tmp, "plots")

@@ -2,6 +2,9 @@
 //
 // Rod plane: x horizontal, y up; theta is measured from +x towards +y; u = (cos theta, sin theta).
 // End A is at R + (L/2) u, end B at R - (L/2) u. No friction, no damping. See DESIGN.md.
+//
+// The floor is unbounded (the text's), or spans x in [0, floor_length]: a rod whose centre leaves it
+// restarts from its initial conditions at the end of that step, as a roller does at a slope's end.
 #pragma once
 
 #include <optional>
@@ -20,6 +23,7 @@ struct RodParams {
   double k = 1000.0;     // N/m, floor spring constant per end
   double gravity = 9.8;  // m/s^2
   Integrator integrator = Integrator::EulerCromer;
+  double floor_length = 0.0;  // m of floor from x = 0; 0 = unbounded (the text's floor)
 };
 
 struct RodMotion {
@@ -39,8 +43,10 @@ class Rod {
 
   Rod(const RodParams& params, const RodMotion& initial);
 
-  // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator.
-  void step(double dt);
+  // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator. Returns true when
+  // the centre left a bounded floor (x < 0 or x > floor_length) and the rod restarted from its initial
+  // conditions at the end of the step.
+  bool step(double dt);
 
   void setParams(const RodParams& params);    // applies from the next step; the state is kept
   void setInitial(const RodMotion& initial);  // restarts from it
@@ -55,6 +61,7 @@ class Rod {
   double endHeightA() const;       // y of end A
   double endHeightB() const;       // y of end B
   int substepsFor(double dt) const;
+  bool onFloor() const;  // the centre is over the floor (always, when it is unbounded)
 
  private:
   RodParams params_;

@@ -14,6 +14,7 @@ inline constexpr const char* kRealTimeFactor = "real_time_factor";
 inline constexpr const char* kPublishClock = "publish_clock";
 inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kStartDelay = "start_delay";
+inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
@@ -24,12 +25,18 @@ inline constexpr const char* kPause = "pause";
 inline constexpr const char* kUnpause = "unpause";
 inline constexpr const char* kStep = "step";
 
-// A body's state topic, relative to the node's namespace.
+// A body's state topic, relative to the node's private namespace.
 inline std::string stateTopic(const std::string& body) { return body + "/state"; }
 
+// In a namespace other than the root, the node also sends its transforms on these topics of that namespace
+// (/left/tf, /left/tf_static beside /tf, /tf_static), so that a recorder of the namespace records only
+// its own instance's transforms.
+inline constexpr const char* kNamespaceTf = "tf";
+inline constexpr const char* kNamespaceTfStatic = "tf_static";
+
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,
-                                                 kStartDelay,     kMarkerRate,   kTrailLength};
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,   kStartDelay,
+                                                 kFramePrefix,    kMarkerRate,   kTrailLength};
   return names;
 }
 

@@ -14,6 +14,7 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
@@ -30,12 +31,16 @@ namespace rigid_body_sim {
 
 class SimNode {
  public:
+  // The exit status after the master restarted and forgot the node (roslaunch's respawn starts it again).
+  static constexpr int kMasterForgotStatus = 3;
+
   // Loads and validates the private parameters; throws ConfigError with the one refusal line.
   SimNode(ros::NodeHandle node, ros::NodeHandle private_node);
   ~SimNode();
 
-  // Starts the stepping thread and spins the callbacks until shutdown.
-  void run();
+  // Starts the stepping thread and spins the callbacks until shutdown; returns the exit status: 0, or
+  // kMasterForgotStatus.
+  int run();
 
  private:
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
@@ -51,6 +56,10 @@ class SimNode {
   bool onStep(Step::Request& request, Step::Response& response);
 
   void stepLoop();
+  // Every second: does the master still know this node? When a restarted master does not, puts the
+  // parameters this node started from back on it (for the respawned node) and shuts down.
+  void watchMaster();
+  void restoreParameters();
   // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
   void stepOnceLocked();
   // Holds a body that became non-finite at its last finite state and logs the one error about it.
@@ -59,16 +68,20 @@ class SimNode {
   void publishClockLocked();
   // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
   void publishMarkersLocked(const ros::Time& stamp);
-  // The fixed frames on /tf_static and the latched ~scene.
+  // The fixed frames on /tf_static (and <ns>/tf_static).
+  void publishStaticTransformsLocked();
+  // The fixed frames and the latched ~scene.
   void publishSceneLocked();
   // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
   // the scene are sent again. Trails go on by body name.
   void rebuildSceneLocked();
   ros::Time stampOf(double t) const;
+  void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
+  XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
   WorldConfig config_;  // the current config of every body (what reconfigure changes)
 
@@ -85,12 +98,15 @@ class SimNode {
   StepPacer pacer_;
   std::condition_variable wake_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
-  ros::Time wall_start_;
+  ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
+  double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
 
   ros::Publisher marker_publisher_;
   ros::Publisher scene_publisher_;
   ros::Publisher clock_publisher_;
+  ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
+  ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
   std::vector<ros::Publisher> state_publishers_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
@@ -100,7 +116,9 @@ class SimNode {
   std::vector<std::unique_ptr<RollerServer>> roller_servers_;
 
   std::atomic<bool> stopping_{false};
+  std::atomic<int> exit_status_{0};
   std::thread stepper_;
+  std::thread watcher_;
 };
 
 }  // namespace rigid_body_sim

@@ -20,6 +20,7 @@ struct NodeOptions {
   bool publish_clock = false;         // publish /clock (simulated time) for use_sim_time users
   double duration = 0.0;              // simulated seconds before the node shuts down; 0 = run until stopped
   double start_delay = 0.0;           // wall seconds before stepping starts (lets a recorder subscribe first)
+  std::string frame_prefix;           // in front of every frame published but world_frame ("left/": left/rod)
   std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
   double trail_length = TrailOptions().seconds;  // simulated seconds of trail; 0 = no trails
 };
@@ -37,6 +38,9 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value);
 // The options in the private namespace; a missing one keeps its default. Throws ConfigError naming the
 // option, its value and its range.
 NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace);
+
+// Throws ConfigError when a prefixed frame of the config would be its world_frame.
+void checkFrames(const NodeOptions& options, const WorldConfig& config);
 
 // The config in the private namespace, loaded and validated as a config file is: the node's options and
 // the namespaces of the reconfigure servers (one per body) are left out; any other key stays, so that the

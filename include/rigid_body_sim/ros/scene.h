@@ -6,6 +6,8 @@
 //   `<body>_slope` (x down the slope, y normal to it, origin at the top of the slope);
 // - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes world y = 1 + 0.5 j (wider for
 //   large radii): side by side, never overlapping; every slope ends on the floor at its lower end.
+// Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
+// instances publish distinct frames on one /tf.
 //
 // The markers come in two streams, so that their cost follows what changes:
 // - the scene (latched): DELETEALL, the floor, every slope and each body's shape and spoke, drawn
@@ -35,8 +37,9 @@ struct BodyPlacement {
   std::string frame;  // <body>_floor or <body>_slope
   Eigen::Isometry3d world_from_frame;
   double slope_length = 0.0;  // m; 0 for a rod's floor
+  double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
 };
-std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies);
+std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix = "");
 
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
@@ -51,9 +54,11 @@ struct TrailOptions {
 
 class Scene {
  public:
-  Scene(std::string world_frame, const std::vector<Body>& bodies, TrailOptions trail = {});
+  Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+        TrailOptions trail = {});
 
   const std::string& worldFrame() const { return world_frame_; }
+  std::string bodyFrame(const Body& body) const { return frame_prefix_ + body.name; }
   const std::vector<BodyPlacement>& placements() const { return placements_; }
 
   // For a new set of bodies or a new look (a spawn, a delete, a reconfigured slope or shape): new
@@ -85,6 +90,7 @@ class Scene {
   Trail& trailOf(const std::string& body);
 
   std::string world_frame_;
+  std::string frame_prefix_;
   TrailOptions trail_options_;
   std::vector<BodyPlacement> placements_;
   visualization_msgs::MarkerArray scene_;

@@ -23,7 +23,10 @@ struct Snapshot {
 // Builds snapshots; owns the scene (placements, markers, trails).
 class SnapshotBuilder {
  public:
-  SnapshotBuilder(std::string world_frame, const std::vector<Body>& bodies, TrailOptions trail = {});
+  // frame_prefix goes in front of every frame but world_frame (the node's option; empty in a bag of
+  // simulate).
+  SnapshotBuilder(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+                  TrailOptions trail = {});
 
   std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
   Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const;
