@@ -81,6 +81,18 @@ TEST(Scene, StartsWithDeleteAllAndDrawsEveryBodyLockedToItsOwnFrame) {
   EXPECT_TRUE(allFinite(markers));
 }
 
+TEST(Scene, DrawsInPrefixedFramesButTheWorld) {
+  const World world(demoConfig());
+  const Scene scene("world", "left/", world.bodies());
+  for (const auto& m : scene.sceneMarkers().markers) {
+    if (m.ns == "floor" && m.id == 0) {
+      EXPECT_EQ(m.header.frame_id, "world");
+    } else if (m.action != Marker::DELETEALL) {
+      EXPECT_EQ(m.header.frame_id.rfind("left/", 0), 0u) << m.ns << " " << m.header.frame_id;
+    }
+  }
+}
+
 TEST(Scene, IsRebuiltOnlyWhenTheBodiesOrTheirLookChange) {
   World world(demoConfig());
   Scene scene("world", "", world.bodies());

@@ -137,7 +137,7 @@ class TwoInstances(unittest.TestCase):
 
     def check_bag(self, ns: str) -> None:
         world = world_value(self.config, "world_frame")
-        expected = {f"/{ns}/tf", f"/{ns}/tf_static", f"/{ns}/sim/markers"}
+        expected = {f"/{ns}/tf", f"/{ns}/tf_static", f"/{ns}/sim/scene", f"/{ns}/sim/markers"}
         expected |= {f"/{ns}/sim/{body}/state" for body in self.bodies}
         topics: Set[str] = set()
         times: Dict[str, List[float]] = {}
@@ -148,7 +148,7 @@ class TwoInstances(unittest.TestCase):
                     for transform in msg.transforms:
                         self.assertEqual(transform.header.frame_id, world)
                         self.assertTrue(transform.child_frame_id.startswith(f"{ns}/"), transform.child_frame_id)
-                elif topic.endswith("markers"):
+                elif topic.endswith("markers") or topic.endswith("scene"):
                     for marker in msg.markers:
                         if marker.action == marker.ADD:
                             self.assertIn(marker.header.frame_id.split("/")[0], {world, ns}, marker.header.frame_id)
