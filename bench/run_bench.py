@@ -474,6 +474,7 @@ def main() -> int:
         node_at_rate(report, ros, "50 Hz publishing", demo, node_seconds, 6, 20.0, "<= 0.6")
         node_at_rate(report, ros, "1000 Hz publishing", config_1khz, node_seconds, 6, 1.0, "<= 15")
         recording(report, ros, out, demo, 50.0, 60.0, "real_time_factor:=0")
+        recording(report, ros, out, demo, 50.0, 60.0, "real_time_factor:=0", "record_in_node:=true")
         recording(report, ros, out, config_1khz, 1000.0, node_seconds)
         for bodies in (1, 100, 1000):
             many_bodies(report, ros, out, bodies, node_seconds / 2, markers=bodies == 100)

@@ -55,6 +55,14 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   const TrailOptions trail{options_.trail_length, markerRate(options_, config_.publish_rate)};
   snapshots_ =
       std::make_unique<SnapshotBuilder>(config_.world_frame, options_.frame_prefix, world_.bodies(), trail);
+  if (!options_.bag.empty()) {
+    try {
+      recorder_ = std::make_unique<BagRecorder>(options_.bag, config_.world_frame, world_.bodies(),
+                                                private_node_.getNamespace(), options_.frame_prefix);
+    } catch (const rosbag::BagException& error) {
+      throw ConfigError("cannot write the bag '" + options_.bag + "': " + error.what());
+    }
+  }
   advertise();
 }
 
@@ -248,6 +256,7 @@ void SimNode::publishLocked() {
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
+  if (recorder_) recorder_->write(world_);
   for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
     std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
   }
@@ -366,6 +375,7 @@ int SimNode::run() {
   wake_.notify_all();
   stepper_.join();
   watcher_.join();
+  if (recorder_) recorder_->commit();
   return exit_status_;
 }
 

@@ -36,10 +36,11 @@ boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const std::string& world_frame,
-                         const std::vector<Body>& bodies, std::string node_namespace)
+                         const std::vector<Body>& bodies, std::string node_namespace,
+                         std::string frame_prefix)
     : path_(path),
       node_namespace_(std::move(node_namespace)),
-      snapshots_(world_frame, "", bodies),
+      snapshots_(world_frame, std::move(frame_prefix), bodies),
       marker_rate_(TrailOptions().pieces_rate) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;

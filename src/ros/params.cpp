@@ -110,6 +110,10 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
     options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});
   }
   options.trail_length = numberOption(yaml, names::kTrailLength, options.trail_length, {0.0, 3600.0});
+  if (yaml[names::kBag]) {
+    if (!yaml[names::kBag].IsScalar()) throw ConfigError(kNode, names::kBag, "(not a text)", "a file path");
+    options.bag = yaml[names::kBag].Scalar();
+  }
   return options;
 }
 

@@ -17,6 +17,7 @@ inline constexpr const char* kStartDelay = "start_delay";
 inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
+inline constexpr const char* kBag = "bag";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
 inline constexpr const char* kMarkers = "markers";
 inline constexpr const char* kScene = "scene";
@@ -35,8 +36,8 @@ inline constexpr const char* kNamespaceTf = "tf";
 inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,   kStartDelay,
-                                                 kFramePrefix,    kMarkerRate,   kTrailLength};
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,    kStartDelay,
+                                                 kFramePrefix,    kMarkerRate,   kTrailLength, kBag};
   return names;
 }
 

@@ -24,6 +24,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
 
@@ -98,6 +99,7 @@ class SimNode {
   StepPacer pacer_;
   std::condition_variable wake_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
+  std::unique_ptr<BagRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
   ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;

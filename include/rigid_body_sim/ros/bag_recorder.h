@@ -20,7 +20,7 @@ class BagRecorder : public SampleSink {
   // Writes to `path`.active, renamed to `path` by commit(), as `rosbag record` does; starts with the
   // fixed frames and the scene of `bodies` (at t = 0).
   BagRecorder(const std::string& path, const std::string& world_frame, const std::vector<Body>& bodies,
-              std::string node_namespace = "/sim");
+              std::string node_namespace = "/sim", std::string frame_prefix = "");
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;

@@ -23,6 +23,7 @@ struct NodeOptions {
   std::string frame_prefix;           // in front of every frame published but world_frame ("left/": left/rod)
   std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
   double trail_length = TrailOptions().seconds;  // simulated seconds of trail; 0 = no trails
+  std::string bag;  // if set, the node writes every publication into this bag itself (as simulate --bag)
 };
 
 // ~markers' rate: the option, at most publish_rate (refused above it in one line, as any bad option);
