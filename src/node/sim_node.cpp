@@ -75,6 +75,8 @@ SimNode::~SimNode() {
 
 void SimNode::advertise() {
   namespace names = node_interface;
+  // The broadcaster's own topic, to ask whether anyone listens (one publication, shared with it).
+  tf_watch_ = node_.advertise<tf2_msgs::TFMessage>("/tf", 100);
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
@@ -247,18 +249,26 @@ void SimNode::publishLocked() {
   const double t = world_.time();
   const ros::Time stamp = stampOf(t);
   publishClockLocked();
-  const Snapshot snapshot = snapshots_->build(t, stamp, world_.bodies());
-  // A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset
-  // at a publishing instant the bodies' frames move with the next publication.
-  if (stamp > last_tf_stamp_) {
-    tf_broadcaster_.sendTransform(snapshot.tf.transforms);
-    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
+  const auto& bodies = world_.bodies();
+  // Only what someone subscribes to is built: with a thousand bodies and nobody listening, building every
+  // message was most of the node's work. A transform is never sent twice at one stamp (listeners warn
+  // TF_REPEATED_DATA and drop it): after a reset at a publishing instant the frames move with the next one.
+  const bool tf_watched =
+      tf_watch_.getNumSubscribers() > 0 || (namespace_tf_ && namespace_tf_.getNumSubscribers() > 0);
+  if (tf_watched && stamp > last_tf_stamp_) {
+    tf2_msgs::TFMessage tf;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
+    tf_broadcaster_.sendTransform(tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(tf);
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
   if (recorder_) recorder_->write(world_);
-  for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
-    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (state_publishers_[i].getNumSubscribers() == 0) continue;
+    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); },
+               snapshots_->state(i, t, stamp, bodies[i]));
   }
   last_published_step_ = world_.stepCount();
 }

@@ -15,21 +15,28 @@ std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(c
   return transforms;
 }
 
+geometry_msgs::TransformStamped SnapshotBuilder::transform(std::size_t i, const ros::Time& stamp,
+                                                           const Body& body) const {
+  const Eigen::Isometry3d world_from_body = scene_.placements()[i].world_from_frame * frameFromBody(body);
+  return toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp);
+}
+
+StateMsg SnapshotBuilder::state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const {
+  StateMsg state = toStateMsg(t, body);
+  std::visit(
+      [&](auto& msg) {
+        msg.header.stamp = stamp;
+        msg.header.frame_id = scene_.placements()[i].frame;
+      },
+      state);
+  return state;
+}
+
 Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const {
   Snapshot snapshot;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body& body = bodies[i];
-    const BodyPlacement& placement = scene_.placements()[i];
-    const Eigen::Isometry3d world_from_body = placement.world_from_frame * frameFromBody(body);
-    snapshot.tf.transforms.push_back(
-        toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp));
-    snapshot.states.push_back(toStateMsg(t, body));
-    std::visit(
-        [&](auto& msg) {
-          msg.header.stamp = stamp;
-          msg.header.frame_id = placement.frame;
-        },
-        snapshot.states.back());
+    snapshot.tf.transforms.push_back(transform(i, stamp, bodies[i]));
+    snapshot.states.push_back(state(i, t, stamp, bodies[i]));
   }
   return snapshot;
 }

@@ -30,6 +30,9 @@ class SnapshotBuilder {
 
   std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
   Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const;
+  // What build() gives for body i alone: for a publisher that builds only what someone subscribes to.
+  geometry_msgs::TransformStamped transform(std::size_t i, const ros::Time& stamp, const Body& body) const;
+  StateMsg state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const;
   Scene& scene() { return scene_; }
   const Scene& scene() const { return scene_; }
 
