@@ -84,13 +84,22 @@ void SimNode::advertise() {
     namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
-  for (const auto& body : world_.bodies()) {
+  // Subscribers counted as they come and go: Publisher::getNumSubscribers looks the topic up among all of
+  // the node's publications, and once per body per publication that was most of the node's work with a
+  // thousand bodies.
+  state_subscribers_ = std::make_unique<std::atomic<int>[]>(world_.bodies().size());
+  for (std::size_t i = 0; i < world_.bodies().size(); ++i) {
+    const Body& body = world_.bodies()[i];
+    std::atomic<int>& count = state_subscribers_[i];
+    count = 0;
+    const auto connected = [&count](const ros::SingleSubscriberPublisher&) { ++count; };
+    const auto disconnected = [&count](const ros::SingleSubscriberPublisher&) { --count; };
     if (std::holds_alternative<Rod>(body.model)) {
-      state_publishers_.push_back(
-          private_node_.advertise<RodState>(names::stateTopic(body.name), kStateQueue));
+      state_publishers_.push_back(private_node_.advertise<RodState>(names::stateTopic(body.name), kStateQueue,
+                                                                    connected, disconnected));
     } else {
-      state_publishers_.push_back(
-          private_node_.advertise<RollerState>(names::stateTopic(body.name), kStateQueue));
+      state_publishers_.push_back(private_node_.advertise<RollerState>(names::stateTopic(body.name),
+                                                                       kStateQueue, connected, disconnected));
     }
   }
   services_.push_back(private_node_.advertiseService(names::kReset, &SimNode::onReset, this));
@@ -266,7 +275,7 @@ void SimNode::publishLocked() {
   publishMarkersLocked(stamp);
   if (recorder_) recorder_->write(world_);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (state_publishers_[i].getNumSubscribers() == 0) continue;
+    if (state_subscribers_[i] <= 0) continue;
     std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); },
                snapshots_->state(i, t, stamp, bodies[i]));
   }

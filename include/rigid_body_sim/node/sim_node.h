@@ -111,6 +111,8 @@ class SimNode {
   ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
   ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
   std::vector<ros::Publisher> state_publishers_;
+  std::unique_ptr<std::atomic<int>[]>
+      state_subscribers_;  // of each state topic, kept by the publishers' callbacks
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;
