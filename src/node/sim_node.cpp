@@ -75,8 +75,6 @@ SimNode::~SimNode() {
 
 void SimNode::advertise() {
   namespace names = node_interface;
-  // The broadcaster's own topic, to ask whether anyone listens (one publication, shared with it).
-  tf_watch_ = node_.advertise<tf2_msgs::TFMessage>("/tf", 100);
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
   scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
@@ -259,12 +257,10 @@ void SimNode::publishLocked() {
   const ros::Time stamp = stampOf(t);
   publishClockLocked();
   const auto& bodies = world_.bodies();
-  // Only what someone subscribes to is built: with a thousand bodies and nobody listening, building every
-  // message was most of the node's work. A transform is never sent twice at one stamp (listeners warn
-  // TF_REPEATED_DATA and drop it): after a reset at a publishing instant the frames move with the next one.
-  const bool tf_watched =
-      tf_watch_.getNumSubscribers() > 0 || (namespace_tf_ && namespace_tf_.getNumSubscribers() > 0);
-  if (tf_watched && stamp > last_tf_stamp_) {
+  // The transforms always (a viewer that joins finds every frame at once); a state message only for a topic
+  // with a subscriber. A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and
+  // drop it): after a reset at a publishing instant the frames move with the next one.
+  if (stamp > last_tf_stamp_) {
     tf2_msgs::TFMessage tf;
     for (std::size_t i = 0; i < bodies.size(); ++i)
       tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));

@@ -106,7 +106,6 @@ class SimNode {
 
   ros::Publisher marker_publisher_;
   ros::Publisher scene_publisher_;
-  ros::Publisher tf_watch_;  // /tf, as tf_broadcaster_ sends it: for its number of subscribers
   ros::Publisher clock_publisher_;
   ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
   ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
