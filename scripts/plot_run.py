@@ -36,9 +36,12 @@ import matplotlib
 import numpy as np
 from numpy.typing import NDArray
 
-from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec, SweepColumns, body_spec,
-                       is_sweep_header, key_unit, labelled, load_config, read_states, rod_end_below_floor,
-                       state_fields, sweep_columns)
+# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
+# runs this file from elsewhere.
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec, SweepColumns,  # noqa: E402
+                       body_spec, is_sweep_header, key_unit, labelled, load_config, read_states,
+                       rod_end_below_floor, state_fields, sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)

@@ -87,6 +87,15 @@ TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "rod.csv"));
 }
 
+TEST_F(SimulateTest, NoArgumentsExitOneWithOneLineThatPointsToHelp) {
+  const auto run = simulate("");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.err, "simulate: CONFIG is required (simulate --help lists the options)\n");
+  const auto help = simulate("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("Usage: simulate"), std::string::npos) << help.out;
+}
+
 TEST_F(SimulateTest, BadOptionsAreRefused) {
   EXPECT_NE(simulate(config("rod.yaml") + " --sample-rate 300 --out-dir " + dir_.string()).exit_code, 0);
   EXPECT_NE(simulate(config("rod.yaml") + " --duration -1 --out-dir " + dir_.string()).exit_code, 0);

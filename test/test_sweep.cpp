@@ -193,7 +193,9 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
 TEST_F(SweepTest, ResultsDoNotDependOnTheNumberOfThreads) {
   const std::string sweep =
       config("demo.yaml") + " --duration 1 --sweep rod.theta0=0:6:7 --sweep sphere.mu_s=0.15:0.6:3";
-  ASSERT_EQ(simulate(sweep + " --jobs 1 --out-dir " + (dir_ / "one").string()).exit_code, 0);
+  const auto single = simulate(sweep + " --jobs 1 --out-dir " + (dir_ / "one").string());
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  EXPECT_NE(single.out.find(" on 1 thread in "), std::string::npos) << single.out;
   const auto three = simulate(sweep + " --jobs 3 --out-dir " + (dir_ / "three").string());
   ASSERT_EQ(three.exit_code, 0) << three.err;
   EXPECT_NE(three.out.find("on 3 threads"), std::string::npos) << three.out;
@@ -213,6 +215,15 @@ TEST_F(SweepTest, ShardsConcatenateToTheWholeSweep) {
     joined += slurp(dir_ / ("sweep." + std::to_string(i) + "-of-4.csv"));
   }
   EXPECT_EQ(joined, slurp(dir_ / "sweep.csv"));
+}
+
+TEST_F(SweepTest, AnEmptyShardSaysSo) {
+  // 2 variants in 4 shards: shard 1 holds [0, 0).
+  const auto run = simulate(
+      config("rod.yaml") + " --duration 0.1 --sweep rod.theta0=0:1:2 --shard 1/4 --out-dir " + dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.out.rfind("swept none of 2 variants: this shard is empty -> ", 0), 0u) << run.out;
+  EXPECT_EQ(run.out.find("-1"), std::string::npos) << run.out;
 }
 
 TEST_F(SweepTest, ABadSweptValueIsRefusedWithOneLineAndNoOutput) {

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -47,6 +48,11 @@ void checkModes(const SweepArgs& args, const OfflineOptions& options) {
   }
 }
 
+// "1 thread", "3 threads".
+std::string counted(std::int64_t n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 void sweep(const WorldConfig& config, const SweepArgs& args, const OfflineOptions& options) {
   SweepOptions sweep;
   for (const auto& spec : args.specs) sweep.axes.push_back(parseSweepAxis(spec, config));
@@ -56,9 +62,14 @@ void sweep(const WorldConfig& config, const SweepArgs& args, const OfflineOption
   const auto result = runSweep(config, sweep, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto count = result.end - result.first;
-  std::cout << "swept " << count << " of " << result.total << " variants (" << result.first << " to "
-            << result.end - 1 << ") on " << result.jobs << " threads in " << seconds << " s ("
-            << static_cast<double>(count) / seconds << " variants/s) -> " << result.path << "\n";
+  if (count == 0) {
+    std::cout << "swept none of " << counted(result.total, "variant") << ": this shard is empty -> "
+              << result.path << "\n";
+    return;
+  }
+  std::cout << "swept " << count << " of " << counted(result.total, "variant") << " (" << result.first
+            << " to " << result.end - 1 << ") on " << counted(result.jobs, "thread") << " in " << seconds
+            << " s (" << static_cast<double>(count) / seconds << " variants/s) -> " << result.path << "\n";
 }
 
 // Replaces this process with simulate_ros on the same arguments; returns only on failure.
@@ -87,9 +98,15 @@ int runSimulate(int argc, char** argv, const SinkOpener& open_bag) {
       ->allow_extra_args(false);  // one value per --sweep, so that CONFIG may follow
   app.add_option("--jobs", sweep_args.jobs, "threads for --sweep (default 0: every core)");
   app.add_option("--shard", sweep_args.shard, "i/n: run only slice i of n of the sweep (1 <= i <= n)");
-  app.failure_message(
-      [](const CLI::App*, const CLI::Error& e) { return "simulate: " + std::string(e.what()) + "\n"; });
-  CLI11_PARSE(app, argc, argv);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "simulate: " + std::string(e.what()) + " (simulate --help lists the options)\n";
+  });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help is a ParseError too: it prints the help and exits 0; every other one is the user's mistake.
+    return app.exit(error) == 0 ? 0 : 1;
+  }
 
   try {
     checkModes(sweep_args, options);

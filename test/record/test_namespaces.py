@@ -8,6 +8,7 @@ ns:=a frame_prefix:=a/ and ns:=b frame_prefix:=b/.
 - /use_sim_time is left unset (use_sim_time:=false).
 - Each bag holds only its own instance's topics (<ns>/tf, <ns>/tf_static, <ns>/sim/markers,
   <ns>/sim/<body>/state for every body of the config), its own frames, and states from t = 0 to duration.
+- playback.launch ns:=a plays bag a's transforms on /tf and /tf_static.
 
 Usage: test_namespaces.py CONFIG.yaml   (with the package's devel space sourced)
 """
@@ -134,6 +135,21 @@ class TwoInstances(unittest.TestCase):
         for ns in INSTANCES:
             with self.subTest(ns=ns):
                 self.check_bag(ns)
+
+    def test_3_playback_in_the_namespace(self) -> None:
+        seen: Set[str] = set()
+        collect = [rospy.Subscriber(topic, TFMessage, lambda msg: seen.update(t.child_frame_id for t in msg.transforms))
+                   for topic in ("/tf", "/tf_static")]
+        try:
+            play = subprocess.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={self.bag('a')}", "ns:=a",
+                                   "rviz:=false", "delay:=1", "rate:=4"], env=self.env, stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, text=True, timeout=120)
+        finally:
+            for subscriber in collect:
+                subscriber.unregister()
+        self.assertEqual(play.returncode, 0, play.stdout[-3000:])
+        self.assertEqual({frame.split("/")[0] for frame in seen}, {"a"}, sorted(seen))
+        self.assertLessEqual({f"a/{body}" for body in self.bodies} | {"a/rod_floor"}, seen)
 
     def check_bag(self, ns: str) -> None:
         world = world_value(self.config, "world_frame")
