@@ -266,61 +266,113 @@ def node_at_rate(report: Report, ros: Ros, label: str, config: str, seconds: flo
                [min(lag[-per_second:]) - min(lag[:per_second])], "ms", "<= 1")
 
 
-def recording(report: Report, ros: Ros, out: str, config_1khz: str, seconds: float) -> None:
+def recording(report: Report, ros: Ros, out: str, config: str, publish_rate: float, seconds: float,
+              *launch_args: str) -> None:
     import rosbag
-    say(f"recording: sim.launch record:=true at publish_rate 1000, {seconds:g} s")
+    label = f"publish_rate {publish_rate:g}" + "".join(", " + a for a in launch_args)
+    say(f"recording: sim.launch record:=true, {label}, {seconds:g} s")
     bag = os.path.join(out, "record.bag")
     for stale in (bag, bag + ".active"):
         if os.path.exists(stale):
             os.remove(stale)
-    process = ros.launch("config:=" + config_1khz, "record:=true", "bag:=" + bag, f"duration:={seconds:g}")
+    process = ros.launch("config:=" + config, "record:=true", "bag:=" + bag, f"duration:={seconds:g}", *launch_args)
     try:
         process.wait(seconds + 60)
     except subprocess.TimeoutExpired:
         report.note("the recording launch did not end by itself; stopped")
         ros.stop(process)
     wait_for("the closed bag", lambda: os.path.exists(bag), 20.0, period=0.2)
-    published = int(seconds) * 1000 + 1  # t = 0, 0.001, ..., duration, per topic
+    per_second = int(round(publish_rate))
+    published = int(seconds) * per_second + 1  # t = 0, 1 / publish_rate, ..., duration, per topic
     with rosbag.Bag(bag) as b:
         info = b.get_type_and_topic_info().topics
         state_topics = sorted(t for t in info if t.endswith("/state"))
         distinct: Dict[str, Set[int]] = {t: set() for t in state_topics}
         for topic, msg, _ in b.read_messages(topics=state_topics):
-            distinct[topic].add(int(round(msg.t * 1000)))
+            distinct[topic].add(int(round(msg.t * per_second)))
     lost = [published - len(distinct[t]) for t in state_topics]
-    report.row("4 record", f"state messages lost per topic ({len(state_topics)} topics, {published} published each)",
-               lost, "msgs", "0")
-    for topic in ("/tf", "/sim/markers"):
-        if topic in info:
-            report.row("4 record", f"{topic} messages in the bag (published: {published})",
-                       [info[topic].message_count], "msgs", str(published))
-    size = os.path.getsize(bag) / seconds / 1e6
-    report.row("4 record", "bag size per simulated second", [size], "MB/s")
-    markers = info.get("/sim/markers")
-    if markers and (markers.message_count < published or any(lost)):
-        states = f"lost up to {max(lost)} state messages a topic" if any(lost) else "kept every state message"
-        share, points = marker_figures(bag)
-        report.note(f"rosbag record kept {markers.message_count} of {published} /sim/markers messages and {states}: "
-                    f"the MarkerArrays (trails of up to {points} points, at 1 kHz) make {100 * share:.0f} % of the "
-                    f"bag's {size:.0f} MB per simulated second, and rosbag's single callback queue falls behind on "
-                    f"them when the machine is busy (load average {load()})")
+    report.row("4 record", f"{label}: state messages lost per topic ({len(state_topics)} topics, {published} "
+               "published each)", lost, "msgs", "0")
+    if "/tf" in info:
+        report.row("4 record", f"{label}: /tf messages in the bag (published: {published})",
+                   [info["/tf"].message_count], "msgs", str(published))
+    for topic in ("/sim/scene", "/sim/markers"):
+        report.row("4 record", f"{label}: {topic} messages in the bag",
+                   [info[topic].message_count if topic in info else 0], "msgs")
+    size = os.path.getsize(bag) / seconds / 1e3
+    target = "<= 1500" if publish_rate >= 1000 else "<= 100"
+    report.row("4 record", f"{label}: bag size per simulated second", [size], "kB/s", target)
 
 
-def marker_figures(bag_path: str) -> Tuple[float, int]:
-    """The share of a bag's message bytes that /sim/markers holds, and the most points of a trail marker in
-    its last MarkerArray."""
-    import rosbag
-    total, markers, last = 0, 0, None
-    with rosbag.Bag(bag_path) as bag:
-        for topic, raw, _ in bag.read_messages(raw=True):  # raw: (type, bytes, md5, position, class)
-            total += len(raw[1])
-            if topic == "/sim/markers":
-                markers, last = markers + len(raw[1]), raw
-    points = 0
-    if last is not None:
-        array = last[4]().deserialize(last[1])
-        points = max((len(m.points) for m in array.markers if m.ns == "trail"), default=0)
-    return (markers / total if total else 0.0), points
+def many_bodies_config(out: str, bodies: int) -> str:
+    """demo.yaml's rod and sphere, bodies / 2 of each (one rod for one body)."""
+    import yaml
+    with open(os.path.join(ROOT, "config/demo.yaml")) as f:
+        demo = yaml.safe_load(f)
+    rod, sphere = demo["bodies"]["rod"], demo["bodies"]["sphere"]
+    demo["bodies"] = {f"rod{i}": rod for i in range((bodies + 1) // 2)}
+    demo["bodies"].update({f"sphere{i}": sphere for i in range(bodies // 2)})
+    path = os.path.join(out, f"bodies_{bodies}.yaml")
+    with open(path, "w") as f:
+        yaml.safe_dump(demo, f)
+    return path
+
+
+def many_bodies(report: Report, ros: Ros, out: str, bodies: int, seconds: float, markers: bool) -> None:
+    """Start-up (to the first state, to every reconfigure server), CPU and memory with no marker subscriber
+    and, with `markers`, the bytes per second of /sim/markers with one."""
+    from rigid_body_sim.msg import RodState
+    import rosgraph
+    import rospy
+    say(f"node: {bodies} bodies, {seconds:g} s")
+    last = f"/sim/sphere{bodies // 2 - 1}" if bodies > 1 else "/sim/rod0"
+    ros.subscribe("/sim/rod0/state", RodState)
+    start = time.time()
+    process = ros.launch("config:=" + many_bodies_config(out, bodies))
+    master = rosgraph.Master("/bench")
+    label = f"{bodies} bod{'y' if bodies == 1 else 'ies'}"
+    try:
+        pid = ros.sim_pid()
+        ros.wait_for_messages(1)
+        first_state = ros.received[0][0] - start
+
+        def servers_up() -> bool:
+            try:
+                master.lookupService(last + "/set_parameters")
+            except Exception:
+                return False
+            return True
+        wait_for("every reconfigure server", servers_up, 60.0, period=0.05)
+        report.row("7 scale", f"{label}: start-up to the first state (roslaunch included)", [first_state], "s",
+                   "< 5" if bodies >= 1000 else "")
+        report.row("7 scale", f"{label}: start-up to every reconfigure server", [time.time() - start], "s")
+        time.sleep(2.0)
+        rss_start = resident_kib(pid) / 1024.0
+        shares = []
+        for _ in range(3):
+            wall0, cpu0 = time.time(), cpu_seconds(pid)
+            time.sleep(seconds / 3)
+            shares.append(100.0 * (cpu_seconds(pid) - cpu0) / (time.time() - wall0))
+        report.row("7 scale", f"{label}: CPU, no marker subscriber (3 windows of {seconds / 3:g} s)", shares, "%",
+                   "<= 5" if bodies >= 1000 else "")
+        if markers:
+            sizes: List[int] = []
+            sub = rospy.Subscriber("/sim/markers", rospy.AnyMsg, lambda m: sizes.append(len(m._buff)),
+                                   queue_size=1000)
+            time.sleep(2.0)
+            rates = []
+            for _ in range(3):
+                wall0, first = time.time(), len(sizes)
+                time.sleep(seconds / 3)
+                rates.append(sum(sizes[first:]) / (time.time() - wall0) / 1e3)
+            sub.unregister()
+            report.row("7 scale", f"{label}: /sim/markers with a subscriber (3 windows of {seconds / 3:g} s)", rates,
+                       "kB/s", "<= 1000" if bodies == 100 else "")
+        report.row("7 scale", f"{label}: resident memory, start -> end",
+                   [resident_kib(pid) / 1024.0 - rss_start], "MiB", "~ 0")
+    finally:
+        ros.unsubscribe()
+        ros.stop(process)
 
 
 def faster_than_real_time(report: Report, ros: Ros, build: str, out: str, seconds: float) -> None:
@@ -411,6 +463,8 @@ def main() -> int:
     parser.add_argument("build", help="the Release build folder (its devel/setup.bash sourced)")
     parser.add_argument("--quick", action="store_true", help="node runs of 12 s instead of 60, for a try-out")
     parser.add_argument("--doc", default=DOC, help="the Markdown file whose marked section gets the table")
+    parser.add_argument("--node-only", action="store_true",
+                        help="the node, recording and scale sections only; the doc is left as it is")
     args = parser.parse_args()
     build = os.path.abspath(args.build)
     out = os.path.join(build, "bench-out")
@@ -418,17 +472,22 @@ def main() -> int:
     node_seconds = 12 if args.quick else 60
     start = time.time()
     report = Report()
-    core_times = core(report, build, out)
-    text_program(report, build, out, core_times)
-    sweeps(report, build, out)
+    if not args.node_only:
+        core_times = core(report, build, out)
+        text_program(report, build, out, core_times)
+        sweeps(report, build, out)
     config_1khz = os.path.join(out, "demo_1khz.yaml")
     write_with_publish_rate(os.path.join(ROOT, "config/demo.yaml"), config_1khz, 1000.0)
     ros = Ros(out)
     try:
         demo = os.path.join(ROOT, "config/demo.yaml")
-        node_at_rate(report, ros, "50 Hz publishing", demo, node_seconds, 6, 20.0, "<= 3")
+        node_at_rate(report, ros, "50 Hz publishing", demo, node_seconds, 6, 20.0, "<= 0.6")
         node_at_rate(report, ros, "1000 Hz publishing", config_1khz, node_seconds, 6, 1.0, "<= 15")
-        recording(report, ros, out, config_1khz, node_seconds)
+        recording(report, ros, out, demo, 50.0, 60.0, "real_time_factor:=0")
+        recording(report, ros, out, demo, 50.0, 60.0, "real_time_factor:=0", "record_in_node:=true")
+        recording(report, ros, out, config_1khz, 1000.0, node_seconds)
+        for bodies in (1, 100, 1000):
+            many_bodies(report, ros, out, bodies, node_seconds / 2, markers=bodies == 100)
         faster_than_real_time(report, ros, build, out, 9)
     finally:
         ros.close()
@@ -436,8 +495,9 @@ def main() -> int:
     print(text)
     with open(os.path.join(out, "bench.md"), "w") as f:
         f.write(text + "\n")
-    write_into_doc(args.doc, text)
-    print(f"bench: the table is in {args.doc}", file=sys.stderr)
+    if not args.node_only:
+        write_into_doc(args.doc, text)
+        print(f"bench: the table is in {args.doc}", file=sys.stderr)
     return 0
 
 

@@ -61,6 +61,26 @@ TEST(NodeOptions, ABadOptionIsRefusedInOneLine) {
   EXPECT_NE(refusal(long_delay).find("'start_delay'"), std::string::npos);
 }
 
+TEST(NodeOptions, TheMarkerRateIsAtMostThePublishRate) {
+  XmlRpc::XmlRpcValue params = oneRod();
+  EXPECT_EQ(markerRate(parseNodeOptions(params), 50.0), 10.0);
+  EXPECT_EQ(markerRate(parseNodeOptions(params), 4.0), 4.0) << "the default, no more than publish_rate";
+  params["marker_rate"] = 25.0;
+  params["trail_length"] = 0.0;
+  const NodeOptions options = parseNodeOptions(params);
+  EXPECT_EQ(markerRate(options, 50.0), 25.0);
+  EXPECT_EQ(options.trail_length, 0.0);
+  EXPECT_EQ(
+      test::refusalOf([&] { markerRate(options, 20.0); }),
+      "body '(node)', key 'marker_rate': value 25 is not allowed (allowed: a finite number in (0, 20] (at "
+      "most publish_rate))");
+  params["marker_rate"] = 0.0;
+  EXPECT_NE(refusal(params).find("'marker_rate'"), std::string::npos);
+  params["marker_rate"] = 10.0;
+  params["trail_length"] = -1.0;
+  EXPECT_NE(refusal(params).find("'trail_length'"), std::string::npos);
+}
+
 TEST(NodeOptions, FramePrefixIsEmptyByDefaultAndAPrefixOfFrameIds) {
   XmlRpc::XmlRpcValue params = oneRod();
   EXPECT_EQ(parseNodeOptions(params).frame_prefix, "");

@@ -1,5 +1,6 @@
 #include "rigid_body_sim/node/sim_node.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -72,20 +73,32 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       world_(parseNodeConfig(start_params_), node_interface::ownNames()),
       guard_(world_.bodies()),
       steps_per_publish_(std::llround(world_.rate() / world_.config().publish_rate)),
+      steps_per_markers_(
+          steps_per_publish_ *
+          std::max<std::int64_t>(1, std::llround(world_.config().publish_rate /
+                                                 markerRate(options_, world_.config().publish_rate)))),
       pacer_(world_.rate(), options_.real_time_factor) {
   checkFrames(options_, world_.config());
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
-  snapshots_ =
-      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
+  const TrailOptions trail{options_.trail_length, markerRate(options_, world_.config().publish_rate)};
+  snapshots_ = std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix,
+                                                 world_.bodies(), trail);
   for (const auto& note : autoSubstepNotes(world_.config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world_.config())) ROS_WARN_STREAM(warning);
+  if (!options_.bag.empty()) {
+    try {
+      recorder_ = std::make_unique<BagRecorder>(options_.bag, world_.config(), world_.bodies(),
+                                                private_node_.getNamespace(), options_.frame_prefix);
+    } catch (const rosbag::BagException& error) {
+      throw ConfigError("cannot write the bag '" + options_.bag + "': " + error.what());
+    }
+  }
   advertise();
   WorldCommand start;
   start.kind = WorldCommand::Kind::Config;
   start.world = world_.config();
   publishCommandLocked(start);  // nothing runs yet: no lock to take
-  for (const auto& body : world_.config().bodies) startReconfigureServer(body);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
@@ -104,6 +117,7 @@ SimNode::~SimNode() {
 void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
+  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   if (node_.getNamespace() != "/") {
     namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
@@ -111,7 +125,7 @@ void SimNode::advertise() {
   }
   command_publisher_ =
       private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
-  for (const auto& body : world_.bodies()) state_publishers_.push_back(advertiseState(body));
+  for (const auto& body : world_.bodies()) advertiseState(body);
   services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
   services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
   services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
@@ -122,10 +136,42 @@ void SimNode::advertise() {
   services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
 }
 
-ros::Publisher SimNode::advertiseState(const Body& body) {
+// A body's state publisher, its subscribers counted as they come and go: Publisher::getNumSubscribers
+// looks the topic up among all of the node's publications, and once per body per publication that was most
+// of the node's work with a thousand bodies.
+void SimNode::advertiseState(const Body& body) {
+  auto count = std::make_shared<std::atomic<int>>(0);
+  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
+  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
   const std::string topic = node_interface::stateTopic(body.name);
-  if (kindOf(body) == BodyKind::Rod) return private_node_.advertise<RodState>(topic, kStateQueue);
-  return private_node_.advertise<RollerState>(topic, kStateQueue);
+  state_publishers_.push_back(
+      kindOf(body) == BodyKind::Rod
+          ? private_node_.advertise<RodState>(topic, kStateQueue, connected, disconnected)
+          : private_node_.advertise<RollerState>(topic, kStateQueue, connected, disconnected));
+  state_subscribers_.push_back(std::move(count));
+}
+
+// Called once stepping has started: each server takes some 40 calls to the master, and the first states
+// need not wait for a thousand bodies' servers. A body spawned meanwhile has its own already; one deleted
+// meanwhile gets none.
+void SimNode::startReconfigureServers() {
+  std::vector<std::string> names;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& body : world_.config().bodies) names.push_back(body.name);
+  }
+  for (const auto& name : names) {
+    if (!ros::ok() || stopping_) return;
+    std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);  // applyCommand's order
+    BodyConfig body;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const std::size_t index = indexIn(world_.config(), name);
+      if (index == world_.config().bodies.size() || servers_.count(name)) continue;
+      body = world_.config().bodies[index];
+    }
+    startReconfigureServer(body);
+  }
 }
 
 // The body's values go to its server before its callback is set, so that they win over the .cfg defaults;
@@ -222,20 +268,24 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
 }
 
 void SimNode::publishCommandLocked(const WorldCommand& command) {
-  command_publisher_.publish(toMessage(command, commands_published_++, world_.time(), stampOf(world_.time()),
-                                       world_.config().world_frame));
+  const auto message = toMessage(command, commands_published_++, world_.time(), stampOf(world_.time()),
+                                 world_.config().world_frame);
+  command_publisher_.publish(message);
+  // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
+  if (recorder_ && message.header.seq > 0) recorder_->writeCommand(message);
 }
 
 void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
   const std::size_t index = indexIn(before, command.body);
   switch (command.kind) {
     case WorldCommand::Kind::Spawn:
-      state_publishers_.push_back(advertiseState(world_.bodies().back()));
+      advertiseState(world_.bodies().back());
       guard_.add(world_.bodies().back());
       rebuildSceneLocked();
       return;
     case WorldCommand::Kind::Delete:
       state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
+      state_subscribers_.erase(state_subscribers_.begin() + static_cast<std::ptrdiff_t>(index));
       guard_.remove(index);
       rebuildSceneLocked();
       return;
@@ -251,7 +301,10 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
     case WorldCommand::Kind::Reset:
       world_.takeEvents();
       guard_.releaseAll(world_.bodies());
-      rebuildSceneLocked();  // trails start anew
+      // Trails start anew: the viewer drops the old ones.
+      snapshots_->scene().clearTrails();
+      if (markers_watched_)
+        marker_publisher_.publish(snapshots_->scene().clearMarkers(stampOf(world_.time())));
       return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
@@ -265,13 +318,6 @@ void SimNode::followWorldServers(const WorldCommand& command) {
   if (server.rod) server.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
   if (server.roller)
     server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
-}
-
-// The scene is rebuilt from the bodies there are now: static frames and markers anew (DELETEALL first).
-void SimNode::rebuildSceneLocked() {
-  snapshots_ =
-      std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix, world_.bodies());
-  publishStaticLocked();
 }
 
 // A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
@@ -441,28 +487,63 @@ void SimNode::publishLocked() {
   const double t = world_.time();
   const ros::Time stamp = stampOf(t);
   publishClockLocked();
-  const Snapshot snapshot = snapshots_->build(t, stamp, world_.bodies());
-  // A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset
-  // at a publishing instant the bodies' frames move with the next publication.
+  const auto& bodies = world_.bodies();
+  // The transforms always (a viewer that joins finds every frame at once); a state message only for a topic
+  // with a subscriber. A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and
+  // drop it): after a reset at a publishing instant the frames move with the next one.
   if (stamp > last_tf_stamp_) {
-    tf_broadcaster_.sendTransform(snapshot.tf.transforms);
-    if (namespace_tf_) namespace_tf_.publish(snapshot.tf);
+    tf2_msgs::TFMessage tf;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+      tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
+    tf_broadcaster_.sendTransform(tf.transforms);
+    if (namespace_tf_) namespace_tf_.publish(tf);
     last_tf_stamp_ = stamp;
   }
-  marker_publisher_.publish(snapshot.markers);
-  for (std::size_t i = 0; i < snapshot.states.size(); ++i) {
-    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); }, snapshot.states[i]);
+  publishMarkersLocked(stamp);
+  if (recorder_) recorder_->write(world_);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (*state_subscribers_[i] <= 0) continue;
+    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); },
+               snapshots_->state(i, t, stamp, bodies[i]));
   }
   last_published_step_ = world_.stepCount();
 }
 
-void SimNode::publishStaticLocked() {
-  const ros::Time stamp = stampOf(world_.time());
+void SimNode::publishMarkersLocked(const ros::Time& stamp) {
+  Scene& scene = snapshots_->scene();
+  const bool watched = marker_publisher_.getNumSubscribers() > 0;
+  if (!watched) {
+    if (markers_watched_) scene.clearTrails();  // a viewer that comes sees trails from then on
+    markers_watched_ = false;
+    return;
+  }
+  markers_watched_ = true;
+  scene.sample(world_.bodies());
+  if (world_.stepCount() % steps_per_markers_ == 0) {
+    marker_publisher_.publish(scene.changes(stamp, world_.bodies()));
+  }
+}
+
+void SimNode::publishStaticTransformsLocked() {
   tf2_msgs::TFMessage fixed;
-  fixed.transforms = snapshots_->staticTransforms(stamp);
+  fixed.transforms = snapshots_->staticTransforms(stampOf(world_.time()));
   static_broadcaster_.sendTransform(fixed.transforms);
   if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
-  marker_publisher_.publish(snapshots_->restartMarkers(stamp));
+}
+
+void SimNode::publishSceneLocked() {
+  publishStaticTransformsLocked();
+  scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+}
+
+// The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
+// when it changed; trails are kept by body name.
+void SimNode::rebuildSceneLocked() {
+  if (snapshots_->scene().rebuild(world_.bodies())) {
+    scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+  }
+  publishStaticTransformsLocked();
+  if (recorder_) recorder_->rebuild(world_.bodies(), world_.time());
 }
 
 void SimNode::stepLoop() {
@@ -473,7 +554,7 @@ void SimNode::stepLoop() {
   wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
                  [this] { return stopping_.load(); });
   anchorLocked();
-  publishStaticLocked();
+  publishSceneLocked();
   if (last_published_step_ != world_.stepCount()) publishLocked();  // unless a command published it
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
   while (!stopping_ && ros::ok()) {
@@ -537,11 +618,13 @@ int SimNode::run() {
   spinner.start();
   stepper_ = std::thread([this] { stepLoop(); });
   watcher_ = std::thread([this] { watchMaster(); });
+  startReconfigureServers();
   ros::waitForShutdown();
   stopping_ = true;
   wake_.notify_all();
   stepper_.join();
   watcher_.join();
+  if (recorder_) recorder_->commit();
   return exit_status_;
 }
 

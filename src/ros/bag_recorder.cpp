@@ -1,5 +1,6 @@
 #include "rigid_body_sim/ros/bag_recorder.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <boost/make_shared.hpp>
@@ -15,8 +16,22 @@ std::string stateTopic(const std::string& node_namespace, const std::string& bod
   return node_namespace + "/" + node_interface::stateTopic(body);
 }
 
-std::string markerTopic(const std::string& node_namespace) {
-  return node_namespace + "/" + node_interface::kMarkers;
+std::string nodeTopic(const std::string& node_namespace, const char* name) {
+  return node_namespace + "/" + name;
+}
+
+// rosbag stores a given connection header as it is: without type, md5sum and definition, Python's rosbag
+// (rosbag info, scripts) cannot read the bag. Latched: a player hands the message to late subscribers as a
+// live node would.
+template <class Message>
+boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["type"] = ros::message_traits::datatype<Message>();
+  (*header)["md5sum"] = ros::message_traits::md5sum<Message>();
+  (*header)["message_definition"] = ros::message_traits::definition<Message>();
+  (*header)["latching"] = "1";
+  (*header)["callerid"] = callerid;
+  return header;
 }
 
 // The connection header of a latched topic (as /tf_static and ~commands are).
@@ -34,8 +49,11 @@ boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
-                         std::string node_namespace)
-    : path_(path), node_namespace_(std::move(node_namespace)), snapshots_(config.world_frame, "", bodies) {
+                         std::string node_namespace, std::string frame_prefix)
+    : path_(path),
+      node_namespace_(std::move(node_namespace)),
+      snapshots_(config.world_frame, std::move(frame_prefix), bodies),
+      marker_rate_(TrailOptions().pieces_rate) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
   // /tf_static is latched: a player hands it to late subscribers as a live node would.
@@ -51,7 +69,8 @@ BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, con
   tf2_msgs::TFMessage message;
   message.transforms = snapshots_.staticTransforms(start);
   bag_.write("/tf_static", start, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
-  bag_.write(markerTopic(node_namespace_), start, snapshots_.staticMarkers(start));
+  bag_.write(nodeTopic(node_namespace_, node_interface::kScene), start, snapshots_.scene().sceneMarkers(),
+             latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
 }
 
 BagRecorder::~BagRecorder() {
@@ -64,11 +83,35 @@ void BagRecorder::write(const World& world) {
   const ros::Time stamp = simStamp(t);
   const Snapshot snapshot = snapshots_.build(t, stamp, world.bodies());
   bag_.write("/tf", stamp, snapshot.tf);
-  bag_.write(markerTopic(node_namespace_), stamp, snapshot.markers);
+  // The trails grow at every sample and are written at the marker rate, as the node publishes them.
+  Scene& scene = snapshots_.scene();
+  scene.sample(world.bodies());
+  const auto marker_instant = static_cast<long long>(std::floor(t * marker_rate_ + 1e-9));
+  if (marker_instant > last_marker_instant_) {
+    bag_.write(nodeTopic(node_namespace_, node_interface::kMarkers), stamp,
+               scene.changes(stamp, world.bodies()));
+    last_marker_instant_ = marker_instant;
+  }
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
     const std::string topic = stateTopic(node_namespace_, world.bodies()[i].name);
     std::visit([&](const auto& msg) { bag_.write(topic, stamp, msg); }, snapshot.states[i]);
   }
+}
+
+void BagRecorder::writeCommand(const rigid_body_sim::Command& command) {
+  bag_.write(node_namespace_ + "/" + node_interface::kCommands, simStamp(command.t), command,
+             latchedHeader<rigid_body_sim::Command>(node_namespace_));
+}
+
+void BagRecorder::rebuild(const std::vector<Body>& bodies, double t) {
+  const ros::Time stamp = simStamp(t);
+  if (snapshots_.scene().rebuild(bodies)) {
+    bag_.write(nodeTopic(node_namespace_, node_interface::kScene), stamp, snapshots_.scene().sceneMarkers(),
+               latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
+  }
+  tf2_msgs::TFMessage message;
+  message.transforms = snapshots_.staticTransforms(stamp);
+  bag_.write("/tf_static", stamp, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
 }
 
 void BagRecorder::commit() {

@@ -106,7 +106,25 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
   options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
   options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
   options.frame_prefix = framePrefixOption(yaml, names::kFramePrefix);
+  if (yaml[names::kMarkerRate]) {
+    options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});
+  }
+  options.trail_length = numberOption(yaml, names::kTrailLength, options.trail_length, {0.0, 3600.0});
+  if (yaml[names::kBag]) {
+    if (!yaml[names::kBag].IsScalar()) throw ConfigError(kNode, names::kBag, "(not a text)", "a file path");
+    options.bag = yaml[names::kBag].Scalar();
+  }
   return options;
+}
+
+double markerRate(const NodeOptions& options, double publish_rate) {
+  if (!options.marker_rate) return std::min(TrailOptions().pieces_rate, publish_rate);
+  const Range range{0.0, publish_rate, true};
+  if (!range.contains(*options.marker_rate)) {
+    throw ConfigError(kNode, node_interface::kMarkerRate, formatNumber(*options.marker_rate),
+                      range.describe() + " (at most publish_rate)");
+  }
+  return *options.marker_rate;
 }
 
 void checkFrames(const NodeOptions& options, const WorldConfig& config) {

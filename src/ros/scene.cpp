@@ -91,6 +91,11 @@ visualization_msgs::Marker marker(const char* ns, int id, int type, const std::s
   return m;
 }
 
+// A marker of the latched scene: stamped 0 (the latest transform), so that a late viewer draws it at once.
+visualization_msgs::Marker sceneMarker(const char* ns, int id, int type, const std::string& frame) {
+  return marker(ns, id, type, frame, ros::Time());
+}
+
 // A plane frame whose y axis is the world's z, tilted down by `tilt` about its own z.
 Eigen::Isometry3d uprightPlane(const Eigen::Vector3d& origin, double tilt) {
   Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
@@ -108,12 +113,11 @@ double laneSpacing(const std::vector<Body>& bodies) {
   return std::max(kMinLaneSpacing, kLaneRadii * largest_radius);
 }
 
-visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id,
-                                             const ros::Time& stamp) {
+visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id) {
   const RollerParams& p = std::get<Roller>(body.model).params();
   const double d = 2.0 * p.radius;
   if (p.shape == Shape::Ring) {
-    auto ring = marker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame, stamp);
+    auto ring = sceneMarker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame);
     ring.scale.x = kRingWidth * p.radius;
     for (int i = 0; i <= kRingSegments; ++i) {
       const double a = 2.0 * kPi * i / kRingSegments;
@@ -122,42 +126,42 @@ visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string
     return ring;
   }
   const bool cylinder = p.shape == Shape::Cylinder;
-  auto shape = marker(kNsBody, id,
-                      cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
-                      frame, stamp);
+  auto shape = sceneMarker(
+      kNsBody, id, cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
+      frame);
   shape.scale.x = shape.scale.y = d;
   shape.scale.z = cylinder ? kCylinderLength * d : d;
   return shape;
 }
 
-visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id,
-                                      const ros::Time& stamp) {
+// Drawn in the body's own frame and locked to it: TF moves it, not the marker stream.
+visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id) {
   visualization_msgs::Marker m;
   if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    m = marker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame, stamp);
+    m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame);
     // A marker cylinder lies along its z; the rod lies along its frame's x.
     m.pose.orientation.y = std::sin(kPi / 4);
     m.pose.orientation.w = std::cos(kPi / 4);
     m.scale.x = m.scale.y = kRodThickness;
     m.scale.z = rod->params().length;
   } else {
-    m = rollerShapeMarker(body, frame, id, stamp);
+    m = rollerShapeMarker(body, frame, id);
   }
   m.color = bodyColour(body);
+  m.frame_locked = true;
   return m;
 }
 
 // A dark bar through the centre along the body's x: it turns with the body, so rolling and slipping
-// can be told apart at a glance.
-visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id,
-                                       const ros::Time& stamp) {
+// can be told apart at a glance. A roller's only.
+visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id) {
   const double r = radiusOf(body);
-  auto spoke = marker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame, stamp);
+  auto spoke = sceneMarker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame);
   spoke.scale.x = kSpokeLength * r;
   spoke.scale.y = kSpokeWidth * r;
   spoke.scale.z = kSpokeLength * r;
   spoke.color = kSpokeColour;
-  if (std::holds_alternative<Rod>(body.model)) spoke.action = visualization_msgs::Marker::DELETE;
+  spoke.frame_locked = true;
   return spoke;
 }
 
@@ -168,6 +172,61 @@ std::string labelText(const Body& body) {
     return body.name + ": " + toString(roller->mode()) + ", " + energy;
   }
   return body.name + ": " + energy;
+}
+
+visualization_msgs::Marker floorMarker(const std::string& world_frame,
+                                       const std::vector<BodyPlacement>& placements) {
+  double min_y = 0.0;
+  double max_y = 0.0;
+  for (const auto& placement : placements) {
+    min_y = std::min(min_y, placement.world_from_frame.translation().y());
+    max_y = std::max(max_y, placement.world_from_frame.translation().y());
+  }
+  auto floor = sceneMarker(kNsFloor, 0, visualization_msgs::Marker::CUBE, world_frame);
+  floor.pose.position.x = kFloorLength / 2 - kFloorBehind;
+  floor.pose.position.y = (min_y + max_y) / 2;
+  floor.pose.position.z = -kFloorThickness / 2;
+  floor.scale.x = kFloorLength;
+  floor.scale.y = max_y - min_y + 2 * kFloorMargin;
+  floor.scale.z = kFloorThickness;
+  floor.color = kFloorColour;
+  return floor;
+}
+
+// A rod's bounded floor: a darker strip over x in [0, floor_length] of its floor frame (ids after the
+// floor's 0).
+visualization_msgs::Marker boundedFloorMarker(const BodyPlacement& placement, int id) {
+  const double floor_length = placement.floor_length;
+  auto strip = sceneMarker(kNsFloor, id, visualization_msgs::Marker::CUBE, placement.frame);
+  strip.pose.position.x = floor_length / 2;
+  strip.pose.position.y = kBoundedFloorRaise - kFloorThickness / 2;
+  strip.scale.x = floor_length;
+  strip.scale.y = kFloorThickness;
+  strip.scale.z = kBoundedFloorWidth;
+  strip.color = kBoundedFloorColour;
+  return strip;
+}
+
+visualization_msgs::Marker slopeMarker(const BodyPlacement& placement, int id) {
+  const double length = placement.slope_length;
+  auto slope = sceneMarker(kNsSlope, id, visualization_msgs::Marker::CUBE, placement.frame);
+  slope.pose.position.x = length / 2;
+  slope.pose.position.y = -kSlopeThickness / 2;
+  slope.scale.x = length;
+  slope.scale.y = kSlopeThickness;
+  slope.scale.z = kSlopeWidth;
+  slope.color = kSlopeColour;
+  return slope;
+}
+
+visualization_msgs::Marker deleteAll(const std::string& frame, const ros::Time& stamp) {
+  auto m = marker("", 0, visualization_msgs::Marker::CUBE, frame, stamp);
+  m.action = visualization_msgs::Marker::DELETEALL;
+  return m;
+}
+
+Eigen::Vector3d worldPosition(const BodyPlacement& placement, const Body& body) {
+  return (placement.world_from_frame * frameFromBody(body)).translation();
 }
 
 }  // namespace
@@ -206,92 +265,115 @@ Eigen::Isometry3d frameFromBody(const Body& body) {
   return pose;
 }
 
-Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-             std::size_t trail_points)
-    : world_frame_(std::move(world_frame)),
-      frame_prefix_(std::move(frame_prefix)),
-      placements_(placeBodies(bodies, frame_prefix_)),
-      trail_points_(trail_points),
-      trails_(bodies.size()) {}
+int TrailOptions::ring() const {
+  if (seconds <= 0.0) return 0;
+  return std::max(1, static_cast<int>(std::ceil(seconds * pieces_rate - 1e-9)));
+}
 
-visualization_msgs::MarkerArray Scene::fixedMarkers(const ros::Time& stamp) const {
-  visualization_msgs::MarkerArray array;
-  double min_y = 0.0;
-  double max_y = 0.0;
-  for (const auto& placement : placements_) {
-    min_y = std::min(min_y, placement.world_from_frame.translation().y());
-    max_y = std::max(max_y, placement.world_from_frame.translation().y());
+Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
+             TrailOptions trail)
+    : world_frame_(std::move(world_frame)), frame_prefix_(std::move(frame_prefix)), trail_options_(trail) {
+  rebuild(bodies);
+}
+
+Scene::Trail& Scene::trailOf(const std::string& body) {
+  auto found = trails_.find(body);
+  if (found != trails_.end()) return found->second;
+  Trail& trail = trails_[body];
+  trail.slot = next_slot_++;
+  return trail;
+}
+
+bool Scene::rebuild(const std::vector<Body>& bodies) {
+  placements_ = placeBodies(bodies, frame_prefix_);
+  std::map<std::string, Trail> kept;
+  for (const auto& body : bodies) kept[body.name] = trailOf(body.name);
+  for (const auto& [name, trail] : trails_) {
+    if (!kept.count(name)) removed_slots_.push_back(trail.slot);
   }
-  auto floor = marker(kNsFloor, 0, visualization_msgs::Marker::CUBE, world_frame_, stamp);
-  floor.pose.position.x = kFloorLength / 2 - kFloorBehind;
-  floor.pose.position.y = (min_y + max_y) / 2;
-  floor.pose.position.z = -kFloorThickness / 2;
-  floor.scale.x = kFloorLength;
-  floor.scale.y = max_y - min_y + 2 * kFloorMargin;
-  floor.scale.z = kFloorThickness;
-  floor.color = kFloorColour;
-  array.markers.push_back(floor);
-  for (std::size_t i = 0; i < placements_.size(); ++i) {
-    // A rod's bounded floor: a darker strip over x in [0, floor_length] of its floor frame.
-    const double floor_length = placements_[i].floor_length;
-    if (floor_length > 0.0) {
-      auto strip = marker(kNsFloor, static_cast<int>(i) + 1, visualization_msgs::Marker::CUBE,
-                          placements_[i].frame, stamp);
-      strip.pose.position.x = floor_length / 2;
-      strip.pose.position.y = kBoundedFloorRaise - kFloorThickness / 2;
-      strip.scale.x = floor_length;
-      strip.scale.y = kFloorThickness;
-      strip.scale.z = kBoundedFloorWidth;
-      strip.color = kBoundedFloorColour;
-      array.markers.push_back(strip);
+  trails_ = std::move(kept);
+
+  visualization_msgs::MarkerArray scene;
+  scene.markers.push_back(deleteAll(world_frame_, ros::Time()));
+  scene.markers.push_back(floorMarker(world_frame_, placements_));
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const int id = trails_.at(bodies[i].name).slot;
+    const std::string frame = bodyFrame(bodies[i]);
+    if (placements_[i].floor_length > 0.0)
+      scene.markers.push_back(boundedFloorMarker(placements_[i], id + 1));
+    if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
+    scene.markers.push_back(bodyMarker(bodies[i], frame, id));
+    if (std::holds_alternative<Roller>(bodies[i].model))
+      scene.markers.push_back(spokeMarker(bodies[i], frame, id));
+  }
+  if (scene == scene_) return false;
+  scene_ = std::move(scene);
+  return true;
+}
+
+void Scene::sample(const std::vector<Body>& bodies) {
+  if (trail_options_.ring() == 0) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    trailOf(bodies[i].name).pending.push_back(worldPosition(placements_[i], bodies[i]));
+  }
+}
+
+visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std::vector<Body>& bodies) {
+  visualization_msgs::MarkerArray array;
+  const int ring = trail_options_.ring();
+  for (const int slot : removed_slots_) {
+    for (int k = 0; k < ring; ++k) {
+      auto gone =
+          marker(kNsTrail, slot * ring + k, visualization_msgs::Marker::LINE_STRIP, world_frame_, stamp);
+      gone.action = visualization_msgs::Marker::DELETE;
+      array.markers.push_back(gone);
     }
-    const double length = placements_[i].slope_length;
-    if (length <= 0.0) continue;
-    auto slope =
-        marker(kNsSlope, static_cast<int>(i), visualization_msgs::Marker::CUBE, placements_[i].frame, stamp);
-    slope.pose.position.x = length / 2;
-    slope.pose.position.y = -kSlopeThickness / 2;
-    slope.scale.x = length;
-    slope.scale.y = kSlopeThickness;
-    slope.scale.z = kSlopeWidth;
-    slope.color = kSlopeColour;
-    array.markers.push_back(slope);
+    auto label = marker(kNsLabel, slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
+    label.action = visualization_msgs::Marker::DELETE;
+    array.markers.push_back(label);
+  }
+  removed_slots_.clear();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const Body& body = bodies[i];
+    Trail& trail = trailOf(body.name);
+    if (!trail.pending.empty()) {
+      auto piece = marker(kNsTrail, trail.slot * ring + static_cast<int>(trail.pieces % ring),
+                          visualization_msgs::Marker::LINE_STRIP, world_frame_, stamp);
+      piece.scale.x = kTrailWidth;
+      piece.color = bodyColour(body);
+      piece.color.a = kTrailAlpha;
+      if (trail.last) piece.points.push_back(toPoint(*trail.last));
+      for (const auto& point : trail.pending) piece.points.push_back(toPoint(point));
+      trail.last = trail.pending.back();
+      trail.pending.clear();
+      // A strip needs two points: a first piece of one point is only where the next one starts.
+      if (piece.points.size() >= 2) {
+        array.markers.push_back(std::move(piece));
+        ++trail.pieces;
+      }
+    }
+    auto label =
+        marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
+    label.pose.position =
+        toPoint(worldPosition(placements_[i], body) + Eigen::Vector3d(0, 0, radiusOf(body) + kLabelAbove));
+    label.scale.z = kLabelHeight;
+    label.color = kLabelColour;
+    label.text = labelText(body);
+    array.markers.push_back(std::move(label));
   }
   return array;
 }
 
-void Scene::addBodyMarkers(std::size_t index, const Body& body, const Eigen::Isometry3d& world_from_body,
-                           const ros::Time& stamp, visualization_msgs::MarkerArray& markers) {
-  const int id = static_cast<int>(index);
-  auto& trail = trails_[index];
-  trail.push_back(world_from_body.translation());
-  while (trail.size() > trail_points_) trail.pop_front();
-  auto trail_marker = marker(kNsTrail, id, visualization_msgs::Marker::LINE_STRIP, world_frame_, stamp);
-  trail_marker.scale.x = kTrailWidth;
-  trail_marker.color = bodyColour(body);
-  trail_marker.color.a = kTrailAlpha;
-  for (const auto& point : trail) trail_marker.points.push_back(toPoint(point));
-
-  auto label = marker(kNsLabel, id, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-  label.pose.position =
-      toPoint(world_from_body.translation() + Eigen::Vector3d(0, 0, radiusOf(body) + kLabelAbove));
-  label.scale.z = kLabelHeight;
-  label.color = kLabelColour;
-  label.text = labelText(body);
-
-  markers.markers.push_back(bodyMarker(body, bodyFrame(body), id, stamp));
-  markers.markers.push_back(spokeMarker(body, bodyFrame(body), id, stamp));
-  markers.markers.push_back(trail_marker);
-  markers.markers.push_back(label);
+void Scene::clearTrails() {
+  for (auto& [name, trail] : trails_) {
+    trail.pending.clear();
+    trail.last.reset();
+  }
 }
 
-visualization_msgs::MarkerArray Scene::restartMarkers(const ros::Time& stamp) {
-  for (auto& trail : trails_) trail.clear();
+visualization_msgs::MarkerArray Scene::clearMarkers(const ros::Time& stamp) const {
   visualization_msgs::MarkerArray array;
-  auto delete_all = marker("", 0, visualization_msgs::Marker::CUBE, world_frame_, stamp);
-  delete_all.action = visualization_msgs::Marker::DELETEALL;
-  array.markers.push_back(delete_all);
-  for (const auto& m : fixedMarkers(stamp).markers) array.markers.push_back(m);
+  array.markers.push_back(deleteAll(world_frame_, stamp));
   return array;
 }
 

@@ -3,8 +3,8 @@
 namespace rigid_body_sim {
 
 SnapshotBuilder::SnapshotBuilder(std::string world_frame, std::string frame_prefix,
-                                 const std::vector<Body>& bodies, std::size_t trail_points)
-    : scene_(std::move(world_frame), std::move(frame_prefix), bodies, trail_points) {}
+                                 const std::vector<Body>& bodies, TrailOptions trail)
+    : scene_(std::move(world_frame), std::move(frame_prefix), bodies, trail) {}
 
 std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(const ros::Time& stamp) const {
   std::vector<geometry_msgs::TransformStamped> transforms;
@@ -15,29 +15,29 @@ std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(c
   return transforms;
 }
 
-visualization_msgs::MarkerArray SnapshotBuilder::staticMarkers(const ros::Time& stamp) const {
-  return scene_.fixedMarkers(stamp);
+geometry_msgs::TransformStamped SnapshotBuilder::transform(std::size_t i, const ros::Time& stamp,
+                                                           const Body& body) const {
+  const Eigen::Isometry3d world_from_body = scene_.placements()[i].world_from_frame * frameFromBody(body);
+  return toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp);
 }
 
-Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) {
+StateMsg SnapshotBuilder::state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const {
+  StateMsg state = toStateMsg(t, body);
+  std::visit(
+      [&](auto& msg) {
+        msg.header.stamp = stamp;
+        msg.header.frame_id = scene_.placements()[i].frame;
+      },
+      state);
+  return state;
+}
+
+Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const {
   Snapshot snapshot;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body& body = bodies[i];
-    const BodyPlacement& placement = scene_.placements()[i];
-    const Eigen::Isometry3d world_from_body = placement.world_from_frame * frameFromBody(body);
-    snapshot.tf.transforms.push_back(
-        toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp));
-    scene_.addBodyMarkers(i, body, world_from_body, stamp, snapshot.markers);
-    snapshot.states.push_back(toStateMsg(t, body));
-    std::visit(
-        [&](auto& msg) {
-          msg.header.stamp = stamp;
-          msg.header.frame_id = placement.frame;
-        },
-        snapshot.states.back());
+    snapshot.tf.transforms.push_back(transform(i, stamp, bodies[i]));
+    snapshot.states.push_back(state(i, t, stamp, bodies[i]));
   }
-  // The floor and slopes too, every time: an rviz started after the node still sees them (a few markers).
-  for (const auto& m : scene_.fixedMarkers(stamp).markers) snapshot.markers.markers.push_back(m);
   return snapshot;
 }
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Recording through sim.launch when the run ends badly (bounded: about 20 s wall each):
+# Recording through sim.launch when the run ends badly (bounded: about 30 s wall each):
 #   record_faults.sh sigint DEVEL   Ctrl-C (SIGINT) to roslaunch: the bag is closed cleanly and holds every
 #                                   message the node published up to then, no sample missing
 #   record_faults.sh kill9 DEVEL    kill -9 of the recorder: a .bag.active is left; `rosbag reindex`
@@ -39,7 +39,10 @@ wait_until() {
 
 wait_until 60 test -e "$bag.active" || fail "the recorder did not start"
 wait_until 60 rosservice list >/dev/null 2>&1 || fail "no master"
-sleep 3  # a few seconds of recording
+# Recording until the recorder has written a first chunk (768 kB, rosbag record's default --chunksize): some
+# 9 s of the demo, markers included. A kill -9 then leaves a bag with something to recover.
+chunk_written() { [ "$(stat -c %s "$bag.active" 2>/dev/null || echo 0)" -gt $((768 * 1024)) ]; }
+wait_until 90 chunk_written || fail "the recorder wrote no chunk in 90 s"
 rosservice call /sim/pause >/dev/null || fail "~pause"
 t=$(rosservice call /sim/step "steps: 1" | sed -n 's/^t: //p')
 [ -n "$t" ] || fail "~step"

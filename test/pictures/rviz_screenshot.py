@@ -52,7 +52,8 @@ class Scene:
         from tf2_msgs.msg import TFMessage
         from visualization_msgs.msg import MarkerArray
         self.frames: Dict[str, Tuple[Array, Array]] = {}
-        self.markers: Dict[Tuple[str, int], Any] = {}
+        # Markers by topic: a DELETEALL clears those of its own topic only, as in rviz's displays.
+        self.by_topic: Dict[str, Dict[Tuple[str, int], Any]] = {"/sim/scene": {}, "/sim/markers": {}}
         self.t: Optional[float] = None  # of the latest state of the first body
         self.state_stamp: Any = None  # of that state, and of the latest transform on /tf
         self.tf_stamp: Any = None
@@ -62,7 +63,8 @@ class Scene:
         self.subscribers = [
             rospy.Subscriber("/tf", TFMessage, self.on_moving_tf, queue_size=100),
             rospy.Subscriber("/tf_static", TFMessage, self.on_tf, queue_size=100),
-            rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, queue_size=100)]
+            rospy.Subscriber("/sim/scene", MarkerArray, self.on_markers, "/sim/scene", queue_size=10),
+            rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, "/sim/markers", queue_size=100)]
         for name, body in config["bodies"].items():
             self.subscribers.append(rospy.Subscriber(
                 f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
@@ -93,14 +95,19 @@ class Scene:
             r, q = t.transform.translation, t.transform.rotation
             self.frames[t.child_frame_id] = (pc.quaternion_matrix([q.x, q.y, q.z, q.w]), np.array([r.x, r.y, r.z]))
 
-    def on_markers(self, msg: Any) -> None:
+    def on_markers(self, msg: Any, topic: str) -> None:
+        markers = self.by_topic[topic]
         for m in msg.markers:
             if m.action == m.DELETEALL:
-                self.markers.clear()
+                markers.clear()
             elif m.action == m.DELETE:
-                self.markers.pop((m.ns, m.id), None)
+                markers.pop((m.ns, m.id), None)
             else:
-                self.markers[(m.ns, m.id)] = m
+                markers[(m.ns, m.id)] = m
+
+    @property
+    def markers(self) -> Dict[Tuple[str, int], Any]:
+        return {key: m for markers in self.by_topic.values() for key, m in markers.items()}
 
     def world_pose(self, frame_id: str, pose: Any) -> Tuple[Array, Array]:
         """Rotation and position in the world of a marker's pose in `frame_id` (a child of the world)."""
@@ -361,18 +368,18 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
                      if m.name == "/rviz" and m.level >= Log.ERROR else None, queue_size=100)
 
     def rviz_connected() -> bool:
-        # The node's own view of its connections: rviz has subscribed to the markers and TF.
+        # The node's own view of its connections: rviz has subscribed to the scene, the markers and TF.
         try:
             reply: Any = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")
             info = reply[2]
         except Exception:
             return False
-        return {(c[1], c[4]) for c in info if c[2] == "o"} >= {("/rviz", "/sim/markers"), ("/rviz", "/tf")}
-    wait_while_running("rviz to subscribe to /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
+        wanted = {("/rviz", "/sim/scene"), ("/rviz", "/sim/markers"), ("/rviz", "/tf")}
+        return {(c[1], c[4]) for c in info if c[2] == "o"} >= wanted
+    wait_while_running("rviz to subscribe to /sim/scene, /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
     wait_while_running("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
 
-    # rviz subscribed after the node started: the floor and slopes must come with the markers it publishes
-    # from now on (every marker array carries them).
+    # rviz subscribed after the node started: the floor, slopes and bodies must come from the latched scene.
     scene.t = None
     wait_while_running("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
     t_connected: float = scene.t or 0.0

@@ -175,7 +175,7 @@ class NodeOutput(unittest.TestCase):
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 recorded.setdefault(topic, []).append(msg)
-        topics = {"/tf", "/tf_static", "/sim/markers", "/sim/commands"}
+        topics = {"/tf", "/tf_static", "/sim/scene", "/sim/markers", "/sim/commands"}
         topics |= {f"/sim/{name}/state" for name in self.config["bodies"]}
         self.assertEqual(set(recorded), topics)
 

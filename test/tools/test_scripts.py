@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
 per topic, each checked on its own), scripts/bag_summary.py (a body with a single state) and
-bench/run_bench.py's 1 kHz config and the figures of its notes.
+bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
 import importlib.util
 import os
@@ -14,9 +14,7 @@ from typing import Any, Dict, List
 import rosbag
 import rospy
 import yaml
-from geometry_msgs.msg import Point
 from tf2_msgs.msg import TFMessage
-from visualization_msgs.msg import Marker, MarkerArray
 from rigid_body_sim.msg import RodState, RollerState
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
@@ -108,17 +106,6 @@ class RunBench(Case):
                 written = yaml.safe_load(f)
             self.assertEqual(written["publish_rate"], 1000.0, repr(text))
             self.assertEqual(written["bodies"], {"rod": {"type": "rod"}}, repr(text))
-
-    def test_marker_figures_are_the_bags_own(self) -> None:
-        run_bench = load_run_bench()
-        for points in (3, 17):
-            trail = Marker(ns="trail", points=[Point(x=float(i)) for i in range(points)])
-            write_bag(self.path("record.bag"), {"/sim/markers": [MarkerArray(markers=[Marker(ns="body"), trail])],
-                                                "/sim/rod/state": [RodState()]})
-            share, most = run_bench.marker_figures(self.path("record.bag"))
-            self.assertEqual(most, points)
-            self.assertGreater(share, 0.0)
-            self.assertLess(share, 1.0)
 
 
 if __name__ == "__main__":

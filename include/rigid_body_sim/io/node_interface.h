@@ -15,8 +15,12 @@ inline constexpr const char* kPublishClock = "publish_clock";
 inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kStartDelay = "start_delay";
 inline constexpr const char* kFramePrefix = "frame_prefix";
+inline constexpr const char* kMarkerRate = "marker_rate";
+inline constexpr const char* kTrailLength = "trail_length";
+inline constexpr const char* kBag = "bag";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
 inline constexpr const char* kMarkers = "markers";
+inline constexpr const char* kScene = "scene";
 inline constexpr const char* kReset = "reset";
 inline constexpr const char* kPause = "pause";
 inline constexpr const char* kUnpause = "unpause";
@@ -38,8 +42,8 @@ inline constexpr const char* kNamespaceTf = "tf";
 inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration, kStartDelay,
-                                                 kFramePrefix};
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,    kStartDelay,
+                                                 kFramePrefix,    kMarkerRate,   kTrailLength, kBag};
   return names;
 }
 
@@ -47,8 +51,8 @@ inline const std::vector<std::string>& optionNames() {
 inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
-    all.insert(all.end(), {kMarkers, kReset, kPause, kUnpause, kStep, kSpawn, kDelete, kSetState, kGetConfig,
-                           kCommands, kInteractive});
+    all.insert(all.end(), {kMarkers, kScene, kReset, kPause, kUnpause, kStep, kSpawn, kDelete, kSetState,
+                           kGetConfig, kCommands, kInteractive});
     return all;
   }();
   return names;

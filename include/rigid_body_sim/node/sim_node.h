@@ -29,6 +29,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
@@ -64,7 +65,8 @@ class SimNode {
   };
 
   void advertise();
-  ros::Publisher advertiseState(const Body& body);
+  void advertiseState(const Body& body);  // its publisher and subscriber count, at the end of the lists
+  void startReconfigureServers();         // every body's that has none yet, after the first publication
   void startReconfigureServer(const BodyConfig& body);
   template <class Config, class Request>
   void onReconfigure(const std::string& name, Request& request);
@@ -101,7 +103,15 @@ class SimNode {
   void guardLocked();
   void publishLocked();
   void publishClockLocked();
-  void publishStaticLocked();
+  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
+  void publishMarkersLocked(const ros::Time& stamp);
+  // The fixed frames on /tf_static (and <ns>/tf_static).
+  void publishStaticTransformsLocked();
+  // The fixed frames and the latched ~scene.
+  void publishSceneLocked();
+  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
+  // the scene are sent again. Trails go on by body name.
+  void rebuildSceneLocked();
   ros::Time stampOf(double t) const;
   void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
@@ -115,6 +125,8 @@ class SimNode {
   World world_;       // also the running config (what ~get_config returns)
   FiniteGuard guard_;
   std::int64_t steps_per_publish_;
+  std::int64_t steps_per_markers_;  // a whole number of publishing intervals
+  bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
   std::int64_t last_published_step_ = -1;
   ros::Time last_clock_;     // the last /clock published (zero: none yet)
   ros::Time last_tf_stamp_;  // the stamp of the last transforms on /tf
@@ -122,6 +134,7 @@ class SimNode {
   StepPacer pacer_;
   std::condition_variable wake_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
+  std::unique_ptr<BagRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
   ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
@@ -129,10 +142,14 @@ class SimNode {
   ros::Publisher command_publisher_;
   std::uint32_t commands_published_ = 0;  // the next command's index (header.seq); 0 is the config
   ros::Publisher marker_publisher_;
+  ros::Publisher scene_publisher_;
   ros::Publisher clock_publisher_;
   ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
   ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
   std::vector<ros::Publisher> state_publishers_;
+  // Of each state topic, kept by the publishers' callbacks (shared with them: a deleted body's may still
+  // run).
+  std::vector<std::shared_ptr<std::atomic<int>>> state_subscribers_;
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;

@@ -1,7 +1,8 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
-// the node's (launch files name it `sim`): /tf, /tf_static, /sim/markers, /sim/<body>/state, and
-// /sim/commands with the config (so that `simulate --replay` takes the bag). This is the
-// sink of `simulate --bag` (io/offline_run.h), stamped in simulated time.
+// the node's (launch files name it `sim`): /tf, /tf_static, /sim/scene (latched, once), /sim/markers (trail
+// pieces and labels at the default marker rate), /sim/<body>/state, and /sim/commands with the config (so
+// that `simulate --replay` takes the bag). This is the sink of `simulate --bag` (io/offline_run.h) and of
+// the node's own recorder, stamped in simulated time.
 #pragma once
 
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include <rosbag/bag.h>
 
+#include "rigid_body_sim/Command.h"
 #include "rigid_body_sim/io/offline_run.h"
 #include "rigid_body_sim/ros/snapshot.h"
 
@@ -18,20 +20,27 @@ namespace rigid_body_sim {
 class BagRecorder : public SampleSink {
  public:
   // Writes to `path`.active, renamed to `path` by commit(), as `rosbag record` does; starts with the
-  // config command of `config` and the fixed frames and markers of `bodies` (at t = 0).
+  // config command of `config`, the fixed frames and the scene of `bodies` (at t = 0).
   BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
-              std::string node_namespace = "/sim");
+              std::string node_namespace = "/sim", std::string frame_prefix = "");
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
 
-  void write(const World& world) override;  // TF, markers and every state at world.time()
+  void write(
+      const World& world) override;  // TF, every state and (at marker instants) markers at world.time()
   void commit() override;
+  // The node's own recorder: a change of the world (written as the node publishes it) and the scene and
+  // fixed frames of the bodies there are now, at simulated time t.
+  void writeCommand(const rigid_body_sim::Command& command);
+  void rebuild(const std::vector<Body>& bodies, double t);
 
  private:
   std::string path_;
   std::string node_namespace_;
   SnapshotBuilder snapshots_;
+  double marker_rate_;                  // Hz
+  long long last_marker_instant_ = -1;  // floor(t * marker_rate_) of the last markers written
   rosbag::Bag bag_;
   bool open_ = false;
 };

@@ -2,6 +2,7 @@
 // loader serves the node and `simulate`.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <ros/node_handle.h>
@@ -9,17 +10,25 @@
 #include <yaml-cpp/yaml.h>
 
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/ros/scene.h"
 
 namespace rigid_body_sim {
 
 // The node's own options (private parameters beside the config keys; names in io/node_interface.h).
 struct NodeOptions {
-  double real_time_factor = 1.0;  // 1 = wall-clock pace, 0 = as fast as possible
-  bool publish_clock = false;     // publish /clock (simulated time) for use_sim_time users
-  double duration = 0.0;          // simulated seconds before the node shuts down; 0 = run until stopped
-  double start_delay = 0.0;       // wall seconds before stepping starts (lets a recorder subscribe first)
-  std::string frame_prefix;       // in front of every frame published but world_frame ("left/": left/rod)
+  double real_time_factor = 1.0;      // 1 = wall-clock pace, 0 = as fast as possible
+  bool publish_clock = false;         // publish /clock (simulated time) for use_sim_time users
+  double duration = 0.0;              // simulated seconds before the node shuts down; 0 = run until stopped
+  double start_delay = 0.0;           // wall seconds before stepping starts (lets a recorder subscribe first)
+  std::string frame_prefix;           // in front of every frame published but world_frame ("left/": left/rod)
+  std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
+  double trail_length = TrailOptions().seconds;  // simulated seconds of trail; 0 = no trails
+  std::string bag;  // if set, the node writes every publication into this bag itself (as simulate --bag)
 };
+
+// ~markers' rate: the option, at most publish_rate (refused above it in one line, as any bad option);
+// unset: TrailOptions' pieces_rate (10 Hz), or publish_rate if that is lower.
+double markerRate(const NodeOptions& options, double publish_rate);
 
 // The node's private namespace from the parameter server; throws ConfigError when it holds nothing.
 XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node);

@@ -8,10 +8,19 @@
 //   large radii): side by side, never overlapping; every slope ends on the floor at its lower end.
 // Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
 // instances publish distinct frames on one /tf.
+//
+// The markers come in two streams, so that their cost follows what changes:
+// - the scene (latched): DELETEALL, the floor, every slope and each body's shape and spoke, drawn
+//   frame_locked in the body's own TF frame, so that TF moves them. Built anew by rebuild() and sent
+//   again only when it differs;
+// - the changes (at the marker rate): for every body the piece of its trail added since the last
+//   changes() (a short LINE_STRIP whose id comes from a ring, so that the oldest piece is overwritten once
+//   the trail is `trail_seconds` long) and its label (mode, energy).
 #pragma once
 
 #include <cstddef>
-#include <deque>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,30 +44,59 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
 
-// The markers of a world: fixed scenery (floor, slopes) and, at every sample, each body's shape, a spoke
-// that turns with it, its bounded trail and a label with its mode and energy.
+// How long the trails are and how often their pieces are sent.
+struct TrailOptions {
+  double seconds = 8.0;       // simulated seconds of trail; 0 = no trails
+  double pieces_rate = 10.0;  // Hz: how often changes() is called (the marker rate)
+  // Pieces a trail is made of: the ring of ids each body's pieces cycle through.
+  int ring() const;
+};
+
 class Scene {
  public:
   Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-        std::size_t trail_points = 400);
+        TrailOptions trail = {});
 
   const std::string& worldFrame() const { return world_frame_; }
   std::string bodyFrame(const Body& body) const { return frame_prefix_ + body.name; }
   const std::vector<BodyPlacement>& placements() const { return placements_; }
 
-  visualization_msgs::MarkerArray fixedMarkers(const ros::Time& stamp) const;  // floors, slopes
-  // Appends the markers of body `index`, whose centre is at world_from_body, and extends its trail.
-  void addBodyMarkers(std::size_t index, const Body& body, const Eigen::Isometry3d& world_from_body,
-                      const ros::Time& stamp, visualization_msgs::MarkerArray& markers);
-  // A DELETEALL marker followed by the fixed markers again; also forgets the trails (for a reset).
-  visualization_msgs::MarkerArray restartMarkers(const ros::Time& stamp);
+  // For a new set of bodies or a new look (a spawn, a delete, a reconfigured slope or shape): new
+  // placements and scene. Trails are kept by body name; a removed body's trail and label are deleted by
+  // the next changes(). Returns whether the scene's markers changed (then send sceneMarkers() again).
+  bool rebuild(const std::vector<Body>& bodies);
+
+  // The latched scene: DELETEALL first, then the floor, the slopes and every body's shape and spoke.
+  // Stamped 0 (use the latest transform), so that a viewer that joins late can draw it at once.
+  const visualization_msgs::MarkerArray& sceneMarkers() const { return scene_; }
+
+  // Adds every body's current position to its trail (at every publication, while someone watches).
+  void sample(const std::vector<Body>& bodies);
+  // The trail pieces since the last call (each starts at the previous piece's last point, so that the
+  // line has no gap) and every body's label; deletions of removed bodies' markers.
+  visualization_msgs::MarkerArray changes(const ros::Time& stamp, const std::vector<Body>& bodies);
+  // Forgets the trails (a reset, or nobody watches): the next pieces start afresh.
+  void clearTrails();
+  // A DELETEALL for the changes' stream: removes every trail and label from a viewer.
+  visualization_msgs::MarkerArray clearMarkers(const ros::Time& stamp) const;
 
  private:
+  struct Trail {
+    int slot = 0;                          // the body's place in the id space, kept while it exists
+    std::vector<Eigen::Vector3d> pending;  // points since the last piece
+    std::optional<Eigen::Vector3d> last;   // the last point sent, where the next piece starts
+    long long pieces = 0;                  // pieces sent: the next one's place in the ring
+  };
+  Trail& trailOf(const std::string& body);
+
   std::string world_frame_;
   std::string frame_prefix_;
+  TrailOptions trail_options_;
   std::vector<BodyPlacement> placements_;
-  std::size_t trail_points_;
-  std::vector<std::deque<Eigen::Vector3d>> trails_;
+  visualization_msgs::MarkerArray scene_;
+  std::map<std::string, Trail> trails_;
+  std::vector<int> removed_slots_;  // of bodies gone since the last changes()
+  int next_slot_ = 0;
 };
 
 }  // namespace rigid_body_sim

@@ -1,5 +1,5 @@
-// Everything published at one sample (TF, markers, state messages), shared by sim_node and
-// `simulate --bag` so that both publish the same.
+// Everything published at one sample (TF, state messages) and the scene's markers, shared by sim_node
+// and `simulate --bag` so that both publish the same.
 #pragma once
 
 #include <cstddef>
@@ -16,26 +16,25 @@
 namespace rigid_body_sim {
 
 struct Snapshot {
-  tf2_msgs::TFMessage tf;                   // world_frame -> <body>
-  visualization_msgs::MarkerArray markers;  // bodies, trails, labels, then the floor and slopes
-  std::vector<StateMsg> states;             // in the order of the bodies
+  tf2_msgs::TFMessage tf;        // world_frame -> <body>
+  std::vector<StateMsg> states;  // in the order of the bodies
 };
 
-// Builds snapshots; keeps the bounded trail of every body between calls.
+// Builds snapshots; owns the scene (placements, markers, trails).
 class SnapshotBuilder {
  public:
   // frame_prefix goes in front of every frame but world_frame (the node's option; empty in a bag of
   // simulate).
   SnapshotBuilder(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-                  std::size_t trail_points = 400);
+                  TrailOptions trail = {});
 
   std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
-  visualization_msgs::MarkerArray staticMarkers(const ros::Time& stamp) const;  // floor, slopes
-  Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies);
-  // A DELETEALL marker followed by the static markers again; also forgets the trails (for a reset).
-  visualization_msgs::MarkerArray restartMarkers(const ros::Time& stamp) {
-    return scene_.restartMarkers(stamp);
-  }
+  Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const;
+  // What build() gives for body i alone: for a publisher that builds only what someone subscribes to.
+  geometry_msgs::TransformStamped transform(std::size_t i, const ros::Time& stamp, const Body& body) const;
+  StateMsg state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const;
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
 
  private:
   Scene scene_;
