@@ -34,18 +34,6 @@ boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
   return header;
 }
 
-// The connection header of a latched topic (as /tf_static and ~commands are).
-template <class Message>
-boost::shared_ptr<ros::M_string> latchedHeader(const std::string& callerid) {
-  auto latched = boost::make_shared<ros::M_string>();
-  (*latched)["type"] = ros::message_traits::datatype<Message>();
-  (*latched)["md5sum"] = ros::message_traits::md5sum<Message>();
-  (*latched)["message_definition"] = ros::message_traits::definition<Message>();
-  (*latched)["latching"] = "1";
-  (*latched)["callerid"] = callerid;
-  return latched;
-}
-
 }  // namespace
 
 BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
@@ -56,9 +44,6 @@ BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, con
       marker_rate_(TrailOptions().pieces_rate) {
   bag_.open(path_ + ".active", rosbag::bagmode::Write);
   open_ = true;
-  // /tf_static is latched: a player hands it to late subscribers as a live node would.
-  // rosbag stores a given connection header as it is: without type, md5sum and definition, Python's
-  // rosbag (rosbag info, scripts) cannot read the bag.
   const ros::Time start = simStamp(0.0);
   WorldCommand config_command;
   config_command.kind = WorldCommand::Kind::Config;

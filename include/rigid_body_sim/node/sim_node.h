@@ -79,8 +79,6 @@ class SimNode {
   void followWorldLocked(const WorldCommand& command, const WorldConfig& before);
   // After an accepted command, without mutex_ (a server's first callback takes it): reconfigure servers.
   void followWorldServers(const WorldCommand& command);
-  // Static TF and the markers anew for the bodies there are now (they left rviz or changed place or look).
-  void rebuildSceneLocked();
   bool onSpawn(Spawn::Request& request, Spawn::Response& response);
   bool onDelete(Delete::Request& request, Delete::Response& response);
   bool onSetState(SetState::Request& request, SetState::Response& response);
