@@ -25,7 +25,8 @@ from picture_check import Array, Finding, Pixel
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import Config, RodSpec, RollerSpec, body_spec, free_port, load_config, wait_for  # noqa: E402
+from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_config, wait_for,  # noqa: E402
+                       world_value)
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
 Outline = Tuple[str, Any]
@@ -383,21 +384,25 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     scene.t = None
     wait_while_running("a state after rviz subscribed", lambda: scene.t is not None, left(), launch)
     t_connected: float = scene.t or 0.0
+    # The picture's instant must not depend on when rviz subscribed (late on a loaded machine, the rod has
+    # flown out of the view): every body back to its start, then `settle` simulated seconds of steps, and
+    # 0.05 s more at a time until every roller is high on its slope. The states and transforms of the last
+    # step are the last the node publishes, and each topic delivers in order: once they are here, nothing
+    # published before is still in flight to this node.
     rollers = [spec for spec in (body_spec(config, name) for name in config["bodies"])
                if isinstance(spec, RollerSpec)]
+    rate = float(world_value(config, "rate"))
+    rospy.ServiceProxy("/sim/pause", Empty)()
+    rospy.ServiceProxy("/sim/reset", Empty)()
+    step = rospy.ServiceProxy("/sim/step", Step)
+    steps = round(args.settle * rate)
     while True:
-        wait_while_running(f"{args.settle:g} simulated seconds, and every roller high on its slope",
-                           lambda: (scene.t or 0.0) >= t_connected + args.settle and scene.rollers_high(rollers),
-                           left(), launch)
-        rospy.ServiceProxy("/sim/pause", Empty)()
-        # One step more: its states and transforms are the last the node publishes, and each topic delivers
-        # in order, so once they are here nothing published before is still in flight to this node.
-        t_last = rospy.ServiceProxy("/sim/step", Step)(1).t
-        wait_while_running("the states and transforms of the step after the pause", lambda: scene.all_at(t_last),
-                           left(), launch)
-        if scene.rollers_high(rollers):  # a roller may have run low between the look and the pause
+        t_last = step(steps).t
+        wait_while_running("the states and transforms of the last step", lambda: scene.all_at(t_last), left(),
+                           launch)
+        if scene.rollers_high(rollers):
             break
-        rospy.ServiceProxy("/sim/unpause", Empty)()
+        steps = round(0.05 * rate)
 
     with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
         manager = yaml.safe_load(f)["Visualization Manager"]
