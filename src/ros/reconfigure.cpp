@@ -8,7 +8,8 @@ namespace {
 
 // Calls visit(key, field) for every number of a .cfg: `field` is the request's member, `key` the core's
 // numeric key of the same name (test_reconfigure checks that the .cfg's numbers are the core's keys, with
-// their defaults and no ranges of their own). Texts (the integrator, substeps, the shape) are left to the caller.
+// their defaults and no ranges of their own). Texts (the integrator, substeps, the shape) are left to the
+// caller.
 template <class Request, class Config, class Visit>
 void forEachNumber(const std::vector<NumericKey<Config>>& keys, Visit visit) {
   using Number = typename Request::template ParamDescription<double>;

@@ -29,7 +29,7 @@ inline constexpr const char* kSpawn = "spawn";
 inline constexpr const char* kDelete = "delete";
 inline constexpr const char* kSetState = "set_state";
 inline constexpr const char* kGetConfig = "get_config";
-inline constexpr const char* kCommands = "commands";  // every accepted change of the world, latched
+inline constexpr const char* kCommands = "commands";        // every accepted change of the world, latched
 inline constexpr const char* kInteractive = "interactive";  // the interactive marker server's namespace
 
 // A body's state topic, relative to the node's private namespace.
