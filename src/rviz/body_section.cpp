@@ -121,6 +121,11 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
   }
 }
 
+void BodySection::showNodeLine(const QString& text) {
+  node_line_shown_ = true;
+  showMessage(text, true);
+}
+
 void BodySection::showMessage(const QString& text, bool refusal) {
   message_->setText(text);
   message_->setStyleSheet(refusal ? kRefusalStyle : kNoteStyle);
@@ -284,10 +289,12 @@ void BodySection::showValues(const dynamic_reconfigure::Config& values) {
 }
 
 // Sends one key to the server. Its answer is what runs: shown at once, so that a refused value snaps back;
-// a refusal is named here until the node's own line about it arrives (SimPanel routes it to showMessage).
+// a refusal is named here unless the node's own line about it came first (SimPanel routes it to showNodeLine;
+// the node logs it before it answers, and /rosout may deliver it before the answer or after).
 void BodySection::request(dynamic_reconfigure::Config asked, const std::string& key,
                           const QString& asked_text) {
   const std::string service = server_ + "/set_parameters";
+  node_line_shown_ = false;
   struct Answer {
     bool called = false;
     dynamic_reconfigure::Config shown;
@@ -313,7 +320,7 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
         const QString now = valueText(values_, key);
         if (now == asked_text) {
           showMessage("", false);
-        } else {
+        } else if (!node_line_shown_) {
           showMessage(QString("refused %1 = %2: snapped back to %3")
                           .arg(QString::fromStdString(key), asked_text, now),
                       true);

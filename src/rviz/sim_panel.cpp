@@ -255,7 +255,7 @@ void SimPanel::onLog(const rosgraph_msgs::Log::ConstPtr& line) {
   if (line->name != ns_ || line->level < rosgraph_msgs::Log::WARN) return;
   for (const auto& [name, section] : sections_) {
     if (line->msg.find("body '" + name + "'") != std::string::npos)
-      section->showMessage(QString::fromStdString(line->msg), true);
+      section->showNodeLine(QString::fromStdString(line->msg));
   }
   showStatus(QString::fromStdString(line->msg), true);  // in sight, wherever the sections are scrolled
 }

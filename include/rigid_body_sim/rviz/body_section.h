@@ -35,8 +35,9 @@ class BodySection : public QGroupBox {
 
   const std::string& name() const { return name_; }
   const std::string& stateType() const { return state_type_; }
-  // A line the node logged about this body (its refusal of a request): shown under the keys.
-  void showMessage(const QString& text, bool refusal);
+  // A line the node logged about this body (its refusal of a request): shown under the keys, and kept when
+  // the server's answer to that request comes after it.
+  void showNodeLine(const QString& text);
 
  private:
   struct Field {
@@ -58,8 +59,10 @@ class BodySection : public QGroupBox {
   QLabel* motion_;   // mode and energy
   QLabel* message_;  // the last refusal (or acceptance) of a request
   std::map<std::string, Field> fields_;
-  std::vector<std::string> order_;      // the keys in the .cfg's order
+  std::vector<std::string> order_;  // the keys in the .cfg's order
+  void showMessage(const QString& text, bool refusal);
   dynamic_reconfigure::Config values_;  // what the server shows
+  bool node_line_shown_ = false;        // the node's own line came since the last request was sent
   std::vector<ros::Subscriber> subscribers_;
 };
 
