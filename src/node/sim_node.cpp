@@ -117,7 +117,21 @@ SimNode::~SimNode() {
 void SimNode::advertise() {
   namespace names = node_interface;
   marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
-  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kScene, 1, true);
+  // A viewer gets the latched scene as it subscribes, and the scene once more a second or two later: rviz
+  // drops for good a marker of stamp 0 whose frame's first transform comes in the instant it looks for it
+  // (tf2's transformable request sees "the transform is older than the cache" for stamp 0). By then it
+  // has the transforms, and the second copy is drawn whatever happened to the first.
+  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(
+      names::kScene, 1, [this](const ros::SingleSubscriberPublisher&) { scene_viewer_joined_ = true; },
+      ros::SubscriberStatusCallback(), ros::VoidConstPtr(), true);
+  scene_resend_timer_ =
+      private_node_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+        const bool due = scene_resend_due_.exchange(false);
+        if (scene_viewer_joined_.exchange(false)) scene_resend_due_ = true;
+        if (!due) return;
+        std::lock_guard<std::mutex> lock(mutex_);
+        scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+      });
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   if (node_.getNamespace() != "/") {
     namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);

@@ -141,6 +141,9 @@ class SimNode {
   std::uint32_t commands_published_ = 0;  // the next command's index (header.seq); 0 is the config
   ros::Publisher marker_publisher_;
   ros::Publisher scene_publisher_;
+  ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined
+  std::atomic<bool> scene_viewer_joined_{false};  // since the last tick
+  std::atomic<bool> scene_resend_due_{false};     // a viewer joined before the last tick
   ros::Publisher clock_publisher_;
   ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
   ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
