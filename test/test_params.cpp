@@ -38,7 +38,10 @@ TEST(NodeOptions, EveryOptionIsReadAndAMissingOneKeepsItsDefault) {
   params["publish_clock"] = true;
   params["duration"] = 30.0;
   params["start_delay"] = 2.5;
+  params["start_paused"] = true;
   const NodeOptions options = parseNodeOptions(params);
+  EXPECT_FALSE(defaults.start_paused);
+  EXPECT_TRUE(options.start_paused);
   EXPECT_EQ(std::make_tuple(defaults.real_time_factor, defaults.publish_clock, defaults.duration,
                             defaults.start_delay),
             std::make_tuple(1.0, false, 0.0, 0.0));

@@ -81,6 +81,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   checkFrames(options_, world_.config());
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
+  paused_ = options_.start_paused;
   const TrailOptions trail{options_.trail_length, markerRate(options_, world_.config().publish_rate)};
   snapshots_ = std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix,
                                                  world_.bodies(), trail);

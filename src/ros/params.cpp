@@ -105,6 +105,7 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
   options.publish_clock = boolOption(yaml, names::kPublishClock, options.publish_clock);
   options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
   options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
+  options.start_paused = boolOption(yaml, names::kStartPaused, options.start_paused);
   options.frame_prefix = framePrefixOption(yaml, names::kFramePrefix);
   if (yaml[names::kMarkerRate]) {
     options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});

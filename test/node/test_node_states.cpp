@@ -42,6 +42,9 @@ TEST(SimNodeStates, EveryStateIsTheCorePrediction) {
 
   StateCollector collector(nh, world);
   ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
+  // The node starts paused: at real_time_factor 0 its whole run could be over before this test subscribes.
+  ASSERT_TRUE(ros::service::waitForService("/sim/unpause", 10000));
+  ASSERT_TRUE(callEmpty("/sim/unpause"));
   // Collect until the run is over: the last sample (t = duration) of every body has come. A publisher's
   // full queue drops its oldest message, never the newest, so the last sample always comes.
   double duration = 0.0;

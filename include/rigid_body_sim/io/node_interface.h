@@ -14,6 +14,7 @@ inline constexpr const char* kRealTimeFactor = "real_time_factor";
 inline constexpr const char* kPublishClock = "publish_clock";
 inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kStartDelay = "start_delay";
+inline constexpr const char* kStartPaused = "start_paused";
 inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
@@ -42,8 +43,9 @@ inline constexpr const char* kNamespaceTf = "tf";
 inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,    kStartDelay,
-                                                 kFramePrefix,    kMarkerRate,   kTrailLength, kBag};
+  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,
+                                                 kStartDelay,     kStartPaused,  kFramePrefix,
+                                                 kMarkerRate,     kTrailLength,  kBag};
   return names;
 }
 
