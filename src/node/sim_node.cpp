@@ -607,6 +607,9 @@ void SimNode::stepLoop() {
 void SimNode::watchMaster() {
   while (!stopping_ && ros::ok()) {
     if (askMaster() == MasterView::Forgot) {
+      // A node shutting down (its duration done, Ctrl-C) unregisters itself: then the master rightly
+      // forgets it, and that is no restart. roscpp marks the shutdown before it unregisters.
+      if (stopping_ || ros::isShuttingDown() || !ros::ok()) return;
       restoreParameters();
       ROS_ERROR(
           "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
