@@ -167,17 +167,19 @@ void validate(const OfflineOptions& options, const WorldConfig& config) {
   }
 }
 
+std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig& config,
+                                     const std::vector<Body>& bodies, const SinkOpener& open_bag) {
+  if (path.empty()) return nullptr;
+  if (!open_bag) throw std::runtime_error("cannot write '" + path + "': no bag writer in this program");
+  return open_bag(path, config, bodies);
+}
+
 OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options,
                           const SinkOpener& open_bag) {
   validate(options, config);
   const std::vector<Body> bodies = World(config).bodies();
   CsvWriter csv(options.out_dir, bodies);
-  std::unique_ptr<SampleSink> bag;
-  if (!options.bag.empty()) {
-    if (!open_bag)
-      throw std::runtime_error("cannot write '" + options.bag + "': no bag writer in this program");
-    bag = open_bag(options.bag, config, bodies);
-  }
+  const std::unique_ptr<SampleSink> bag = openSink(options.bag, config, bodies, open_bag);
   ProgressBar progress(sampleCount(config, options), "samples");
   const auto write = [&](const World& world) {
     csv.write(world.time(), world.bodies());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 
 #include "rigid_body_sim/io/csv_writer.h"
@@ -19,20 +20,18 @@ std::string describe(std::size_t index, const WorldCommand& command) {
          std::to_string(command.step) + ")";
 }
 
-void checkStart(const std::vector<WorldCommand>& commands, const OfflineOptions& options) {
+void checkStart(const std::vector<WorldCommand>& commands) {
   if (commands.empty() || commands[0].kind != WorldCommand::Kind::Config || commands[0].step != 0) {
     throw ConfigError(kReplay, "commands", commands.empty() ? "(none)" : describe(0, commands[0]),
                       "the config at step 0 first");
-  }
-  if (!options.bag.empty()) {
-    throw ConfigError("(command line)", "--bag", "'" + options.bag + "'", "no bag with --replay");
   }
 }
 
 }  // namespace
 
-ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options) {
-  checkStart(commands, options);
+ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options,
+                        const SinkOpener& open_bag) {
+  checkStart(commands);
   const WorldConfig& config = commands[0].world;
   validate(options, config);
   World world(config, node_interface::ownNames());
@@ -49,16 +48,21 @@ ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const Offline
   };
   note_bodies();
   CsvWriter csv(options.out_dir, world.bodies());
+  const std::unique_ptr<SampleSink> bag = openSink(options.bag, config, world.bodies(), open_bag);
   std::size_t next = 1;
   for (std::int64_t count = 0;; ++count) {
     // As in the node: the state at a count is published before the commands at that count apply.
-    if (count % steps_per_sample == 0) csv.write(world.time(), world.bodies());
+    if (count % steps_per_sample == 0) {
+      csv.write(world.time(), world.bodies());
+      if (bag) bag->write(world);
+    }
     for (; next < commands.size() && commands[next].step <= count; ++next) {
       try {
         world.apply(commands[next]);
       } catch (const ConfigError& error) {
         throw ConfigError(describe(next, commands[next]) + " cannot be applied: " + error.what());
       }
+      if (bag) bag->applied(commands[next], next, world);
       ++summary.commands_applied;
       note_bodies();
     }
@@ -66,6 +70,7 @@ ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const Offline
     world.step();
   }
   csv.commit();
+  if (bag) bag->commit();
   summary.end_time = world.time();
   summary.steps = world.stepCount();
   return summary;

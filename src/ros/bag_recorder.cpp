@@ -83,6 +83,17 @@ void BagRecorder::write(const World& world) {
   }
 }
 
+// As the node logs a change: the command, then the scene and fixed frames of a changed set of bodies.
+void BagRecorder::applied(const WorldCommand& command, std::size_t index, const World& world) {
+  const double t = world.time();
+  writeCommand(
+      toMessage(command, static_cast<std::uint32_t>(index), t, simStamp(t), world.config().world_frame));
+  if (command.kind == WorldCommand::Kind::Spawn || command.kind == WorldCommand::Kind::Delete ||
+      command.kind == WorldCommand::Kind::Reconfigure) {
+    rebuild(world.bodies(), t);
+  }
+}
+
 void BagRecorder::writeCommand(const rigid_body_sim::Command& command) {
   bag_.write(node_namespace_ + "/" + node_interface::kCommands, simStamp(command.t), command,
              latchedHeader<rigid_body_sim::Command>(node_namespace_));

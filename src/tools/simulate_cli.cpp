@@ -94,10 +94,11 @@ void checkSource(const std::string& config_path, const std::string& replay, cons
 }
 
 // --replay: the run of a bag's commands, for its duration unless --duration says otherwise.
-void replay(const std::string& bag, bool duration_given, OfflineOptions options, const RunReader& read_run) {
+void replay(const std::string& bag, bool duration_given, OfflineOptions options, const RunReader& read_run,
+            const SinkOpener& open_bag) {
   const RecordedRun run = read_run(bag);
   if (!duration_given) options.duration = run.end_time;
-  std::cout << formatSummary(replayRun(run.commands, options));
+  std::cout << formatSummary(replayRun(run.commands, options, open_bag));
 }
 
 }  // namespace
@@ -139,7 +140,7 @@ int runSimulate(int argc, char** argv, const SinkOpener& open_bag, const RunRead
     checkModes(sweep_args, options);
     if ((!options.bag.empty() || !replay_bag.empty()) && !open_bag) handOverToRosProgram(argv);
     if (!replay_bag.empty()) {
-      replay(replay_bag, app.count("--duration") > 0, options, read_run);
+      replay(replay_bag, app.count("--duration") > 0, options, read_run, open_bag);
       return 0;
     }
     const auto config = loadWorldConfigFile(config_path);

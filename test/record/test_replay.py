@@ -5,7 +5,8 @@ sim.launch record:=true at wall-clock pace; a script changes the world with ever
 reconfigure through dynparam, ~spawn, ~set_state, ~delete, ~reset, ~pause / ~step / ~unpause (with changes
 while paused). Then `simulate --replay BAG --sample-rate RATE` rebuilds the run from /sim/commands alone, and
 every state message in the bag equals the replay's CSV row at its t, field for field, bit for bit. The bag's
-commands are numbered 0, 1, 2, ... from the config, with every kind of change among them.
+commands are numbered 0, 1, 2, ... from the config, with every kind of change among them. The replay with
+`--bag OUT` holds the bag's commands and state messages unchanged, and OUT replays to the same CSV files.
 
 Usage: test_replay.py SIMULATE_EXE CONFIG.yaml   (with the package's devel space sourced)
 """
@@ -105,6 +106,24 @@ def same(value: Any, text: str) -> bool:
     return value == text if isinstance(value, str) else float(text).hex() == float(value).hex()
 
 
+def commands_of(bag_path: str) -> List[Any]:
+    """What a command says, its stamp aside (the node's is wall time, a replay's simulated time)."""
+    with rosbag.Bag(bag_path) as bag:
+        return [(m.header.seq, m.step, m.t.hex(), m.kind, m.body, m.yaml)
+                for _, m, _ in bag.read_messages(topics=["/sim/commands"])]
+
+
+def states_of(bag_path: str) -> Dict[Any, List[str]]:
+    """{(topic, t): every field of the state message, numbers in hex} of a bag."""
+    states: Dict[Any, List[str]] = {}
+    with rosbag.Bag(bag_path) as bag:
+        for topic, msg, _ in bag.read_messages():
+            if body_of_state_topic(topic) is not None:
+                states[(topic, msg.t)] = [v if isinstance(v, str) else float(v).hex()
+                                          for v in (getattr(msg, f) for f in state_fields(msg))]
+    return states
+
+
 class Replay(unittest.TestCase):
     def setUp(self) -> None:
         self.tmp = tempfile.mkdtemp(prefix="rbs_replay_")
@@ -165,6 +184,26 @@ class Replay(unittest.TestCase):
         self.assertEqual(set(compared), set(rows))
         self.assertIn("stick", rows)
         print(f"{sum(compared.values())} state messages equal to the replay ({compared}), {len(kinds)} commands",
+              file=sys.stderr)
+        self.replayed_bag_holds_the_run(bag_path, rate, out_dir)
+
+    def replayed_bag_holds_the_run(self, bag_path: str, rate: float, out_dir: str) -> None:
+        again = os.path.join(self.tmp, "again.bag")
+        replay = subprocess.run([ARGS.simulate, "--replay", bag_path, "--sample-rate", f"{rate:g}",
+                                 "--out-dir", os.path.join(self.tmp, "unused"), "--bag", again],
+                                capture_output=True, text=True, timeout=300)
+        self.assertEqual(replay.returncode, 0, replay.stderr)
+        self.assertEqual(commands_of(again), commands_of(bag_path))
+        written = states_of(again)
+        recorded = states_of(bag_path)
+        for key, fields in recorded.items():
+            self.assertEqual(written.get(key), fields, f"{key[0]} at t = {key[1]!r} in the replay's bag")
+        out_again = os.path.join(self.tmp, "replay_again")
+        replay = subprocess.run([ARGS.simulate, "--replay", again, "--sample-rate", f"{rate:g}",
+                                 "--out-dir", out_again], capture_output=True, text=True, timeout=300)
+        self.assertEqual(replay.returncode, 0, replay.stderr)
+        self.assertEqual(csv_rows(out_again), csv_rows(out_dir))
+        print(f"--bag: {len(recorded)} recorded states and the commands unchanged in it; it replays the same",
               file=sys.stderr)
 
 

@@ -51,12 +51,19 @@ class SampleSink {
  public:
   virtual ~SampleSink() = default;
   virtual void write(const World& world) = 0;  // at every sample, t = 0 included
-  virtual void commit() = 0;                   // the run is complete: the output becomes final
+  // A change of the world (a replayed command, number `index` of its log; 0 is the config the sink was
+  // opened with), applied to `world` at world.time(): logged as the node logs it, the scene following.
+  virtual void applied(const WorldCommand& command, std::size_t index, const World& world) = 0;
+  virtual void commit() = 0;  // the run is complete: the output becomes final
 };
 
 // Opens the sink of options.bag for a run of `config` whose bodies start as `bodies`.
 using SinkOpener = std::function<std::unique_ptr<SampleSink>(
     const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies)>;
+
+// The sink of `path` through `open_bag`; none for an empty path; std::runtime_error without `open_bag`.
+std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig& config,
+                                     const std::vector<Body>& bodies, const SinkOpener& open_bag);
 
 // Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure (also
 // for options.bag without `open_bag`). Shows a progress bar on stderr when it is a terminal and the run

@@ -29,11 +29,13 @@ struct ReplaySummary {
 };
 
 // Steps from count 0 to options.duration; at each count c it samples (when c is a sampling instant: t =
-// j / sample_rate), then applies every command with step c, then steps, as the node does. options.bag is not
-// supported (refused). Throws ConfigError (one line) when the first command is not the config at step 0,
-// or a command cannot be applied (named by its index, kind, body and step), std::runtime_error on an output
-// failure. The CSV files are only written when the whole replay succeeds.
-ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options);
+// j / sample_rate), then applies every command with step c, then steps, as the node does. options.bag, if
+// set, is written through `open_bag` as `simulate --bag` writes one, with every command in it. Throws
+// ConfigError (one line) when the first command is not the config at step 0, or a command cannot be
+// applied (named by its index, kind, body and step), std::runtime_error on an output failure (also for
+// options.bag without `open_bag`). The CSV files and the bag are only final when the whole replay succeeds.
+ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options,
+                        const SinkOpener& open_bag = nullptr);
 
 std::string formatSummary(const ReplaySummary& summary);
 

@@ -29,6 +29,7 @@ class BagRecorder : public SampleSink {
 
   void write(
       const World& world) override;  // TF, every state and (at marker instants) markers at world.time()
+  void applied(const WorldCommand& command, std::size_t index, const World& world) override;
   void commit() override;
   // The node's own recorder: a change of the world (written as the node publishes it) and the scene and
   // fixed frames of the bodies there are now, at simulated time t.
