@@ -12,6 +12,7 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLineEdit>
+#include <QPushButton>
 #include <QSlider>
 #include <QSpinBox>
 
@@ -81,7 +82,8 @@ QString numberText(double value) {
 }
 
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
-                         CallQueue& calls, std::function<void(double)> on_time, QWidget* parent)
+                         CallQueue& calls, std::function<void(double)> on_time,
+                         std::function<void()> on_delete, QWidget* parent)
     : QGroupBox(QString::fromStdString(name), parent),
       name_(name),
       server_(server),
@@ -90,9 +92,16 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
       on_time_(std::move(on_time)) {
   setObjectName(QString::fromStdString(name));
   auto* layout = new QVBoxLayout(this);
+  auto* top = new QHBoxLayout();
   motion_ = new QLabel("waiting for its state", this);
   motion_->setObjectName(QString::fromStdString(name + ".motion"));
-  layout->addWidget(motion_);
+  top->addWidget(motion_, 1);
+  auto* remove = new QPushButton("Delete", this);
+  remove->setObjectName(QString::fromStdString(name + ".delete"));
+  remove->setToolTip("~delete: the body leaves the world");
+  connect(remove, &QPushButton::clicked, this, std::move(on_delete));
+  top->addWidget(remove);
+  layout->addLayout(top);
   form_ = new QFormLayout();
   form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
   layout->addLayout(form_);

@@ -14,7 +14,10 @@
 #include <std_srvs/Empty.h>
 #include <pluginlib/class_list_macros.hpp>
 
+#include "rigid_body_sim/Delete.h"
+#include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/body_section.h"
 
 namespace rigid_body_sim {
@@ -68,6 +71,24 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   connect(run, &QPushButton::clicked, this, [this] { callEmpty("unpause", "running"); });
   connect(step_button, &QPushButton::clicked, this, [this] { step(); });
   connect(reset, &QPushButton::clicked, this, [this] { callEmpty("reset", "reset"); });
+
+  auto* spawn_row = new QHBoxLayout();
+  spawn_name_ = new QLineEdit(this);
+  spawn_name_->setObjectName("spawn_name");
+  spawn_name_->setPlaceholderText("new body's name");
+  spawn_name_->setToolTip("the name of the body Spawn adds: its TF frame and topics");
+  spawn_kind_ = new QComboBox(this);
+  spawn_kind_->setObjectName("spawn_kind");
+  spawn_kind_->addItem("rod");
+  for (Shape shape : {Shape::Sphere, Shape::Cylinder, Shape::Ring, Shape::SphericalShell})
+    spawn_kind_->addItem(QString::fromStdString(toString(shape)));
+  spawn_kind_->setToolTip("a rod, or a roller of this shape; its other keys take their defaults");
+  auto* spawn_button = button("Spawn", "spawn", "~spawn: a new body, starting now", this);
+  spawn_row->addWidget(spawn_name_, 1);
+  spawn_row->addWidget(spawn_kind_);
+  spawn_row->addWidget(spawn_button);
+  layout->addLayout(spawn_row);
+  connect(spawn_button, &QPushButton::clicked, this, [this] { spawn(); });
 
   clock_ = new QLabel("t = ?", this);
   clock_->setObjectName("clock");
@@ -177,7 +198,9 @@ void SimPanel::follow(const std::map<std::string, std::string>& bodies) {
   int index = 0;
   for (const auto& [name, type] : bodies) {
     if (!sections_.count(name)) {
-      auto* section = new BodySection(name, ns_ + "/" + name, type, *calls_, [this](double t) { onTime(t); });
+      auto* section = new BodySection(
+          name, ns_ + "/" + name, type, *calls_, [this](double t) { onTime(t); },
+          [this, name = name] { remove(name); });
       sections_layout_->insertWidget(index, section);
       sections_[name] = section;
     }
@@ -221,6 +244,37 @@ void SimPanel::step() {
         return text.str();
       },
       [this](const std::string& text) { showStatus(QString::fromStdString(text)); });
+}
+
+// A rod, or a roller of the chosen shape: the node gives every other key its documented default.
+void SimPanel::spawn() {
+  const std::string name = spawn_name_->text().trimmed().toStdString();
+  const std::string kind = spawn_kind_->currentText().toStdString();
+  Spawn srv;
+  srv.request.name = name;
+  srv.request.body = kind == "rod" ? "{type: rod}" : "{type: roller, shape: " + kind + "}";
+  callChange(ns_ + "/spawn", srv, "spawned '" + name + "' (" + kind + ")");
+}
+
+void SimPanel::remove(const std::string& body) {
+  Delete srv;
+  srv.request.name = body;
+  callChange(ns_ + "/delete", srv, "deleted '" + body + "'");
+}
+
+// The sections follow at once (the bodies are looked up again) rather than at the next discovery.
+template <class Service>
+void SimPanel::callChange(const std::string& service, Service srv, const std::string& done) {
+  calls_->post<std::pair<bool, std::string>>(
+      this,
+      [service, srv, done]() mutable {
+        if (!ros::service::call(service, srv)) return std::make_pair(false, "no answer from " + service);
+        return std::make_pair(bool(srv.response.success), srv.response.success ? done : srv.response.message);
+      },
+      [this](const std::pair<bool, std::string>& answer) {
+        showStatus(QString::fromStdString(answer.second), !answer.first);
+        discover();
+      });
 }
 
 void SimPanel::onTime(double t) {

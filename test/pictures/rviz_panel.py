@@ -7,7 +7,10 @@ rviz/sim.rviz on config/demo.yaml, under Xvfb (test/pictures/rviz_screenshot.sh 
 - Reset, a rod k typed into the rod's section and Step with a typed count: the server shows k, and the rod
   after the steps is, field for field, simulate's rod (config/demo.yaml's rod with that k) at that time;
 - a refused k (-5) snaps back to the value that runs, the node logs one WARN line, and the panel shows the
-  refusal (its words in the panel's text, its colour in the picture).
+  refusal (its words in the panel's text, its colour in the picture);
+- Spawn with a typed name and a chosen shape adds that body to the node's world (~get_config) and its
+  section to the panel; a spawn under a taken name is refused and adds nothing; the new body's Delete
+  takes it out of the world and its section out of the panel.
 Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every check passes, 1 otherwise;
 writes OUT (a screenshot at the end) and OUT's stem + ".txt" (the findings)."""
 import argparse
@@ -160,7 +163,7 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     import rospy
     from dynamic_reconfigure.msg import Config as ReconfigureConfig
     from rigid_body_sim.msg import RodState
-    from rigid_body_sim.srv import Step
+    from rigid_body_sim.srv import GetConfig, Step
     from rosgraph_msgs.msg import Log
 
     start = time.monotonic()
@@ -184,6 +187,10 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     rospy.Subscriber("/rosout", Log, lambda m: warnings.append(m.msg)
                      if m.name == "/sim" and m.level == Log.WARN else None, queue_size=100)
     step_service = rospy.ServiceProxy("/sim/step", Step)
+    get_config = rospy.ServiceProxy("/sim/get_config", GetConfig)
+
+    def world_bodies() -> Dict[str, Any]:
+        return dict(yaml.safe_load(get_config().yaml)["bodies"])
 
     # --- loaded: every body's section, no plugin error
     wait("the panel (its layout file)", lambda: "pause" in panel.widgets(), 90.0)
@@ -255,6 +262,38 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check(f"  the panel shows: {panel.text('rod.message')[:90]}", "refused" in panel.text("rod.message"))
     findings.check(f"  and in its status line: {panel.text('status')[:80]}", "'k'" in panel.text("status"))
     findings.check("  the picture shows it", refusal_in_picture(args.out, panel.widgets()["status"]))
+
+    # --- Run; Spawn a spherical shell named wheel (last in name order: its section comes at the bottom), a refused
+    # spawn, then the wheel's Delete
+    panel.click("run")
+    wait("Run done", lambda: panel.text("status") == "running")
+    panel.click("spawn_kind")
+    xdotool("type", "--delay", "40", "spherical")  # the list's keyboard search: sphere, then spherical_shell
+    xdotool("key", "Return")
+    wait("the shape spherical_shell chosen", lambda: panel.text("spawn_kind") == "spherical_shell")
+    panel.type_into("spawn_name", "wheel")
+    panel.click("spawn")
+    wait("the panel to report the spawn", lambda: "spawned 'wheel'" in panel.text("status"))
+    wheel = world_bodies().get("wheel", {})
+    findings.check(f"Spawn: the node's world has a spherical_shell roller named wheel ({wheel})",
+                   wheel.get("type") == "roller" and wheel.get("shape") == "spherical_shell")
+    wait("the wheel's section", lambda: "wheel.motion" in panel.widgets())
+    panel.scroll_to("wheel.delete", 20.0)
+    wait("the wheel's state in its section", lambda: "E = " in panel.text("wheel.motion"))
+    findings.check(f"  its section shows it: {panel.text('wheel.motion')[:60]}", True)
+    before = len(world_bodies())
+    panel.type_into("spawn_name", "rod")
+    panel.click("spawn")
+    wait("the refused spawn in the status line", lambda: "'rod'" in panel.text("status")
+         and "spawned" not in panel.text("status"))
+    findings.check(f"a spawn under a taken name is refused: {panel.text('status')[:80]}",
+                   len(world_bodies()) == before)
+    panel.scroll_to("wheel.delete", 20.0)  # the refusal's lines in the status push the sections down
+    panel.click("wheel.delete")
+    wait("the panel to report the delete", lambda: panel.text("status") == "deleted 'wheel'")
+    findings.check("Delete: wheel is out of the node's world", "wheel" not in world_bodies())
+    wait("the wheel's section to go", lambda: not any(name.startswith("wheel.") for name in panel.widgets()))
+    findings.check("  and its section out of the panel", True)
 
 
 def refusal_in_picture(path: str, message: Widget) -> bool:

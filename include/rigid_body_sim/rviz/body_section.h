@@ -1,7 +1,7 @@
 // One body's section of the SimPanel: its keys as widgets built from its dynamic_reconfigure server's
 // descriptions (a key added to a .cfg appears without code), showing the server's values; edits go to the
 // server (set_parameters), so that a refused value snaps back to what runs, and the refusal is shown. Also
-// the body's mode and energy, from its state topic.
+// the body's mode and energy, from its state topic, and a Delete button.
 #pragma once
 
 #include <functional>
@@ -29,9 +29,10 @@ class BodySection : public QGroupBox {
   Q_OBJECT
  public:
   // `server` is the body's reconfigure namespace (e.g. /sim/rod), `state_type` its state message type;
-  // `on_time` receives the simulated time of every state.
+  // `on_time` receives the simulated time of every state; `on_delete` is called by the Delete button.
   BodySection(const std::string& name, const std::string& server, const std::string& state_type,
-              CallQueue& calls, std::function<void(double)> on_time, QWidget* parent = nullptr);
+              CallQueue& calls, std::function<void(double)> on_time, std::function<void()> on_delete,
+              QWidget* parent = nullptr);
 
   const std::string& name() const { return name_; }
   const std::string& stateType() const { return state_type_; }

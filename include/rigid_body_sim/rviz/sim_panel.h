@@ -1,6 +1,7 @@
-// rviz panel rigid_body_sim/SimPanel: a thin client of sim_node. Pause / Run / Step (a count) / Reset
-// through the node's services; simulated time and the real-time factor achieved, from its state topics;
-// a section per body (BodySection), following the bodies the node serves. The node's name (sim: relative
+// rviz panel rigid_body_sim/SimPanel: a thin client of sim_node. Pause / Run / Step (a count) / Reset and
+// Spawn (a name and a kind) through the node's services; simulated time and the real-time factor achieved,
+// from its state topics; a section per body (BodySection, with its Delete), following the bodies the node
+// serves. The node's name (sim: relative
 // to rviz's namespace, as sim.launch's ns:= puts both in one) is a setting saved in the .rviz file.
 #pragma once
 
@@ -10,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
 #include <QSpinBox>
@@ -42,6 +44,11 @@ class SimPanel : public rviz::Panel {
   void follow(const std::map<std::string, std::string>& bodies);  // name -> state message type
   void callEmpty(const std::string& service, const QString& done);
   void step();
+  void spawn();
+  void remove(const std::string& body);
+  // Calls a service of the node that changes the world; its answer (or refusal) goes to the status line.
+  template <class Service>
+  void callChange(const std::string& service, Service srv, const std::string& done);
   void onTime(double t);
   void showClock();
   void onLog(const rosgraph_msgs::Log::ConstPtr& line);
@@ -53,6 +60,8 @@ class SimPanel : public rviz::Panel {
   std::unique_ptr<CallQueue> calls_;
   QLineEdit* node_edit_;
   QSpinBox* step_count_;
+  QLineEdit* spawn_name_;
+  QComboBox* spawn_kind_;
   QLabel* clock_;
   QLabel* status_;
   QVBoxLayout* sections_layout_;
