@@ -185,7 +185,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"absurd mass", "bodies: {rod: {type: rod, mass: 1e300}}", {"'mass'", "1e+300", "1e+09]"}},
         BadInput{"string for number",
                  "bodies: {rod: {type: rod, y0: high}}",
-                 {"'rod'", "'y0'", "'high'", "a finite number in [-1e+06, 1e+06]"}},
+                 {"'rod'", "'y0'", "'high'", "a finite number in [0, 1e+06]"}},
         BadInput{"list for number",
                  "bodies: {rod: {type: rod, y0: [1, 2]}}",
                  {"'y0'", "(a list)", "a finite number"}},

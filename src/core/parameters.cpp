@@ -103,7 +103,8 @@ const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {
       {"k", [](RodConfig& c) -> double& { return c.params.k; }, positive(kMaxStiffness)},
       {"floor_length", [](RodConfig& c) -> double& { return c.params.floor_length; }, closed(0, kMaxSize)},
       {"x0", [](RodConfig& c) -> double& { return c.initial.x; }, closed(-kMaxSize, kMaxSize)},
-      {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(-kMaxSize, kMaxSize)},
+      // A centre under the floor is refused: a rod starts at or above it (it may lie on it, y0 = 0).
+      {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(0, kMaxSize)},
       {"vx0", [](RodConfig& c) -> double& { return c.initial.vx; }, closed(-kMaxSpeed, kMaxSpeed)},
       {"vy0", [](RodConfig& c) -> double& { return c.initial.vy; }, closed(-kMaxSpeed, kMaxSpeed)},
       {"theta0", [](RodConfig& c) -> double& { return c.initial.theta; }, closed(-kMaxAngle, kMaxAngle)},

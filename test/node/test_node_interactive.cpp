@@ -1,7 +1,8 @@
 // sim_node's interactive markers (~interactive): this node sends what rviz sends when a marker is dragged
 // and dropped (POSE_UPDATE, then MOUSE_UP on /sim/interactive/feedback). A drop sets the body's initial
 // conditions through its reconfigure server (which then shows them) and restarts it exactly as the core
-// World restarts it; a refused drop logs one WARN line, puts the marker back and changes nothing.
+// World restarts it; a refused drop (off the slope, under the floor) logs one WARN line, puts the marker
+// back and changes nothing.
 #include <cmath>
 
 #include <dynamic_reconfigure/Config.h>
@@ -212,6 +213,23 @@ TEST(SimNodeInteractive, DropsSetInitialConditionsLikeAReconfigure) {
   stepAndCompare(c, world, 300, "after the refused drop");
   EXPECT_EQ(sphere_before.doubles.size(), watch.values_["sphere"].doubles.size());
   EXPECT_EQ(1.0, doubleOf(watch.values_["sphere"], "x0"));
+  {
+    std::lock_guard<std::mutex> lock(watch.mutex_);
+    EXPECT_EQ(warnings + 1, watch.warnings_.size()) << "a refused drop logs exactly one line";
+    warnings = watch.warnings_.size();
+    watch.poses_.erase("rod");
+  }
+
+  // --- refused: the rod dropped under the floor (y0 < 0), likewise
+  drop(feedback, "rod", "rod_floor", pose(1.0, -0.5, 0.2));
+  ASSERT_TRUE(watch.waitFor([&] { return watch.warnings_.size() > warnings; })) << "no WARN line";
+  EXPECT_NE(std::string::npos, watch.warnings_.back().find("body 'rod', key 'y0': value -0.5"))
+      << watch.warnings_.back();
+  ASSERT_TRUE(watch.waitFor([&] { return watch.poses_.count("rod") > 0; })) << "the marker was not put back";
+  EXPECT_EQ(1.5, watch.poses_["rod"].position.x);
+  EXPECT_EQ(2.5, watch.poses_["rod"].position.y);
+  stepAndCompare(c, world, 300, "after the refused drop under the floor");
+  EXPECT_EQ(2.5, doubleOf(watch.values_["rod"], "y0"));
   std::lock_guard<std::mutex> lock(watch.mutex_);
   EXPECT_EQ(warnings + 1, watch.warnings_.size()) << "a refused drop logs exactly one line";
 }
