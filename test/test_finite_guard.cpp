@@ -77,6 +77,43 @@ TEST(NonFiniteField, NamesTheFirstNonFiniteQuantityOfARoller) {
   EXPECT_EQ("friction", nonFiniteField(world.bodies()[1]).value_or("none"));
 }
 
+// The guard's cheap check: a motion within kSurelyFiniteMotion at the corner of every validated range (the
+// largest parameters, the motion at the bound with either sign) still gives finite messages; beyond the
+// bound the full check decides.
+TEST(SurelyFinite, HoldsAtTheCornerOfTheValidatedRanges) {
+  const double b = kSurelyFiniteMotion;
+  WorldConfig config;
+  RodConfig rod;
+  rod.params.mass = 1e9;
+  rod.params.length = 1e6;
+  rod.params.k = 1e12;
+  rod.params.gravity = 1e3;
+  config.bodies.push_back({"rod", rod});
+  RollerConfig roller;
+  roller.params.shape = Shape::Custom;
+  roller.params.inertia_factor = 100;
+  roller.params.mass = 1e9;
+  roller.params.radius = 1e6;
+  roller.params.gravity = 1e3;
+  roller.params.incline_angle = 1.5;
+  roller.params.mu_s = roller.params.mu_d = 100;
+  config.bodies.push_back({"roller", roller});
+  World world(config);
+  for (const double sign : {1.0, -1.0}) {
+    std::get<Rod>(world.bodies()[0].model).setInitial({b, sign * b, b, sign * b, b, sign * b});
+    std::get<Roller>(world.bodies()[1].model).setInitial({b, sign * b, b, sign * b});  // slipping
+    for (const Body& body : world.bodies()) {
+      EXPECT_TRUE(surelyFinite(body)) << body.name;
+      EXPECT_FALSE(nonFiniteField(body)) << body.name << ": " << nonFiniteField(body).value_or("");
+    }
+  }
+  std::get<Rod>(world.bodies()[0].model).setInitial({0, 4, 0.3, 1e200, 0, 0});  // v^2 overflows
+  EXPECT_FALSE(surelyFinite(world.bodies()[0]));
+  EXPECT_EQ("energy", nonFiniteField(world.bodies()[0]).value_or("none"));
+  std::get<Rod>(world.bodies()[0].model).setInitial({0, 4, kNaN, 2, 0, 0});
+  EXPECT_FALSE(surelyFinite(world.bodies()[0]));
+}
+
 TEST(DescribeBody, ListsEveryKeyAndTheState) {
   World world(rodAndSphere());
   const std::string rod = describeBody(world.bodies()[0]);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <utility>
 
@@ -45,6 +46,22 @@ std::optional<std::string> nonFiniteField(const Body& body) {
       body.model);
 }
 
+bool surelyFinite(const Body& body) {
+  // std::abs(NaN) <= bound is false: a NaN is never surely finite.
+  const auto within = [](std::initializer_list<double> values) {
+    for (double v : values) {
+      if (!(std::abs(v) <= kSurelyFiniteMotion)) return false;
+    }
+    return true;
+  };
+  if (const auto* rod = std::get_if<Rod>(&body.model)) {
+    const RodMotion& s = rod->state();
+    return within({s.x, s.y, s.theta, s.vx, s.vy, s.omega});
+  }
+  const RollerMotion& s = std::get<Roller>(body.model).state();
+  return within({s.x, s.v, s.theta, s.omega});
+}
+
 std::string describeBody(const Body& body) {
   std::ostringstream out;
   std::visit(
@@ -67,7 +84,8 @@ std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
   std::vector<NonFinite> newly_held;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!held_[i]) {
-      const std::optional<std::string> field = nonFiniteField(bodies[i]);
+      const std::optional<std::string> field =
+          surelyFinite(bodies[i]) ? std::nullopt : nonFiniteField(bodies[i]);
       if (!field) {
         last_finite_[i] = bodies[i].model;
         continue;

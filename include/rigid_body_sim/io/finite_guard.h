@@ -18,6 +18,13 @@ namespace rigid_body_sim {
 std::optional<std::string> nonFiniteField(const Body& body);
 inline bool finiteState(const Body& body) { return !nonFiniteField(body).has_value(); }
 
+// Every field of the body's motion finite and at most kSurelyFiniteMotion in size: then, with parameters
+// in their validated ranges, every quantity its messages carry is finite (the energies stay below 1e230,
+// the forces follow from the parameters). The guard's check after every step, far cheaper than
+// nonFiniteField, which it calls only when this fails.
+inline constexpr double kSurelyFiniteMotion = 1e100;
+bool surelyFinite(const Body& body);
+
 // "k=1000 mass=0.5 ... integrator=euler_cromer gravity=9.8 | state x=0 y=4 ...": what led to a state.
 std::string describeBody(const Body& body);
 
