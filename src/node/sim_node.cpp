@@ -22,7 +22,7 @@ constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 // ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
 constexpr std::uint32_t kCommandQueue = 100000;
-constexpr auto kWatchTick = std::chrono::milliseconds(100);  // the master is asked every 10 ticks
+constexpr auto kWatchPeriod = std::chrono::seconds(1);  // how often the master is asked
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
 bool placementChanged(const RodConfig& a, const RodConfig& b) {
@@ -108,12 +108,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   interactive_->show(world_.config());
 }
 
-SimNode::~SimNode() {
-  stopping_ = true;
-  wake_.notify_all();
-  if (stepper_.joinable()) stepper_.join();
-  if (watcher_.joinable()) watcher_.join();
-}
+SimNode::~SimNode() { stopThreads(); }
 
 void SimNode::advertise() {
   namespace names = node_interface;
@@ -508,6 +503,7 @@ void SimNode::publishLocked() {
   // drop it): after a reset at a publishing instant the frames move with the next one.
   if (stamp > last_tf_stamp_) {
     tf2_msgs::TFMessage tf;
+    tf.transforms.reserve(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
       tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
     tf_broadcaster_.sendTransform(tf.transforms);
@@ -619,8 +615,20 @@ void SimNode::watchMaster() {
       ros::requestShutdown();
       return;
     }
-    for (int tenth = 0; tenth < 10 && !stopping_; ++tenth) std::this_thread::sleep_for(kWatchTick);
+    std::unique_lock<std::mutex> lock(watch_mutex_);
+    watch_wake_.wait_for(lock, kWatchPeriod, [this] { return stopping_.load(); });
   }
+}
+
+void SimNode::stopThreads() {
+  {
+    std::lock_guard<std::mutex> lock(watch_mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  watch_wake_.notify_all();
+  if (stepper_.joinable()) stepper_.join();
+  if (watcher_.joinable()) watcher_.join();
 }
 
 // A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
@@ -637,11 +645,10 @@ int SimNode::run() {
   stepper_ = std::thread([this] { stepLoop(); });
   watcher_ = std::thread([this] { watchMaster(); });
   startReconfigureServers();
-  ros::waitForShutdown();
-  stopping_ = true;
-  wake_.notify_all();
+  // The stepper runs until roscpp shuts down (Ctrl-C, the duration done, a forgetful master): waiting for
+  // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();
-  watcher_.join();
+  stopThreads();
   if (recorder_) recorder_->commit();
   return exit_status_;
 }

@@ -94,6 +94,7 @@ class SimNode {
   // Every second: does the master still know this node? When a restarted master does not, puts the
   // parameters this node started from back on it (for the respawned node) and shuts down.
   void watchMaster();
+  void stopThreads();  // stops and joins the stepper and the watcher
   void restoreParameters();
   // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
   void stepOnceLocked();
@@ -164,6 +165,8 @@ class SimNode {
   std::atomic<int> exit_status_{0};
   std::thread stepper_;
   std::thread watcher_;
+  std::mutex watch_mutex_;  // the watcher's wait, cut short by stopThreads
+  std::condition_variable watch_wake_;
 };
 
 }  // namespace rigid_body_sim
