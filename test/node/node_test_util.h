@@ -16,6 +16,7 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
+#include <ros/callback_queue.h>
 #include <ros/network.h>
 #include <ros/ros.h>
 #include <rosgraph_msgs/Log.h>
@@ -47,9 +48,7 @@ class StateCollector {
   }
 
   // The subscriptions end before the containers their callbacks fill.
-  ~StateCollector() {
-    for (auto& sub : subs_) sub.shutdown();
-  }
+  ~StateCollector() { stop(); }
 
   // Waits until every subscription has a publisher.
   bool waitConnected(double timeout) {
@@ -69,25 +68,36 @@ class StateCollector {
     return cv_.wait_for(lock, std::chrono::duration<double>(timeout), pred);
   }
 
-  // Waits until every body has a state with time exactly t. A body's t never goes back, so each look
-  // reads its latest states only (it runs at every message).
+  // Waits until every body has a state with time exactly t (looked for at every message).
   bool waitAllAt(const World& world, double t, double timeout = 3.0) {
-    const auto has = [t](const auto& msgs) {
-      for (auto m = msgs.rbegin(); m != msgs.rend() && m->t >= t; ++m) {
-        if (m->t == t) return true;
+    return waitFor([&] { return allAtLocked(world, t); }, timeout);
+  }
+
+  // Waits until every body has a state at t (true), or until the node has gone: every state topic lost its
+  // publisher, so whatever it sent has arrived, and its callbacks have run (false: a subscriber that fell
+  // behind at real_time_factor 0 misses what the node's queues still held when it exited). nullopt when
+  // neither came in time. When it returns, no callback of this collector runs any more.
+  std::optional<bool> waitAllAtOrGone(const World& world, double t, double timeout) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (!waitAllAt(world, t, 0.02)) {
+      if (ros::WallTime::now() > end) return std::nullopt;
+      if (std::any_of(subs_.begin(), subs_.end(), [](const auto& sub) { return sub.getNumPublishers() > 0; }))
+        continue;
+      while (!ros::getGlobalCallbackQueue()->isEmpty()) {
+        if (ros::WallTime::now() > end) return std::nullopt;
+        ros::WallDuration(0.02).sleep();
       }
-      return false;
-    };
-    return waitFor(
-        [&] {
-          for (const auto& body : world.bodies()) {
-            const bool found =
-                std::holds_alternative<Rod>(body.model) ? has(rods_[body.name]) : has(rollers_[body.name]);
-            if (!found) return false;
-          }
-          return true;
-        },
-        timeout);
+      stop();  // waits for a callback under way
+      std::lock_guard<std::mutex> lock(mutex_);
+      return allAtLocked(world, t);
+    }
+    stop();
+    return true;
+  }
+
+  // No more messages: the subscriptions end (a callback under way first finishes).
+  void stop() {
+    for (auto& sub : subs_) sub.shutdown();
   }
 
   // Waits until every body has at least one state.
@@ -142,6 +152,22 @@ class StateCollector {
           cv_.notify_all();
         },
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay()));
+  }
+
+  // Whether every body has a state with time exactly t. A body's t never goes back, so each look reads its
+  // latest states only.
+  bool allAtLocked(const World& world, double t) {
+    const auto has = [t](const auto& msgs) {
+      for (auto m = msgs.rbegin(); m != msgs.rend() && m->t >= t; ++m) {
+        if (m->t == t) return true;
+      }
+      return false;
+    };
+    for (const auto& body : world.bodies()) {
+      if (!(std::holds_alternative<Rod>(body.model) ? has(rods_[body.name]) : has(rollers_[body.name])))
+        return false;
+    }
+    return true;
   }
 
   std::mutex mutex_;
