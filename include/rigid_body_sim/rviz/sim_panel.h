@@ -1,8 +1,8 @@
 // rviz panel rigid_body_sim/SimPanel: a thin client of sim_node. Pause / Run / Step (a count) / Reset and
 // Spawn (a name and a kind) through the node's services; simulated time and the real-time factor achieved,
 // from its state topics; a section per body (BodySection, with its Delete), following the bodies the node
-// serves. The node's name (sim: relative
-// to rviz's namespace, as sim.launch's ns:= puts both in one) is a setting saved in the .rviz file.
+// serves. The node's name (sim: relative to rviz's namespace, as sim.launch's ns:= puts both in one) is a
+// setting saved in the .rviz file.
 #pragma once
 
 #include <deque>
