@@ -83,9 +83,8 @@ double Rod::energy() const {
       0.5 * params_.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * momentOfInertia() * s.omega * s.omega;
   const double gravitational = params_.mass * params_.gravity * s.y;
   double elastic = 0.0;
-  // With the centre at least L/2 up no end is below the floor (as in the force model): no sine needed, and
-  // the sum is the same to the bit, the elastic term being 0 either way.
-  if (!(s.y >= 0.5 * params_.length)) {
+  // In flight the elastic term is 0 without the sines: the same bits.
+  if (!inFlight(params_, s)) {
     for (double y_end : {endHeightA(), endHeightB()}) {
       if (y_end < 0.0) elastic += 0.5 * params_.k * y_end * y_end;  // only a compressed spring stores energy
     }

@@ -46,10 +46,9 @@ RodMotion advance(const RodMotion& s, const RodMotion& d, double h) {
 RodAcceleration rodAcceleration(const RodParams& p, const RodMotion& s) {
   const double half = 0.5 * p.length;
   const double weight = p.mass * p.gravity;
-  if (s.y >= half) {
-    // In flight no end can reach the floor (|(L/2) sin theta| <= L/2 <= y), so both springs give signed
-    // zeros, and the sums below come to exactly these values: the same bits without cos and sin, which
-    // are most of a step's cost.
+  if (inFlight(p, s)) {
+    // Both springs give signed zeros, and the sums below come to exactly these values: the same bits
+    // without cos and sin, which are most of a step's cost.
     return {0.0 / p.mass, (0.0 - weight * 1.0) / p.mass, 0.0 / inertia(p)};
   }
   const double hx = half * std::cos(s.theta);

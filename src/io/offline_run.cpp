@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "rigid_body_sim/core/rod_dynamics.h"
 #include "rigid_body_sim/io/csv_writer.h"
 #include "rigid_body_sim/io/progress.h"
 
@@ -94,8 +95,7 @@ class BounceCounter {
  private:
   static bool touchesFloor(const Body& body) {
     const auto* rod = std::get_if<Rod>(&body.model);
-    // An end reaches at most half a length below the centre: skip the sines while the rod is high.
-    if (!rod || rod->state().y >= 0.5 * rod->params().length) return false;
+    if (!rod || inFlight(rod->params(), rod->state())) return false;
     // Rod::endHeightA / endHeightB's expressions, with one sine for both ends.
     const double y = rod->state().y;
     const double half = (0.5 * rod->params().length) * std::sin(rod->state().theta);

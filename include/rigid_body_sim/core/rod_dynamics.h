@@ -5,6 +5,12 @@
 
 namespace rigid_body_sim {
 
+// In flight: the centre at least L/2 up, so no end can be below the floor (|(L/2) sin theta| <= L/2 <= y)
+// and neither spring acts. The force model, the energy and the bounce count skip their sines then.
+inline bool inFlight(const RodParams& params, const RodMotion& state) {
+  return state.y >= 0.5 * params.length;
+}
+
 // Linear and angular acceleration of the rod in a given state (the text's force model).
 struct RodAcceleration {
   double ax = 0.0;
