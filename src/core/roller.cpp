@@ -31,12 +31,17 @@ std::string toString(Shape shape) {
   return "custom";
 }
 
+const std::array<Shape, 4>& namedShapes() {
+  static const std::array<Shape, 4> shapes = {Shape::Sphere, Shape::Cylinder, Shape::Ring,
+                                              Shape::SphericalShell};
+  return shapes;
+}
+
 std::optional<Shape> shapeFromString(const std::string& name) {
   // "custom" is deliberately not parsed: a custom body is described by its inertia factor instead.
-  if (name == "sphere") return Shape::Sphere;
-  if (name == "cylinder") return Shape::Cylinder;
-  if (name == "ring") return Shape::Ring;
-  if (name == "spherical_shell") return Shape::SphericalShell;
+  for (const Shape shape : namedShapes()) {
+    if (toString(shape) == name) return shape;
+  }
   return std::nullopt;
 }
 

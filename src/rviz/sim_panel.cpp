@@ -80,8 +80,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   spawn_kind_ = new QComboBox(this);
   spawn_kind_->setObjectName("spawn_kind");
   spawn_kind_->addItem("rod");
-  for (Shape shape : {Shape::Sphere, Shape::Cylinder, Shape::Ring, Shape::SphericalShell})
-    spawn_kind_->addItem(QString::fromStdString(toString(shape)));
+  for (const Shape shape : namedShapes()) spawn_kind_->addItem(QString::fromStdString(toString(shape)));
   spawn_kind_->setToolTip("a rod, or a roller of this shape; its other keys take their defaults");
   auto* spawn_button = button("Spawn", "spawn", "~spawn: a new body, starting now", this);
   spawn_row->addWidget(spawn_name_, 1);

@@ -8,6 +8,7 @@
 // transition inside a step splits the step at that instant. See DESIGN.md for the physics.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -18,7 +19,10 @@ enum class Shape { Sphere, Cylinder, Ring, SphericalShell, Custom };
 // c = I / (M R^2) for the named shapes; Custom has no fixed value (returns NaN).
 double inertiaFactorOf(Shape shape);
 std::string toString(Shape shape);
-// Parses "sphere", "cylinder", "ring", "spherical_shell"; nullopt for anything else.
+// The shapes with an inertia factor of their own (every one but Custom), in the order the docs list them.
+const std::array<Shape, 4>& namedShapes();
+// Parses the name of a named shape ("sphere", "cylinder", "ring", "spherical_shell"); nullopt for anything
+// else.
 std::optional<Shape> shapeFromString(const std::string& name);
 
 enum class RollMode { Rolling, Slipping };
