@@ -638,6 +638,35 @@ TEST(RollerReset, ResetAndSetInitialRestoreStateAndMode) {
   expectClose("force", r.frictionForce(), s.rollFriction(), std::abs(s.rollFriction()));
 }
 
+// A progress kept while slipping and put back after the body has stuck, rolled and restarted: the mode,
+// the laps and the motion are back, and the steps from there are those of a body that never left.
+TEST(RollerReset, RestoredProgressRepeatsTheSameStepsBitForBit) {
+  const Slope s{0.349, 0.4, 0.3, 0.2};
+  Roller r(makeParams(Shape::Sphere, s, 2.0), RollerInitial{0.5, 3.0, 0.2, 0.0});
+  for (int k = 0; k < 50; ++k) r.step(kDt);
+  ASSERT_EQ(r.mode(), RollMode::Slipping);
+  const Roller::Progress kept = r.progress();
+  const Roller reference = r;
+  for (int k = 0; k < 3000; ++k) r.step(kDt);  // sticks, and runs off the end at least once
+  ASSERT_GE(r.laps(), 1);
+  r.restore(kept);
+  EXPECT_EQ(r.mode(), RollMode::Slipping);
+  EXPECT_EQ(r.laps(), 0);
+  Roller never_left = reference;
+  for (int k = 0; k < 3000; ++k) {
+    const RollerStepEvents a = r.step(kDt);
+    const RollerStepEvents b = never_left.step(kDt);
+    ASSERT_EQ(a.stuck_at, b.stuck_at) << "step " << k;
+    ASSERT_EQ(a.restarted, b.restarted) << "step " << k;
+    ASSERT_EQ(r.state().x, never_left.state().x) << "step " << k;
+    ASSERT_EQ(r.state().v, never_left.state().v) << "step " << k;
+    ASSERT_EQ(r.state().theta, never_left.state().theta) << "step " << k;
+    ASSERT_EQ(r.state().omega, never_left.state().omega) << "step " << k;
+    ASSERT_EQ(r.mode(), never_left.mode()) << "step " << k;
+    ASSERT_EQ(r.laps(), never_left.laps()) << "step " << k;
+  }
+}
+
 TEST(RollerReset, MirroredLaunchOnHorizontalPlaneGivesMirroredTrajectory) {
   const Slope flat{0.0, 0.4, 0.3, 0.2};
   const double x0 = 100.0;

@@ -87,6 +87,14 @@ void Roller::setState(const RollerMotion& state) {
   pending_started_slipping_ = false;
 }
 
+void Roller::restore(const Progress& progress) {
+  state_ = progress.state;
+  mode_ = progress.mode;
+  slip_sign_ = progress.slip_sign;
+  laps_ = progress.laps;
+  pending_started_slipping_ = progress.pending_started_slipping;
+}
+
 void Roller::enterModeFromState() {
   const double u = slipSpeed();
   if (u == 0.0) {

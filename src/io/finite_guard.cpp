@@ -4,6 +4,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 
 #include "rigid_body_sim/core/parameters.h"
@@ -76,8 +77,21 @@ std::string describeBody(const Body& body) {
   return out.str();
 }
 
+FiniteGuard::Progress FiniteGuard::progressOf(const Body& body) {
+  return std::visit([](const auto& model) -> Progress { return model.progress(); }, body.model);
+}
+
+void FiniteGuard::restore(Body& body, const Progress& progress) {
+  std::visit(
+      [&](auto& model) {
+        using Model = std::decay_t<decltype(model)>;
+        model.restore(std::get<typename Model::Progress>(progress));
+      },
+      body.model);
+}
+
 FiniteGuard::FiniteGuard(const std::vector<Body>& bodies) : held_(bodies.size(), false) {
-  for (const auto& body : bodies) last_finite_.push_back(body.model);
+  for (const auto& body : bodies) last_finite_.push_back(progressOf(body));
 }
 
 std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
@@ -87,20 +101,20 @@ std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
       const std::optional<std::string> field =
           surelyFinite(bodies[i]) ? std::nullopt : nonFiniteField(bodies[i]);
       if (!field) {
-        last_finite_[i] = bodies[i].model;
+        last_finite_[i] = progressOf(bodies[i]);
         continue;
       }
       newly_held.push_back({i, *field});
       held_[i] = true;
     }
-    bodies[i].model = last_finite_[i];  // held: whatever the step did to it is undone
+    restore(bodies[i], last_finite_[i]);  // held: whatever the step did to it is undone
   }
   return newly_held;
 }
 
 void FiniteGuard::release(std::size_t index, const Body& body) {
   held_[index] = false;
-  if (finiteState(body)) last_finite_[index] = body.model;
+  if (finiteState(body)) last_finite_[index] = progressOf(body);
 }
 
 void FiniteGuard::releaseAll(const std::vector<Body>& bodies) {
@@ -108,7 +122,7 @@ void FiniteGuard::releaseAll(const std::vector<Body>& bodies) {
 }
 
 void FiniteGuard::add(const Body& body) {
-  last_finite_.push_back(body.model);
+  last_finite_.push_back(progressOf(body));
   held_.push_back(false);
 }
 

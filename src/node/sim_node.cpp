@@ -474,7 +474,7 @@ void SimNode::stepOnceLocked() {
 
 void SimNode::guardLocked() {
   for (const NonFinite& fault : guard_.afterStep(world_.bodies())) {
-    const Body held{world_.bodies()[fault.index].name, guard_.lastFinite(fault.index)};
+    const Body& held = world_.bodies()[fault.index];  // already back at its last finite state
     ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field
                               << " became non-finite in the step to t = " << formatNumber(world_.time())
                               << " s; the body is paused at its last finite state, the "

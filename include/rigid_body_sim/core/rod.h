@@ -62,6 +62,12 @@ class Rod {
   void reset();                               // back to the initial state
   void setState(const RodMotion& state);      // moves it there now; the initial state is kept
 
+  // Everything a step changes (for a rod, its motion): kept and put back exactly, a few bytes instead of
+  // the whole body (the node's guard keeps one after every step).
+  using Progress = RodMotion;
+  const Progress& progress() const { return state_; }
+  void restore(const Progress& progress) { state_ = progress; }
+
   const RodParams& params() const { return params_; }
   const RodMotion& initial() const { return initial_; }
   const RodMotion& state() const { return state_; }

@@ -81,6 +81,18 @@ class Roller {
   // the lap count are kept.
   void setState(const RollerMotion& state);
 
+  // Everything a step changes (the motion, the mode, the laps): kept and put back exactly, a few bytes
+  // instead of the whole body (the node's guard keeps one after every step).
+  struct Progress {
+    RollerMotion state;
+    RollMode mode;
+    int slip_sign;
+    int laps;
+    bool pending_started_slipping;
+  };
+  Progress progress() const { return {state_, mode_, slip_sign_, laps_, pending_started_slipping_}; }
+  void restore(const Progress& progress);
+
   const RollerParams& params() const { return params_; }
   const RollerInitial& initial() const { return initial_; }
   const RollerMotion& state() const { return state_; }

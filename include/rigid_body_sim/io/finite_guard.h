@@ -34,7 +34,8 @@ struct NonFinite {
   std::string field;
 };
 
-// Holds every body whose state became non-finite at its last finite state.
+// Holds every body whose state became non-finite at its last finite state. It keeps what a step changes
+// (Rod::Progress, Roller::Progress), not whole bodies: a step changes nothing else.
 class FiniteGuard {
  public:
   explicit FiniteGuard(const std::vector<Body>& bodies);  // the current states are the last finite ones
@@ -44,8 +45,6 @@ class FiniteGuard {
   std::vector<NonFinite> afterStep(std::vector<Body>& bodies);
 
   bool held(std::size_t index) const { return held_[index]; }
-  // The last finite model of a body (what it is held at, once held).
-  const std::variant<Rod, Roller>& lastFinite(std::size_t index) const { return last_finite_[index]; }
   // The body runs again from its current model (after a reconfigure of it, or a reset); a model that is
   // not finite itself is held again at the next afterStep.
   void release(std::size_t index, const Body& body);
@@ -55,7 +54,11 @@ class FiniteGuard {
   void remove(std::size_t index);
 
  private:
-  std::vector<std::variant<Rod, Roller>> last_finite_;
+  using Progress = std::variant<Rod::Progress, Roller::Progress>;
+  static Progress progressOf(const Body& body);
+  static void restore(Body& body, const Progress& progress);
+
+  std::vector<Progress> last_finite_;
   std::vector<bool> held_;
 };
 
