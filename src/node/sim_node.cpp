@@ -110,9 +110,19 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
 
 SimNode::~SimNode() { stopThreads(); }
 
+template <class Message>
+SimNode::CountedPublisher SimNode::advertiseCounted(ros::NodeHandle& node, const std::string& topic,
+                                                    std::uint32_t queue) {
+  auto count = std::make_shared<std::atomic<int>>(0);
+  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
+  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
+  return {node.advertise<Message>(topic, queue, connected, disconnected), std::move(count)};
+}
+
 void SimNode::advertise() {
   namespace names = node_interface;
-  marker_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, 10);
+  marker_publisher_ = advertiseCounted<visualization_msgs::MarkerArray>(private_node_, names::kMarkers, 10);
+  tf_publisher_ = advertiseCounted<tf2_msgs::TFMessage>(node_, "/tf", 100);
   // A viewer gets the latched scene as it subscribes, and the scene once more a second or two later: rviz
   // drops for good a marker of stamp 0 whose frame's first transform comes in the instant it looks for it
   // (tf2's transformable request sees "the transform is older than the cache" for stamp 0). By then it
@@ -130,7 +140,7 @@ void SimNode::advertise() {
       });
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   if (node_.getNamespace() != "/") {
-    namespace_tf_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTf, 100);
+    namespace_tf_ = advertiseCounted<tf2_msgs::TFMessage>(node_, names::kNamespaceTf, 100);
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
   command_publisher_ =
@@ -146,19 +156,11 @@ void SimNode::advertise() {
   services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
 }
 
-// A body's state publisher, its subscribers counted as they come and go: Publisher::getNumSubscribers
-// looks the topic up among all of the node's publications, and once per body per publication that was most
-// of the node's work with a thousand bodies.
 void SimNode::advertiseState(const Body& body) {
-  auto count = std::make_shared<std::atomic<int>>(0);
-  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
-  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
   const std::string topic = node_interface::stateTopic(body.name);
-  state_publishers_.push_back(
-      kindOf(body) == BodyKind::Rod
-          ? private_node_.advertise<RodState>(topic, kStateQueue, connected, disconnected)
-          : private_node_.advertise<RollerState>(topic, kStateQueue, connected, disconnected));
-  state_subscribers_.push_back(std::move(count));
+  state_publishers_.push_back(kindOf(body) == BodyKind::Rod
+                                  ? advertiseCounted<RodState>(private_node_, topic, kStateQueue)
+                                  : advertiseCounted<RollerState>(private_node_, topic, kStateQueue));
 }
 
 // Called once stepping has started: each server takes some 40 calls to the master, and the first states
@@ -295,7 +297,6 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
       return;
     case WorldCommand::Kind::Delete:
       state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
-      state_subscribers_.erase(state_subscribers_.begin() + static_cast<std::ptrdiff_t>(index));
       guard_.remove(index);
       rebuildSceneLocked();
       return;
@@ -314,7 +315,7 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
       // Trails start anew: the viewer drops the old ones.
       snapshots_->scene().clearTrails();
       if (markers_watched_)
-        marker_publisher_.publish(snapshots_->scene().clearMarkers(stampOf(world_.time())));
+        marker_publisher_.publisher.publish(snapshots_->scene().clearMarkers(stampOf(world_.time())));
       return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
@@ -498,23 +499,24 @@ void SimNode::publishLocked() {
   const ros::Time stamp = stampOf(t);
   publishClockLocked();
   const auto& bodies = world_.bodies();
-  // The transforms always (a viewer that joins finds every frame at once); a state message only for a topic
-  // with a subscriber. A transform is never sent twice at one stamp (listeners warn TF_REPEATED_DATA and
-  // drop it): after a reset at a publishing instant the frames move with the next one.
-  if (stamp > last_tf_stamp_) {
+  // Every body's transform in one message and a state message per body, built only for a topic with a
+  // subscriber (a viewer that joins finds every frame at the next publication). A transform is never sent
+  // twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset at a publishing instant
+  // the frames move with the next one.
+  if (stamp > last_tf_stamp_ && (tf_publisher_.watched() || namespace_tf_.watched())) {
     tf2_msgs::TFMessage tf;
     tf.transforms.reserve(bodies.size());
     for (std::size_t i = 0; i < bodies.size(); ++i)
       tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
-    tf_broadcaster_.sendTransform(tf.transforms);
-    if (namespace_tf_) namespace_tf_.publish(tf);
+    tf_publisher_.publisher.publish(tf);
+    if (namespace_tf_.publisher) namespace_tf_.publisher.publish(tf);
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
   if (recorder_) recorder_->write(world_);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (*state_subscribers_[i] <= 0) continue;
-    std::visit([&](const auto& msg) { state_publishers_[i].publish(msg); },
+    if (!state_publishers_[i].watched()) continue;
+    std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
                snapshots_->state(i, t, stamp, bodies[i]));
   }
   last_published_step_ = world_.stepCount();
@@ -522,7 +524,7 @@ void SimNode::publishLocked() {
 
 void SimNode::publishMarkersLocked(const ros::Time& stamp) {
   Scene& scene = snapshots_->scene();
-  const bool watched = marker_publisher_.getNumSubscribers() > 0;
+  const bool watched = marker_publisher_.watched();
   if (!watched) {
     if (markers_watched_) scene.clearTrails();  // a viewer that comes sees trails from then on
     markers_watched_ = false;
@@ -531,7 +533,7 @@ void SimNode::publishMarkersLocked(const ros::Time& stamp) {
   markers_watched_ = true;
   scene.sample(world_.bodies());
   if (world_.stepCount() % steps_per_markers_ == 0) {
-    marker_publisher_.publish(scene.changes(stamp, world_.bodies()));
+    marker_publisher_.publisher.publish(scene.changes(stamp, world_.bodies()));
   }
 }
 

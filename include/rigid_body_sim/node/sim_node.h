@@ -17,7 +17,6 @@
 #include <std_srvs/Empty.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include "rigid_body_sim/Delete.h"
 #include "rigid_body_sim/GetConfig.h"
@@ -57,6 +56,17 @@ class SimNode {
   bool applyCommand(WorldCommand command, std::string* why = nullptr);
 
  private:
+  // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
+  // deleted body's may still run). Publisher::getNumSubscribers looks the topic up among all of the node's
+  // publications, and once per body per publication that was most of the node's work with 1000 bodies.
+  struct CountedPublisher {
+    ros::Publisher publisher;
+    std::shared_ptr<std::atomic<int>> subscribers;
+    bool watched() const { return subscribers && *subscribers > 0; }
+  };
+  template <class Message>
+  CountedPublisher advertiseCounted(ros::NodeHandle& node, const std::string& topic, std::uint32_t queue);
+
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
   using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
   struct BodyServer {  // one of the two, by the body's type
@@ -140,19 +150,16 @@ class SimNode {
 
   ros::Publisher command_publisher_;
   std::uint32_t commands_published_ = 0;  // the next command's index (header.seq); 0 is the config
-  ros::Publisher marker_publisher_;
+  CountedPublisher marker_publisher_;
   ros::Publisher scene_publisher_;
   ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined
   std::atomic<bool> scene_viewer_joined_{false};  // since the last tick
   std::atomic<bool> scene_resend_due_{false};     // a viewer joined before the last tick
   ros::Publisher clock_publisher_;
-  ros::Publisher namespace_tf_;         // in a namespace: <ns>/tf, a copy of what goes to /tf
+  CountedPublisher tf_publisher_;       // /tf, as tf2_ros::TransformBroadcaster sends it
+  CountedPublisher namespace_tf_;       // in a namespace: <ns>/tf, a copy of what goes to /tf
   ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
-  std::vector<ros::Publisher> state_publishers_;
-  // Of each state topic, kept by the publishers' callbacks (shared with them: a deleted body's may still
-  // run).
-  std::vector<std::shared_ptr<std::atomic<int>>> state_subscribers_;
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  std::vector<CountedPublisher> state_publishers_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;
   // The servers' own (held while they call back; updateConfig needs it to be ours). applyCommand takes it
