@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <set>
 
@@ -86,14 +85,6 @@ bool Range::contains(double value) const {
 std::string Range::describe() const {
   return std::string("a finite number in ") + (min_open ? "(" : "[") + formatNumber(min) + ", " +
          formatNumber(max) + (max_open ? ")" : "]");
-}
-
-std::string formatNumber(double value) {
-  if (std::isnan(value)) return "nan";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
 }
 
 const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {

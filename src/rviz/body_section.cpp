@@ -1,6 +1,5 @@
 #include "rigid_body_sim/rviz/body_section.h"
 
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <regex>
@@ -18,6 +17,7 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 
+#include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/rviz/call_queue.h"
 
 namespace rigid_body_sim {
@@ -75,11 +75,7 @@ QString valueText(const dynamic_reconfigure::Config& config, const std::string& 
 
 }  // namespace
 
-QString numberText(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return QString::fromLatin1(buffer, static_cast<int>(result.ptr - buffer));
-}
+QString numberText(double value) { return QString::fromStdString(formatNumber(value)); }
 
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
                          CallQueue& calls, std::function<void(double)> on_time,
