@@ -2,17 +2,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include <boost/program_options.hpp>
 
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/sweep.h"
@@ -20,6 +22,8 @@
 namespace rigid_body_sim {
 
 namespace {
+
+namespace po = boost::program_options;
 
 const std::string kCommandLine = "(command line)";
 // The program that writes bags, installed beside `simulate`.
@@ -101,61 +105,132 @@ void replay(const std::string& bag, bool duration_given, OfflineOptions options,
   std::cout << formatSummary(replayRun(run.commands, options, open_bag));
 }
 
+// What the command line asks for, before any check of the values.
+struct CommandLine {
+  std::string config_path;
+  std::string replay_bag;
+  OfflineOptions options;
+  SweepArgs sweep;
+  bool duration_given = false;  // replay takes the bag's end time otherwise
+  bool help = false;
+};
+
+const char* const kDescription =
+    "Offline rigid_body_sim run: CSV per body, optional bag, no ROS master needed.";
+const char* const kConfigHelp = "YAML configuration (the node's parameters)";
+
+// The options, writing straight into `line` on po::notify. CONFIG is no option here: it is the one token
+// that is not an option (collectConfig), so that `--config` does not exist.
+po::options_description describeOptions(CommandLine& line) {
+  po::options_description options("Options", 110);
+  OfflineOptions& run = line.options;
+  auto add = options.add_options();
+  add("help,h", "print this help message and exit");
+  add("replay", po::value(&line.replay_bag)->value_name("BAG"),
+      "rebuild the run recorded in this bag from its /sim/commands instead of a CONFIG (duration: the "
+      "bag's)");
+  add("duration", po::value(&run.duration)->value_name("S")->default_value(run.duration),
+      "simulated seconds");
+  add("sample-rate", po::value(&run.sample_rate)->value_name("HZ"),
+      "samples per simulated second, a divisor of rate (default: publish_rate)");
+  add("out-dir", po::value(&run.out_dir)->value_name("DIR")->default_value(run.out_dir),
+      "folder for <body>.csv (or sweep.csv)");
+  add("bag", po::value(&run.bag)->value_name("FILE"), "also write what the node would publish into this bag");
+  // One value per --sweep (no multitoken), so that CONFIG may follow one.
+  add("sweep", po::value(&line.sweep.specs)->value_name("SPEC"),
+      "BODY.KEY=START:STOP:N: N values from START to STOP inclusive; repeat for a Cartesian product");
+  add("jobs", po::value(&line.sweep.jobs)->value_name("J"), "threads for --sweep (default 0: every core)");
+  add("shard", po::value(&line.sweep.shard)->value_name("i/n"),
+      "run only slice i of n of the sweep (1 <= i <= n)");
+  return options;
+}
+
+void printHelp(const po::options_description& options) {
+  const auto width = static_cast<int>(options.get_option_column_width());
+  std::cout << kDescription << "\nUsage: simulate [OPTIONS] [CONFIG]\n\nPositionals:\n  " << std::left
+            << std::setw(width - 2) << "CONFIG" << kConfigHelp << "\n\n"
+            << options << "\n";
+}
+
+// The tokens that are no option (and no option's value) are CONFIG: at most one.
+void collectConfig(const po::parsed_options& parsed, CommandLine& line) {
+  std::vector<std::string> positionals;
+  for (const auto& option : parsed.options) {
+    if (option.position_key >= 0)
+      positionals.insert(positionals.end(), option.value.begin(), option.value.end());
+  }
+  if (positionals.size() > 1) {
+    throw po::error("unexpected argument '" + positionals[1] + "' after CONFIG '" + positionals[0] + "'");
+  }
+  if (!positionals.empty()) line.config_path = positionals[0];
+}
+
+// Fills `line` through `options` (describeOptions(line)); throws po::error on a malformed command line
+// (unknown option, missing or non-numeric value, an option given twice).
+void parseCommandLine(int argc, char** argv, const po::options_description& options, CommandLine& line) {
+  // No guessing: CLI11 took no abbreviation (--dur) either. A value may still start with '-' (--duration -1).
+  const auto style = po::command_line_style::default_style & ~po::command_line_style::allow_guessing;
+  const auto parsed = po::command_line_parser(argc, argv).options(options).style(style).run();
+  po::variables_map values;
+  po::store(parsed, values);
+  po::notify(values);
+  collectConfig(parsed, line);
+  line.duration_given = values.count("duration") > 0 && !values["duration"].defaulted();
+  line.help = values.count("help") > 0;
+}
+
+// --help wins over any mistake elsewhere on the line (CLI11: over all but a value that is no number).
+bool asksForHelp(int argc, char** argv) {
+  return std::any_of(argv + 1, argv + argc, [](const char* arg) {
+    return std::strcmp(arg, "--help") == 0 || std::strcmp(arg, "-h") == 0;
+  });
+}
+
+int run(const CommandLine& line, char** argv, const SinkOpener& open_bag, const RunReader& read_run) {
+  const OfflineOptions& options = line.options;
+  checkSource(line.config_path, line.replay_bag, line.sweep);
+  checkModes(line.sweep, options);
+  if ((!options.bag.empty() || !line.replay_bag.empty()) && !open_bag) handOverToRosProgram(argv);
+  if (!line.replay_bag.empty()) {
+    replay(line.replay_bag, line.duration_given, options, read_run, open_bag);
+    return 0;
+  }
+  const auto config = loadWorldConfigFile(line.config_path);
+  for (const auto& note : autoSubstepNotes(config)) std::cerr << "simulate: note: " << note << "\n";
+  for (const auto& warning : slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
+  if (!line.sweep.specs.empty()) {
+    sweep(config, line.sweep, options);
+  } else {
+    std::cout << formatSummary(runOffline(config, options, open_bag));
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runSimulate(int argc, char** argv, const SinkOpener& open_bag, const RunReader& read_run) {
-  CLI::App app{"Offline rigid_body_sim run: CSV per body, optional bag, no ROS master needed.", "simulate"};
-  std::string config_path;
-  OfflineOptions options;
-  SweepArgs sweep_args;
-  std::string replay_bag;
-  app.add_option("CONFIG", config_path, "YAML configuration (the node's parameters)");
-  app.add_option(
-      "--replay", replay_bag,
-      "rebuild the run recorded in this bag from its /sim/commands instead of a CONFIG (duration: the "
-      "bag's)");
-  app.add_option("--duration", options.duration, "simulated seconds")->capture_default_str();
-  app.add_option("--sample-rate", options.sample_rate,
-                 "samples per simulated second, a divisor of rate (default: publish_rate)");
-  app.add_option("--out-dir", options.out_dir, "folder for <body>.csv (or sweep.csv)")->capture_default_str();
-  app.add_option("--bag", options.bag, "also write what the node would publish into this bag");
-  app.add_option(
-         "--sweep", sweep_args.specs,
-         "BODY.KEY=START:STOP:N: N values from START to STOP inclusive; repeat for a Cartesian product")
-      ->allow_extra_args(false);  // one value per --sweep, so that CONFIG may follow
-  app.add_option("--jobs", sweep_args.jobs, "threads for --sweep (default 0: every core)");
-  app.add_option("--shard", sweep_args.shard, "i/n: run only slice i of n of the sweep (1 <= i <= n)");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return "simulate: " + std::string(e.what()) + " (simulate --help lists the options)\n";
-  });
+  CommandLine line;
+  const po::options_description options = describeOptions(line);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& error) {
-    // --help is a ParseError too: it prints the help and exits 0; every other one is the user's mistake.
-    return app.exit(error) == 0 ? 0 : 1;
-  }
-
-  try {
-    checkSource(config_path, replay_bag, sweep_args);
-    checkModes(sweep_args, options);
-    if ((!options.bag.empty() || !replay_bag.empty()) && !open_bag) handOverToRosProgram(argv);
-    if (!replay_bag.empty()) {
-      replay(replay_bag, app.count("--duration") > 0, options, read_run, open_bag);
+    parseCommandLine(argc, argv, options, line);
+  } catch (const po::error& error) {
+    if (asksForHelp(argc, argv)) {
+      printHelp(options);
       return 0;
     }
-    const auto config = loadWorldConfigFile(config_path);
-    for (const auto& note : autoSubstepNotes(config)) std::cerr << "simulate: note: " << note << "\n";
-    for (const auto& warning : slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
-    if (!sweep_args.specs.empty()) {
-      sweep(config, sweep_args, options);
-    } else {
-      std::cout << formatSummary(runOffline(config, options, open_bag));
-    }
+    std::cerr << "simulate: " << error.what() << " (simulate --help lists the options)\n";
+    return 1;
+  }
+  if (line.help) {
+    printHelp(options);
+    return 0;
+  }
+  try {
+    return run(line, argv, open_bag, read_run);
   } catch (const std::exception& error) {
     std::cerr << "simulate: " << error.what() << "\n";
     return 1;
   }
-  return 0;
 }
 
 }  // namespace rigid_body_sim
