@@ -61,8 +61,8 @@ def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
     junit = folder / "ctest.xml"
     try:
         with open(folder / "ctest.log", "w") as log:
-            subprocess.run(["ctest", "--test-dir", str(build), "-L", labels, "--output-on-failure",
-                            "--output-junit", str(junit.resolve())], env=env, stdout=log, stderr=subprocess.STDOUT)
+            subprocess.run(["ctest", "-L", labels, "--output-on-failure", "--output-junit", str(junit.resolve())],
+                           cwd=build, env=env, stdout=log, stderr=subprocess.STDOUT)
     finally:
         shutil.rmtree(home, ignore_errors=True)
     if not junit.exists():

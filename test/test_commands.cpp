@@ -268,9 +268,8 @@ TEST(Commands, RefusedCommandsChangeNothing) {
   add(WorldCommand::Kind::SetState, "rod", [&](WorldCommand& c) { c.state = {{"x", 1.0}, {"y", nan}}; });
   add(WorldCommand::Kind::SetState, "rod", [](WorldCommand& c) { c.state = {{"vx", 1e9}}; });  // out of range
   add(WorldCommand::Kind::SetState, "rod", [](WorldCommand& c) { c.state = {{"x", 1.0}, {"x", 2.0}}; });
-  add(WorldCommand::Kind::SetState, "ball", [](WorldCommand& c) {
-    c.state = {{"x", 2e6}};
-  });  // off the slope
+  // off the slope
+  add(WorldCommand::Kind::SetState, "ball", [](WorldCommand& c) { c.state = {{"x", 2e6}}; });
   add(WorldCommand::Kind::SetState, "ball", [](WorldCommand& c) { c.state = {{"x", -0.1}}; });
   add(WorldCommand::Kind::SetState, "nobody", [](WorldCommand& c) { c.state = {{"x", 1.0}}; });
   WorldCommand late = command(WorldCommand::Kind::Reset, world);

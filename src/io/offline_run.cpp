@@ -193,8 +193,8 @@ OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& optio
 }
 
 OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options) {
-  return stepAndSample(
-      config, options, [](const World&) {}, nullptr);
+  const auto no_sample = [](const World&) {};
+  return stepAndSample(config, options, no_sample, nullptr);
 }
 
 std::string formatSummary(const OfflineSummary& summary) {

@@ -349,11 +349,10 @@ bool SimNode::onDrop(const std::string& body, const std::map<std::string, double
         WorldCommand command;
         command.kind = WorldCommand::Kind::Reconfigure;
         command.body = body;
-        command.config = std::visit(
-            [&](const auto& config) {
-              return BodyConfig{body, withReconfigured(body, config, initial)};
-            },
-            current.config);
+        const auto reconfigured = [&](const auto& config) {
+          return BodyConfig{body, withReconfigured(body, config, initial)};
+        };
+        command.config = std::visit(reconfigured, current.config);
         return command;
       },
       why);

@@ -22,8 +22,8 @@ class CallQueue {
   void post(QObject* receiver, std::function<Result()> call, std::function<void(const Result&)> done) {
     push([receiver, call, done] {
       Result result = call();
-      QMetaObject::invokeMethod(
-          receiver, [done, result] { done(result); }, Qt::QueuedConnection);
+      const auto deliver = [done, result] { done(result); };
+      QMetaObject::invokeMethod(receiver, deliver, Qt::QueuedConnection);
     });
   }
 
