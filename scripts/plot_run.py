@@ -34,7 +34,6 @@ from typing import Any, Callable, Dict, List, Optional, Set, Tuple
 
 import matplotlib
 import numpy as np
-from numpy.typing import NDArray
 
 # sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
 # runs this file from elsewhere.
@@ -46,8 +45,9 @@ from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpe
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
-Array = NDArray[Any]
-Columns = Dict[str, Array]  # one body's samples: column -> values
+# Arrays are np.ndarray, with no alias: bullseye has no numpy.typing (numpy 1.19), and its mypy (0.812)
+# rejects an alias of np.ndarray, which is untyped there.
+Columns = Dict[str, np.ndarray]  # one body's samples: column -> values
 Run = Dict[str, Columns]  # body -> its samples
 Summary = Dict[str, Dict[str, Any]]
 
@@ -95,13 +95,14 @@ def load_run(path: str, config: Config) -> Run:
 Event = Dict[str, Any]
 
 
-def laps(t: Array, x: Array, v: Array) -> List[Tuple[int, int]]:
+def laps(t: np.ndarray, x: np.ndarray, v: np.ndarray) -> List[Tuple[int, int]]:
     """Index ranges [start, end) between restarts: a restart is a jump of x that the speed cannot explain
     (between events the acceleration is constant, so dx = (v0 + v1) dt / 2)."""
     dx = np.diff(x)
     expected = 0.5 * (v[:-1] + v[1:]) * np.diff(t)
     jumps = np.flatnonzero(np.abs(dx - expected) > 0.05 + 0.25 * np.abs(expected)) + 1
-    edges = [0, *jumps.tolist(), len(t)]
+    # int per element, not jumps.tolist(): numpy 2's stubs do not know tolist() of a 1-D array is a list.
+    edges = [0, *map(int, jumps), len(t)]
     return list(zip(edges[:-1], edges[1:]))
 
 
@@ -151,12 +152,12 @@ def critical_angle(p: RollerSpec) -> Dict[str, Any]:
             "slope_deg": math.degrees(p.angle), "rolls": p.rolls()}
 
 
-def rod_contacts(data: Columns, length: float) -> Array:
+def rod_contacts(data: Columns, length: float) -> np.ndarray:
     """Boolean per sample: an end below the floor."""
     return np.array([rod_end_below_floor(y, theta, length) for y, theta in zip(data["y"], data["theta"])])
 
 
-def contact_runs(contact: Array) -> List[Tuple[int, int]]:
+def contact_runs(contact: np.ndarray) -> List[Tuple[int, int]]:
     """(start, end) index ranges of consecutive contact samples."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], contact.astype(int), [0]])))
     return list(zip(edges[::2], edges[1::2]))
@@ -226,14 +227,14 @@ def plot_rods(run: Run, specs: Specs, path: str) -> None:
     save(fig, path)
 
 
-def broken_at_restarts(d: Columns, key: str, speed: str = "v") -> Array:
+def broken_at_restarts(d: Columns, key: str, speed: str = "v") -> np.ndarray:
     """A column with NaN between laps, so that a restart is not drawn as a line back to the start (`speed`:
     the velocity along x, v for a roller, vx for a rod)."""
     parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], d["x"], d[speed])]
     return np.concatenate([np.append(part, np.nan) for part in parts])[:-1]
 
 
-def shade_slipping(ax: Any, t: Array, mode: Array) -> None:
+def shade_slipping(ax: Any, t: np.ndarray, mode: np.ndarray) -> None:
     slipping = np.asarray(mode) == "slipping"
     for start, end in contact_runs(slipping):
         ax.axvspan(t[start], t[min(end, len(t) - 1)], color="0.9", lw=0)
@@ -360,7 +361,7 @@ MISSING_LABEL = "no value"
 class Sweep:
     path: str
     columns: SweepColumns
-    values: Dict[str, Array]  # column -> numbers (NaN where empty), or texts if any value is not a number
+    values: Dict[str, np.ndarray]  # column -> numbers (NaN where empty), or texts if any value is not a number
 
     def swept_bodies(self) -> List[str]:
         """The bodies with a swept key, in the order of the keys."""
@@ -382,7 +383,7 @@ def sweep_file(path: str) -> Optional[str]:
         return candidate if is_sweep_header(f.readline().strip().split(",")) else None
 
 
-def column_values(texts: List[str]) -> Array:
+def column_values(texts: List[str]) -> np.ndarray:
     """Numbers (NaN where empty), or the texts if any is not a number."""
     try:
         return np.array([float(text) if text else math.nan for text in texts])
@@ -426,7 +427,7 @@ def at(sweep: Sweep, row: int) -> Dict[str, float]:
     return {key: float(sweep.values[key][row]) for key in sweep.columns.keys}
 
 
-def whole_numbers(values: Array) -> bool:
+def whole_numbers(values: np.ndarray) -> bool:
     return bool(len(values)) and bool(np.all(values == np.round(values)))
 
 
@@ -449,14 +450,14 @@ def outcome_stats(sweep: Sweep, column: str) -> Dict[str, Any]:
     return stats
 
 
-def line_data(sweep: Sweep, column: str) -> Tuple[Array, Array]:
+def line_data(sweep: Sweep, column: str) -> Tuple[np.ndarray, np.ndarray]:
     """The outcome against the one swept key, in the key's order."""
     x = sweep.values[sweep.columns.keys[0]]
     order = np.argsort(x, kind="stable")
     return x[order], sweep.values[column][order]
 
 
-def grid_data(sweep: Sweep, column: str) -> Tuple[Array, Array, List[List[Any]]]:
+def grid_data(sweep: Sweep, column: str) -> Tuple[np.ndarray, np.ndarray, List[List[Any]]]:
     """The outcome on the grid of the two swept keys: the first key's values (x), the second's (y), and
     z[i][j] at (x[j], y[i]) (None where no variant has that pair, or it has no value)."""
     first, second = (sweep.values[key] for key in sweep.columns.keys)
@@ -488,17 +489,19 @@ def summarise_sweep(sweep: Sweep, config: Config) -> Dict[str, Any]:
                       "t": float(sweep.values["t"].max()), "keys": keys}, "bodies": bodies}
 
 
-def key_axis(ax: Any, axis: str, key: str, unit: str, values: Array) -> None:
+def key_axis(ax: Any, axis: str, key: str, unit: str, values: np.ndarray) -> None:
     """Label an axis with the key and its unit; an angle that spans half a turn or more in steps of π/2."""
     (ax.set_xlabel if axis == "x" else ax.set_ylabel)(labelled(key, unit))
     if unit == "rad" and np.ptp(values) >= math.pi:
         halves = np.arange(math.ceil(values.min() / (math.pi / 2)), math.floor(values.max() / (math.pi / 2)) + 1)
         names = {0: "0", 1: "π/2", 2: "π", -1: "-π/2", -2: "-π"}
         labels = [names.get(int(h), f"{int(h) // 2}π" if h % 2 == 0 else f"{int(h)}π/2") for h in halves]
-        (ax.set_xticks if axis == "x" else ax.set_yticks)(halves * math.pi / 2, labels)
+        # Ticks, then labels: matplotlib 3.3 (bullseye) has no labels argument to set_xticks.
+        (ax.set_xticks if axis == "x" else ax.set_yticks)(halves * math.pi / 2)
+        (ax.set_xticklabels if axis == "x" else ax.set_yticklabels)(labels)
 
 
-def draw_line(ax: Any, x: Array, y: Array, label: str) -> None:
+def draw_line(ax: Any, x: np.ndarray, y: np.ndarray, label: str) -> None:
     """One outcome against one key: points (joined when few enough to follow), texts as rows, variants
     without a value as ticks along the bottom."""
     from matplotlib.ticker import MaxNLocator
@@ -508,14 +511,17 @@ def draw_line(ax: Any, x: Array, y: Array, label: str) -> None:
     if y.dtype.kind == "U":
         texts = sorted(set(y.tolist()))
         ax.plot(x, [texts.index(v) for v in y], ls="none", color="tab:blue", **marker)
-        ax.set_yticks(range(len(texts)), texts)
+        ax.set_yticks(range(len(texts)))  # then the labels: no labels argument in matplotlib 3.3
+        ax.set_yticklabels(texts)
         ax.set_ylim(-0.5, len(texts) - 0.5)
         ax.set_ylabel(label)
         return
     ax.plot(x, y, color="tab:blue", lw=1.5 if few else 0, **marker)
-    if whole_numbers(y[~np.isnan(y)]):
+    numbers = y[~np.isnan(y)]
+    if whole_numbers(numbers):
         ax.yaxis.set_major_locator(MaxNLocator(integer=True))
-    if np.nanmin(y, initial=0.0) < 0.0 < np.nanmax(y, initial=0.0):
+    # Both signs: a line at zero (not np.nanmin(y, initial=0.0): numpy 1.19, bullseye's, has no `initial`).
+    if (numbers < 0.0).any() and (numbers > 0.0).any():
         ax.axhline(0.0, color="0.4", lw=0.8)
     missing = np.isnan(y)
     if missing.all():
@@ -528,7 +534,7 @@ def draw_line(ax: Any, x: Array, y: Array, label: str) -> None:
     ax.set_ylabel(label)
 
 
-def cell_edges(values: Array) -> Array:
+def cell_edges(values: np.ndarray) -> np.ndarray:
     """Edges of heat-map cells centred on the values (sorted, distinct)."""
     if len(values) == 1:
         half = 0.5 * (abs(values[0]) or 1.0)
@@ -537,7 +543,7 @@ def cell_edges(values: Array) -> Array:
     return np.concatenate([[2 * values[0] - middles[0]], middles, [2 * values[-1] - middles[-1]]])
 
 
-def draw_heat_map(fig: Any, ax: Any, xs: Array, ys: Array, z: List[List[Any]], label: str) -> None:
+def draw_heat_map(fig: Any, ax: Any, xs: np.ndarray, ys: np.ndarray, z: List[List[Any]], label: str) -> None:
     """One outcome over two keys: a colour per cell with a colour bar; texts as categories with a legend;
     cells without a value in grey."""
     from matplotlib.colors import BoundaryNorm, ListedColormap

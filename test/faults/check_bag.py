@@ -78,7 +78,7 @@ def main() -> int:
     bodies = [f"/sim/{name}/state" for name in config["bodies"]]
     count = max(check_states(recorded, topic, published, last, args.mode == "complete", rate, args.t_end)
                 for topic in bodies)
-    state_stamps = set().union(*(recorded.stamps[topic] for topic in bodies))
+    state_stamps: Set[Any] = set().union(*(recorded.stamps[topic] for topic in bodies))
     tf = recorded.stamps.get("/tf", set())
     if args.mode == "complete" and tf != state_stamps:
         fail(f"/tf has {len(tf)} sample times, the states {len(state_stamps)}")

@@ -9,9 +9,9 @@ from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
-from numpy.typing import NDArray
 
-Array = NDArray[Any]
+# Arrays are np.ndarray, with no alias: bullseye has no numpy.typing (numpy 1.19), and its mypy (0.812)
+# rejects an alias of np.ndarray, which is untyped there.
 Pixel = Tuple[float, float]
 
 # Colour classes: (hue range in degrees, saturation range, minimum value). The marker colours are those
@@ -29,7 +29,7 @@ COLOUR_CLASSES: Dict[str, Tuple[Tuple[float, float], Tuple[float, float], float]
 SHAPE_CLASS = {"sphere": "red", "cylinder": "green", "ring": "orange", "spherical_shell": "purple"}
 
 
-def hsv(image: Array) -> Tuple[Array, Array, Array]:
+def hsv(image: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Hue in degrees [0, 360), saturation and value in [0, 1] of an RGB(A) float image."""
     rgb = image[..., :3].astype(float)
     if rgb.max() > 1.0:
@@ -44,7 +44,7 @@ def hsv(image: Array) -> Tuple[Array, Array, Array]:
     return hue, saturation, top
 
 
-def colour_mask(image: Array, name: str) -> Array:
+def colour_mask(image: np.ndarray, name: str) -> np.ndarray:
     (h0, h1), (s0, s1), v0 = COLOUR_CLASSES[name]
     hue, sat, val = hsv(image)
     in_hue = (hue >= h0) & (hue <= h1) if h0 <= h1 else (hue >= h0) | (hue <= h1)
@@ -70,7 +70,7 @@ class Camera:
         return cls(focal, float(view["Distance"]), float(view["Pitch"]), float(view["Yaw"]),
                    float(view.get("Field of View", 0.785398)), *window)
 
-    def basis(self) -> Tuple[Array, Array, Array, Array]:
+    def basis(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         cp = np.cos(self.pitch)
         eye = self.focal + self.distance * np.array(
             [np.cos(self.yaw) * cp, np.sin(self.yaw) * cp, np.sin(self.pitch)])
@@ -82,7 +82,7 @@ class Camera:
     def pixels_per_metre_at(self, depth: Any) -> Any:
         return 0.5 * self.height / np.tan(0.5 * self.fov) / depth
 
-    def project(self, points: Any) -> Tuple[Array, Array]:
+    def project(self, points: Any) -> Tuple[np.ndarray, np.ndarray]:
         """Screen pixels (column, row) and depth of world points, shape (n, 3)."""
         eye, forward, right, up = self.basis()
         rel = np.atleast_2d(points) - eye
@@ -93,7 +93,7 @@ class Camera:
         return np.stack([col, row], axis=1), depth
 
 
-def quaternion_matrix(q: Sequence[float]) -> Array:
+def quaternion_matrix(q: Sequence[float]) -> np.ndarray:
     x, y, z, w = q
     return np.array([
         [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
@@ -101,13 +101,13 @@ def quaternion_matrix(q: Sequence[float]) -> Array:
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def box_corners(rotation: Array, centre: Array, scale: Any) -> Array:
+def box_corners(rotation: np.ndarray, centre: np.ndarray, scale: Any) -> np.ndarray:
     """The 8 corners of a box of size `scale` centred at `centre`, axes `rotation` (world)."""
     signs = np.array([[sx, sy, sz] for sx in (-.5, .5) for sy in (-.5, .5) for sz in (-.5, .5)])
     return centre + (signs * scale) @ rotation.T
 
 
-def polygon_mask(shape: Tuple[int, int], polygon: Optional[Sequence[Pixel]]) -> Array:
+def polygon_mask(shape: Tuple[int, int], polygon: Optional[Sequence[Pixel]]) -> np.ndarray:
     """Pixels inside a convex polygon (vertices in order, (col, row)); none without a polygon (a shape behind
     the camera has none)."""
     if polygon is None:
@@ -139,19 +139,19 @@ def convex_hull(points: Any) -> List[Pixel]:
     return half(pts) + half(reversed(pts))
 
 
-def disc_mask(shape: Tuple[int, int], centre: Any, radius: float) -> Array:
+def disc_mask(shape: Tuple[int, int], centre: Any, radius: float) -> np.ndarray:
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
     return (cols - centre[0]) ** 2 + (rows - centre[1]) ** 2 <= radius ** 2
 
 
-def segment_mask(shape: Tuple[int, int], a: Array, b: Array, half_width: float) -> Array:
+def segment_mask(shape: Tuple[int, int], a: np.ndarray, b: np.ndarray, half_width: float) -> np.ndarray:
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
     d = np.asarray(b, float) - a
     t = np.clip(((cols - a[0]) * d[0] + (rows - a[1]) * d[1]) / max(d @ d, 1e-9), 0, 1)
     return (cols - a[0] - t * d[0]) ** 2 + (rows - a[1] - t * d[1]) ** 2 <= half_width ** 2
 
 
-def quadrants_with(image: Array, region: Array, centre: Any, colour: str) -> int:
+def quadrants_with(image: np.ndarray, region: np.ndarray, centre: Any, colour: str) -> int:
     """How many of the four quadrants about `centre` hold pixels of `colour` inside `region`."""
     rows, cols = np.mgrid[0:image.shape[0], 0:image.shape[1]]
     found = colour_mask(image, colour) & region
@@ -177,7 +177,7 @@ class Finding:
                 f"{self.region_px:6d} px ({100 * share:5.1f} %), needed {self.needed_px}")
 
 
-def count(image: Array, region: Array, colour: str, what: str, share: float) -> Finding:
+def count(image: np.ndarray, region: np.ndarray, colour: str, what: str, share: float) -> Finding:
     """A finding: pixels of `colour` in `region`, at least `share` of the region needed."""
     n = int(region.sum())
     return Finding(what, colour, n, int((colour_mask(image, colour) & region).sum()), max(1, int(np.ceil(share * n))))

@@ -20,7 +20,7 @@ import numpy as np
 import yaml
 
 import picture_check as pc
-from picture_check import Array, Finding, Pixel
+from picture_check import Finding, Pixel
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
@@ -30,7 +30,7 @@ from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_c
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
 Outline = Tuple[str, Any]
-Disc = Tuple[Array, Any, float]  # mask, centre pixel, radius in pixels
+Disc = Tuple[np.ndarray, Any, float]  # mask, centre pixel, radius in pixels
 
 
 def wait_while_running(what: str, predicate: Callable[[], bool], timeout: float, launch: Any,
@@ -52,7 +52,7 @@ class Scene:
         from rigid_body_sim.msg import RodState, RollerState
         from tf2_msgs.msg import TFMessage
         from visualization_msgs.msg import MarkerArray
-        self.frames: Dict[str, Tuple[Array, Array]] = {}
+        self.frames: Dict[str, Tuple[np.ndarray, np.ndarray]] = {}
         # Markers by topic: a DELETEALL clears those of its own topic only, as in rviz's displays.
         self.by_topic: Dict[str, Dict[Tuple[str, int], Any]] = {"/sim/scene": {}, "/sim/markers": {}}
         self.t: Optional[float] = None  # of the latest state of the first body
@@ -110,14 +110,14 @@ class Scene:
     def markers(self) -> Dict[Tuple[str, int], Any]:
         return {key: m for markers in self.by_topic.values() for key, m in markers.items()}
 
-    def world_pose(self, frame_id: str, pose: Any) -> Tuple[Array, Array]:
+    def world_pose(self, frame_id: str, pose: Any) -> Tuple[np.ndarray, np.ndarray]:
         """Rotation and position in the world of a marker's pose in `frame_id` (a child of the world)."""
         rotation, origin = self.frames.get(frame_id, (np.eye(3), np.zeros(3)))
         q, p = pose.orientation, pose.position
         return rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w]), origin + rotation @ [p.x, p.y, p.z]
 
 
-def rviz_status_pixels(image: Array, render: Tuple[int, int, int, int]) -> Dict[str, int]:
+def rviz_status_pixels(image: np.ndarray, render: Tuple[int, int, int, int]) -> Dict[str, int]:
     """Pixels in the text of rviz's display tree (left of the render view) drawn in the colour of a
     warning or an error: rviz paints a display's name so when its status is not Ok."""
     left, top, _, height = render
@@ -142,7 +142,7 @@ class Checker:
     """The checks of one picture. Regions are projected from the published scene and clipped to the
     3-D view; `findings` collects the results, `outlines` the regions (for rviz_regions.png)."""
 
-    def __init__(self, image: Array, scene: Scene, camera: pc.Camera) -> None:
+    def __init__(self, image: np.ndarray, scene: Scene, camera: pc.Camera) -> None:
         self.image, self.scene, self.camera = image, scene, camera
         self.shape: Tuple[int, int] = (image.shape[0], image.shape[1])
         self.view = np.zeros(self.shape, dtype=bool)
@@ -150,11 +150,11 @@ class Checker:
         self.findings: List[Finding] = []
         self.outlines: List[Outline] = []
 
-    def hull_of(self, corners: Array) -> Optional[List[Pixel]]:
+    def hull_of(self, corners: np.ndarray) -> Optional[List[Pixel]]:
         pixels, depth = self.camera.project(corners)
         return pc.convex_hull(pixels) if (depth > 0).all() else None
 
-    def labels(self) -> Array:
+    def labels(self) -> np.ndarray:
         """Pixels the bodies' labels may cover (white text in front of whatever is behind): a box around each
         label's projected centre, as wide as its text in glyphs of about its height, with a margin."""
         covered = np.zeros(self.shape, dtype=bool)
@@ -172,7 +172,7 @@ class Checker:
                                                     (col + half_w, row + half_h), (col - half_w, row + half_h)])
         return covered
 
-    def count_unlabelled(self, region: Array, labels: Array, colour: str, what: str, share: float) -> Finding:
+    def count_unlabelled(self, region: np.ndarray, labels: np.ndarray, colour: str, what: str, share: float) -> Finding:
         """pc.count on the region less what the labels may cover; a region mostly under a label cannot show
         its colour and is not counted (a finding that says so)."""
         shown = region & ~labels
@@ -180,14 +180,14 @@ class Checker:
             return flag(f"{what}: mostly under a label, not counted", True)
         return pc.count(self.image, shown, colour, what, share)
 
-    def in_view(self, what: str, region: Array) -> Array:
+    def in_view(self, what: str, region: np.ndarray) -> np.ndarray:
         """The region clipped to the view; a finding when a tenth of it or more lies outside."""
         total, inside = int(region.sum()), int((region & self.view).sum())
         if inside < 0.9 * max(1, total):
             self.findings.append(pc.Finding(what + " inside the view", "-", total, inside, int(np.ceil(0.9 * total))))
         return region & self.view
 
-    def slopes(self) -> Dict[str, Tuple[Array, Array]]:
+    def slopes(self) -> Dict[str, Tuple[np.ndarray, np.ndarray]]:
         """{roller: (mask of the whole slope box, mask of its top face)}."""
         found = {}
         for (ns, _), m in self.scene.markers.items():
@@ -216,7 +216,7 @@ class Checker:
             self.outlines.append(("circle", (pixel, radius + 1.0)))
         return found
 
-    def floor(self, covered: Array) -> None:
+    def floor(self, covered: np.ndarray) -> None:
         floor = self.scene.markers.get(("floor", 0))  # the floor under everything (a rod's bounded one: id > 0)
         if floor is None:
             self.findings.append(flag("floor marker received", False))
@@ -227,7 +227,7 @@ class Checker:
         region = pc.polygon_mask(self.shape, hull) & self.view & ~covered  # it runs out of the view: fine
         self.findings.append(pc.count(self.image, region, "grey", "floor", 0.6))
 
-    def slope(self, name: str, slopes: Dict[str, Tuple[Array, Array]], covered: Array) -> None:
+    def slope(self, name: str, slopes: Dict[str, Tuple[np.ndarray, np.ndarray]], covered: np.ndarray) -> None:
         """The top of a roller's slope, less what other slopes and the bodies may hide, brown."""
         if name not in slopes:
             self.findings.append(flag(f"{name}'s slope marker received", False))
@@ -238,7 +238,7 @@ class Checker:
                 own &= ~box
         self.findings.append(pc.count(self.image, own, "brown", f"{name}'s slope (top, unshared)", 0.5))
 
-    def roller(self, name: str, shape_name: str, disc: Optional[Disc], labels: Array) -> None:
+    def roller(self, name: str, shape_name: str, disc: Optional[Disc], labels: np.ndarray) -> None:
         if disc is None:
             self.findings.append(flag(f"{name}'s pose received", False))
             return
@@ -253,7 +253,7 @@ class Checker:
         quarters = pc.quadrants_with(self.image, mask, centre, colour)
         self.findings.append(pc.Finding(f"{name}: quadrants with colour", "-", 4, quarters, 3))
 
-    def rod(self, name: str, length: float, labels: Array) -> None:
+    def rod(self, name: str, length: float, labels: np.ndarray) -> None:
         """Blue along the rod's length above the floor (each quarter, less what the labels may cover), not
         only somewhere near its centre. An end pressed into the floor's spring is below its surface, hidden."""
         if name not in self.scene.frames:
@@ -276,8 +276,8 @@ class Checker:
             self.findings.append(self.count_unlabelled(region, labels, "blue", what, 0.25))
 
 
-def check_picture(image: Array, scene: Scene, camera: pc.Camera, config: Config) -> Tuple[List[Finding],
-                                                                                          List[Outline]]:
+def check_picture(image: np.ndarray, scene: Scene, camera: pc.Camera,
+                  config: Config) -> Tuple[List[Finding], List[Outline]]:
     """Every finding (floor, each slope, each roller, each rod) and the outlines of the regions."""
     checker = Checker(image, scene, camera)
     specs = [body_spec(config, name) for name in config["bodies"]]
@@ -300,14 +300,14 @@ def check_picture(image: Array, scene: Scene, camera: pc.Camera, config: Config)
     return checker.findings, checker.outlines
 
 
-def save_outlined(image: Array, outlines: List[Outline], path: str) -> None:
+def save_outlined(image: np.ndarray, outlines: List[Outline], path: str) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.patches import Circle, Polygon
     h, w = image.shape[:2]
     fig = plt.figure(figsize=(w / 100, h / 100), dpi=100)
-    ax = fig.add_axes([0, 0, 1, 1])
+    ax = fig.add_axes((0, 0, 1, 1))  # a tuple: matplotlib 3.8+'s stubs take no list
     ax.imshow(image)
     ax.set_axis_off()
     ax.set_autoscale_on(False)
@@ -434,7 +434,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     return 0 if all(f.ok for f in findings) else 1
 
 
-def control(image: Array, scene: Scene, camera: pc.Camera, config: Config, background: List[int]) -> Finding:
+def control(image: np.ndarray, scene: Scene, camera: pc.Camera, config: Config, background: List[int]) -> Finding:
     """The checks must be able to fail: on this picture with its 3-D view emptied (rviz's background
     colour everywhere), every check of a marker fails."""
     empty = image.copy()
@@ -467,7 +467,7 @@ def rviz_error_lines() -> List[str]:
     return lines
 
 
-def read_png(path: str) -> Array:
+def read_png(path: str) -> np.ndarray:
     import matplotlib.image
     image = matplotlib.image.imread(path)
     return (image[..., :3] * 255).round().astype(np.uint8) if image.dtype != np.uint8 else image[..., :3]

@@ -3,6 +3,7 @@
 per topic, each checked on its own), scripts/bag_summary.py (a body with a single state) and
 bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
+import importlib.abc
 import importlib.util
 import os
 import subprocess
@@ -89,7 +90,8 @@ class BagSummary(Case):
 
 def load_run_bench() -> Any:
     spec = importlib.util.spec_from_file_location("run_bench", os.path.join(ROOT, "bench", "run_bench.py"))
-    assert spec is not None and spec.loader is not None
+    # isinstance, not `is not None`: bullseye's typeshed types spec.loader as a protocol without exec_module.
+    assert spec is not None and isinstance(spec.loader, importlib.abc.Loader)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
