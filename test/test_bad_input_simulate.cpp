@@ -53,6 +53,22 @@ TEST(BadInputSimulate, TableHasEnoughDistinctRows) {
   EXPECT_GE(rows.size(), 30u);
 }
 
+// docs/reliability.md counts the rows of the tables: its figures are these files' (rows the node runs: those
+// of configs.yaml without `node: false`, and every row of node_startup.yaml).
+TEST(BadInputSimulate, TheDocsCountTheRowsThereAre) {
+  const std::string dir = RBS_BAD_INPUT_DIR;
+  std::size_t node_rows = YAML::LoadFile(dir + "/node_startup.yaml").size();
+  const YAML::Node configs = YAML::LoadFile(dir + "/configs.yaml");
+  for (const auto& row : configs) node_rows += row["node"].as<bool>(true) ? 1 : 0;
+  const std::string docs = slurp(fs::path(RBS_README).parent_path() / "docs" / "reliability.md");
+  const std::string simulate_count =
+      "`test/bad_input/configs.yaml` (" + std::to_string(configs.size()) + " rows:";
+  const std::string node_count = "`bad_input_startup.test` (" + std::to_string(node_rows) + " rows ";
+  EXPECT_NE(docs.find(simulate_count), std::string::npos)
+      << "docs/reliability.md should say " << simulate_count;
+  EXPECT_NE(docs.find(node_count), std::string::npos) << "docs/reliability.md should say " << node_count;
+}
+
 TEST(BadInputSimulate, EveryRowIsRefusedWithOneLineAndNoOutput) {
   const PrivateDir private_root("bad_input_simulate");
   const fs::path& root = private_root.path();

@@ -302,6 +302,43 @@ TEST(ConfigDuplicates, DuplicateBodyNamesAreRefused) {
 
 // Found by the fuzzer / the bad-input tables: a key that is a list or a map made yaml-cpp throw its own
 // exception instead of a ConfigError; a newline in a name broke the one-line message.
+// A key given twice: yaml-cpp keeps both, rosparam the last, map[key] the first: refused wherever a map is
+// read (a config file, a spawned body, a set_state), naming the key and the second value.
+TEST(ConfigDuplicates, AKeyGivenTwiceIsRefused) {
+  EXPECT_EQ(
+      refusal("bodies: {rod: {type: rod, k: 1000, k: 2000}}"),
+      "body 'rod', key 'k': value '2000' (the key given twice) is not allowed (allowed: each key once)");
+  EXPECT_NE(refusal("rate: 1000\nrate: 500\nbodies: {rod: {type: rod}}").find("body '(world)', key 'rate'"),
+            std::string::npos);
+  const std::string spawn =
+      test::refusalOf([] { parseBodyText("hoop", "{type: roller, mass: 1, mass: 2}"); });
+  EXPECT_EQ(
+      spawn,
+      "body 'hoop', key 'mass': value '2' (the key given twice) is not allowed (allowed: each key once)");
+  const std::string state = test::refusalOf([] { parseStateText("rod", "{x: 1, x: 2}"); });
+  EXPECT_EQ(state,
+            "body 'rod', key 'x': value '2' (the key given twice) is not allowed (allowed: each key once)");
+}
+
+// A quoted number is text: refused where a number is asked, in a config file and a spawned body alike.
+TEST(ConfigNumbers, AQuotedNumberIsRefused) {
+  const std::string message = refusal("bodies: {rod: {type: rod, mass: \"1\"}}");
+  EXPECT_NE(message.find("body 'rod', key 'mass': value \"1\" (quoted: a text) is not allowed"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("without quotes"), std::string::npos) << message;
+  EXPECT_NE(test::refusalOf([] { parseStateText("rod", "{x: '1'}"); }).find("(quoted: a text)"),
+            std::string::npos);
+  EXPECT_EQ(test::refusalOf([] { parseStateText("rod", "{x: 1e3}"); }), "");  // unquoted: a number
+}
+
+// Names are at most 64 characters (they name topics, services, frames and lines of text).
+TEST(ConfigNames, ALongNameIsRefused) {
+  EXPECT_EQ(refusal("bodies: {a" + std::string(63, 'b') + ": {type: rod}}"), "");
+  const std::string message = refusal("bodies: {a" + std::string(64, 'b') + ": {type: rod}}");
+  EXPECT_NE(message.find("at most 64 characters"), std::string::npos) << message;
+}
+
 TEST(ConfigOddYaml, KeysThatAreListsOrMapsAreRefusedAsUnknownKeys) {
   for (const char* yaml : {"bodies: {rod: {type: rod, [k]: 1}}", "{[rate]: 1, bodies: {rod: {type: rod}}}",
                            "bodies: {{a: 1}: {type: rod}}"}) {
@@ -321,7 +358,7 @@ TEST(ConfigOddYaml, ControlCharactersAreEscapedAndLongValuesCut) {
   EXPECT_EQ(
       refusal("bodies: {\"a\\nb\": {type: rod}}"),
       "body '(world)', key 'bodies': value 'a\\nb' is not allowed (allowed: body names of letters, digits "
-      "and _ starting with a letter)");
+      "and _ starting with a letter, at most 64 characters)");
   EXPECT_NE(refusal("bodies: {rod: {type: rod, \"k\\tx\": 1}}").find("key 'k\\x09x'"), std::string::npos);
   const std::string message = refusal("bodies: {rod: {type: rod, y0: " + std::string(5000, 'x') + "}}");
   EXPECT_LT(message.size(), 300u) << message;

@@ -95,6 +95,29 @@ TEST_F(SimulateTest, CsvWriterThatCannotOpenAFileLeavesNoTemporaryFile) {
   }
 }
 
+// simulate never writes a non-finite number: a body that became one (no path through valid input is known;
+// the writer catches any) stops the run with one line, and no CSV file stays.
+TEST_F(SimulateTest, CsvWriterRefusesANonFiniteStateAndLeavesNoFile) {
+  World world(loadWorldConfigFile(config("rod.yaml")));
+  auto& rod = std::get<Rod>(world.bodies().at(0).model);
+  RodMotion broken = rod.state();
+  broken.omega = std::nan("");
+  const fs::path out = dir_ / "out";
+  {
+    CsvWriter csv(out.string(), world.bodies());
+    csv.write(world.time(), world.bodies());
+    rod.restore(broken);
+    try {
+      csv.write(world.time(), world.bodies());
+      ADD_FAILURE() << "a non-finite state was written";
+    } catch (const std::runtime_error& error) {
+      EXPECT_EQ(std::string(error.what()),
+                "body 'rod' became non-finite by t = 0 s (omega = nan): stopped, no file written");
+    }
+  }
+  EXPECT_TRUE(fs::is_empty(out)) << "a file stayed";
+}
+
 TEST_F(SimulateTest, WritesABag) {
   const auto run = simulate(config("rod.yaml") + " --duration 1 --out-dir " + dir_.string() + " --bag " +
                             (dir_ / "run.bag").string());

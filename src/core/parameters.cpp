@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "rigid_body_sim/core/constants.h"
@@ -125,6 +126,38 @@ const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
   return keys;
 }
 
+// A quantity derived from the keys (an inertia, a frequency, an energy at the start) that a step divides by
+// or carries: refused unless finite and, where asked, a normal positive double (an underflow to 0 or into the
+// subnormals would make a step divide by (nearly) nothing, and the state non-finite).
+void checkDerived(const std::string& body, const std::string& keys, const std::string& quantity, double value,
+                  bool positive) {
+  const bool good = positive ? std::isnormal(value) && value > 0.0 : std::isfinite(value);
+  if (!good) {
+    throw ConfigError(body, keys, quantity + " = " + formatNumber(value),
+                      positive ? "values whose " + quantity + " is a finite positive number (at least " +
+                                     formatNumber(std::numeric_limits<double>::min()) + ")"
+                               : "values whose " + quantity + " is finite");
+  }
+}
+
+void checkDerived(const std::string& body, const RodConfig& config) {
+  const Rod rod(config.params, config.initial);
+  checkDerived(body, "mass, length", "moment of inertia M L^2 / 12", rod.momentOfInertia(), true);
+  checkDerived(body, "k, mass", "omega_c = sqrt(4 k / mass)", rod.contactFrequency(), true);
+  checkDerived(body, "mass, length, k and the initial conditions", "energy at the start", rod.energy(),
+               false);
+}
+
+void checkDerived(const std::string& body, const RollerConfig& config) {
+  const RollerParams& p = config.params;
+  const double c_m_r = p.inertia_factor * p.mass * p.radius;  // friction / (c M R) is the spin's rate
+  checkDerived(body, "inertia_factor, mass, radius", "c M R", c_m_r, true);
+  checkDerived(body, "inertia_factor, mass, radius", "moment of inertia c M R^2", c_m_r * p.radius, true);
+  const Roller roller(p, config.initial);
+  checkDerived(body, "mass, radius and the initial conditions", "energy at the start", roller.energy(),
+               false);
+}
+
 void validate(const std::string& body, const RodConfig& config) {
   checkRanges(body, config, rodNumericKeys());
   const RodParams& p = config.params;
@@ -147,6 +180,7 @@ void validate(const std::string& body, const RodConfig& config) {
                           "] for mass = " + formatNumber(p.mass) + ": sqrt(4 k / mass) at most " +
                           formatNumber(kMaxContactFrequency) + " rad/s");
   }
+  checkDerived(body, config);
 }
 
 double maxContactFrequency() { return kMaxContactFrequency; }
@@ -188,6 +222,7 @@ void validate(const std::string& body, const RollerConfig& config) {
                       "only with shape custom, or " + formatNumber(inertiaFactorOf(p.shape)) + " for shape " +
                           toString(p.shape));
   }
+  checkDerived(body, config);
 }
 
 bool initialChanged(const RodConfig& a, const RodConfig& b) {
@@ -207,7 +242,8 @@ Range publishRateRange() { return {0.0, 1e6, true, false}; }
 Range gravityRange() { return {0.0, 1e3, false, false}; }
 
 bool isValidName(const std::string& name) {
-  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  if (name.empty() || name.size() > kMaxNameLength || !std::isalpha(static_cast<unsigned char>(name[0])))
+    return false;
   for (const char ch : name) {
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
   }
@@ -249,7 +285,8 @@ void validate(const WorldConfig& config, const std::vector<std::string>& reserve
   }
   if (!isValidName(config.world_frame)) {
     throw ConfigError(world, "world_frame", "'" + config.world_frame + "'",
-                      "a name of letters, digits and _ starting with a letter");
+                      "a name of letters, digits and _ starting with a letter, at most " +
+                          std::to_string(kMaxNameLength) + " characters");
   }
   if (config.bodies.empty()) {
     throw ConfigError(world, "bodies", "(none)", "a map of at least one body");
@@ -264,7 +301,8 @@ void validate(const WorldConfig& config, const std::vector<std::string>& reserve
   for (const auto& body : config.bodies) {
     if (!isValidName(body.name)) {
       throw ConfigError(world, "bodies", "'" + body.name + "'",
-                        "body names of letters, digits and _ starting with a letter");
+                        "body names of letters, digits and _ starting with a letter, at most " +
+                            std::to_string(kMaxNameLength) + " characters");
     }
     if (std::find(reserved.begin(), reserved.end(), body.name) != reserved.end()) {
       throw ConfigError(

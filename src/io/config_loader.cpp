@@ -1,5 +1,6 @@
 #include "rigid_body_sim/io/config_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -30,6 +31,10 @@ std::string keyName(const YAML::Node& key) { return key.IsScalar() ? key.Scalar(
 // a double's range, such as 1e400).
 double asNumber(const std::string& body, const std::string& key, const YAML::Node& node,
                 const std::string& allowed = "a number") {
+  // A quoted scalar ("1") is text, tagged "!" by the parser: a number is written without quotes.
+  if (node.IsScalar() && node.Tag() == "!") {
+    throw ConfigError(body, key, "\"" + node.Scalar() + "\" (quoted: a text)", allowed + ", without quotes");
+  }
   try {
     if (node.IsScalar()) return node.as<double>();
   } catch (const YAML::Exception&) {
@@ -56,7 +61,20 @@ std::string joined(const Names& names, const char* last_separator = ", ") {
   return out;
 }
 
-// Refuses any key of `map` not in `known`, so that a typo cannot fall back to a default silently.
+// Refuses a key given twice in `map`: YAML forbids it, yaml-cpp keeps both, and readers would disagree on
+// which counts (map[key] finds the first, rosparam keeps the last).
+void refuseRepeatedKeys(const std::string& body, const YAML::Node& map) {
+  std::set<std::string> seen;
+  for (const auto& entry : map) {
+    const std::string key = keyName(entry.first);
+    if (!seen.insert(key).second) {
+      throw ConfigError(body, key, describe(entry.second) + " (the key given twice)", "each key once");
+    }
+  }
+}
+
+// Refuses any key of `map` not in `known`, so that a typo cannot fall back to a default silently, and any
+// key given twice.
 void refuseUnknownKeys(const std::string& body, const YAML::Node& map, const std::set<std::string>& known) {
   for (const auto& entry : map) {
     const std::string key = keyName(entry.first);
@@ -64,6 +82,7 @@ void refuseUnknownKeys(const std::string& body, const YAML::Node& map, const std
       throw ConfigError(body, key, describe(entry.second), "no such key; known keys: " + joined(known));
     }
   }
+  refuseRepeatedKeys(body, map);
 }
 
 template <class Config>
@@ -153,7 +172,43 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
   return parsed;
 }
 
+// How deep lists and maps written in brackets ([ ], { }) may nest: a config needs four levels; yaml-cpp 0.6
+// (Debian 11) takes gigabytes for a few hundred (found by the fuzzer), and ~spawn takes text from anyone.
+constexpr int kMaxFlowDepth = 32;
+
+// The deepest nesting of brackets in `text`, outside quoted scalars and comments. As in YAML, a quote opens a
+// quoted scalar only where a scalar starts, and # begins a comment only at a line's start or after a blank.
+int flowDepth(const std::string& text) {
+  int depth = 0;
+  int deepest = 0;
+  char quote = 0;
+  bool comment = false;
+  char previous = '\n';
+  for (const char ch : text) {
+    const bool scalar_may_start = std::string(" \t\n[{,:-?").find(previous) != std::string::npos;
+    if (comment) {
+      comment = ch != '\n';
+    } else if (quote) {
+      quote = ch == quote ? 0 : quote;  // an escaped \" ends it early: what follows counts, never less
+    } else if ((ch == '"' || ch == '\'') && scalar_may_start) {
+      quote = ch;
+    } else if (ch == '#' && (previous == ' ' || previous == '\t' || previous == '\n')) {
+      comment = true;
+    } else if (ch == '[' || ch == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if ((ch == ']' || ch == '}') && depth > 0) {
+      --depth;
+    }
+    previous = ch;
+  }
+  return deepest;
+}
+
 YAML::Node loadText(const std::string& text, const std::string& what) {
+  if (flowDepth(text) > kMaxFlowDepth) {
+    throw ConfigError(what + " nests lists and maps " + std::to_string(flowDepth(text)) +
+                      " deep (allowed: at most " + std::to_string(kMaxFlowDepth) + ")");
+  }
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& error) {
@@ -203,6 +258,7 @@ BodyConfig parseBodyText(const std::string& name, const std::string& text) {
 std::vector<StateValue> parseStateText(const std::string& body, const std::string& text) {
   const YAML::Node map = loadText(text, "state of body '" + body + "'");
   if (!map.IsMap()) throw ConfigError(body, "(state)", describe(map), "a map of state fields to numbers");
+  refuseRepeatedKeys(body, map);
   std::vector<StateValue> state;
   for (const auto& entry : map) {
     const std::string field = keyName(entry.first);

@@ -78,7 +78,6 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
           std::max<std::int64_t>(1, std::llround(world_.config().publish_rate /
                                                  markerRate(options_, world_.config().publish_rate)))),
       pacer_(world_.rate(), options_.real_time_factor) {
-  checkFrames(options_, world_.config());
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   paused_ = options_.start_paused;
@@ -258,11 +257,6 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
     command.step = world_.stepCount();
     const WorldConfig before = world_.config();
     try {
-      if (command.kind == WorldCommand::Kind::Spawn) {  // its frames with the prefix, as at the start
-        WorldConfig would_be = before;
-        would_be.bodies.push_back(command.config);
-        checkFrames(options_, would_be);
-      }
       world_.apply(command);
     } catch (const ConfigError& error) {
       return refuse(toString(command.kind), command.body, error.what(), why);

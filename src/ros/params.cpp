@@ -38,11 +38,13 @@ bool boolOption(const YAML::Node& params, const std::string& key, bool fallback)
   }
 }
 
-// Empty, or letters, digits, _ and / starting with a letter, no empty level ("a//b"): what tf2 takes as
-// the start of a frame id.
+// Empty, or letters, digits, _ and / starting with a letter and ending in /, no empty level ("a//b"): what
+// tf2 takes as the start of a frame id, and a prefix that keeps the frame's own name apart ("left" would
+// make "leftrod").
 bool isFramePrefix(const std::string& prefix) {
   if (prefix.empty()) return true;
-  if (!std::isalpha(static_cast<unsigned char>(prefix[0])) || prefix.find("//") != std::string::npos)
+  if (!std::isalpha(static_cast<unsigned char>(prefix[0])) || prefix.find("//") != std::string::npos ||
+      prefix.back() != '/')
     return false;
   return std::all_of(prefix.begin(), prefix.end(), [](char ch) {
     return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '/';
@@ -50,7 +52,8 @@ bool isFramePrefix(const std::string& prefix) {
 }
 
 std::string framePrefixOption(const YAML::Node& params, const std::string& key) {
-  const std::string allowed = "empty, or letters, digits, _ and / starting with a letter (e.g. left/)";
+  const std::string allowed =
+      "empty, or letters, digits, _ and / starting with a letter and ending in / (e.g. left/)";
   if (!params[key]) return "";
   if (!params[key].IsScalar()) throw ConfigError(kNode, key, "(not a text)", allowed);
   const std::string prefix = params[key].Scalar();
@@ -126,18 +129,6 @@ double markerRate(const NodeOptions& options, double publish_rate) {
                       range.describe() + " (at most publish_rate)");
   }
   return *options.marker_rate;
-}
-
-void checkFrames(const NodeOptions& options, const WorldConfig& config) {
-  for (const auto& body : config.bodies) {
-    for (const std::string& frame : {body.name, fixedFrameOf(body)}) {
-      if (options.frame_prefix + frame == config.world_frame) {
-        throw ConfigError(
-            kNode, node_interface::kFramePrefix, "'" + options.frame_prefix + "'",
-            "a prefix that makes no frame '" + frame + "' into world_frame '" + config.world_frame + "'");
-      }
-    }
-  }
 }
 
 WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace) {

@@ -109,7 +109,11 @@ Range rateRange();
 Range publishRateRange();
 Range gravityRange();
 
-// True for a name usable as a ROS graph name component and as a TF frame: [A-Za-z][A-Za-z0-9_]*.
+// The longest name of a body or of world_frame: it names topics, services and frames, and lines of text.
+inline constexpr std::size_t kMaxNameLength = 64;
+
+// True for a name usable as a ROS graph name component and as a TF frame: [A-Za-z][A-Za-z0-9_]*, at most
+// kMaxNameLength characters.
 bool isValidName(const std::string& name);
 
 // The fixed frame in which a body's coordinates are measured: <name>_floor (rod) or <name>_slope (roller).

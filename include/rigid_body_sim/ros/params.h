@@ -41,8 +41,6 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value);
 // option, its value and its range.
 NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace);
 
-// Throws ConfigError when a prefixed frame of the config would be its world_frame.
-void checkFrames(const NodeOptions& options, const WorldConfig& config);
 
 // The config in the private namespace, loaded and validated as a config file is: the node's options and
 // the namespaces of the reconfigure servers (one per body) are left out; any other key stays, so that the
