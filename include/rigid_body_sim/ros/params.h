@@ -41,7 +41,6 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value);
 // option, its value and its range.
 NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace);
 
-
 // The config in the private namespace, loaded and validated as a config file is: the node's options and
 // the namespaces of the reconfigure servers (one per body) are left out; any other key stays, so that the
 // loader refuses a typo. Throws ConfigError.
