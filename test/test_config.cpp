@@ -339,6 +339,29 @@ TEST(ConfigNames, ALongNameIsRefused) {
   EXPECT_NE(message.find("at most 64 characters"), std::string::npos) << message;
 }
 
+// Brackets yaml-cpp 0.6 (Debian 11) loops on until memory runs out are refused before it sees them: one left
+// open, a ':' right before ']', nesting beyond 32; brackets in quotes and comments do not count.
+TEST(ConfigOddYaml, BracketsAreCheckedBeforeYamlCppSeesThem) {
+  const auto refusal = [](const std::string& text) {
+    return test::refusalOf([&] { parseWorldConfigText(text, "x.yaml"); });
+  };
+  EXPECT_EQ(refusal("x: [a, b"),
+            "config file 'x.yaml' is not valid YAML: the '[' at line 1, column 4 is not closed");
+  for (const std::string text : {"[:", "[a:", "bodies: {rod: {type: rod, k: [1, 2}}"}) {
+    EXPECT_NE(refusal(text).find("is not closed"), std::string::npos) << text;
+  }
+  for (const std::string text : {"[:]", "[a:]", "{a: [b:]}"}) {
+    EXPECT_NE(refusal(text).find("a ':' right before ']'"), std::string::npos) << text;
+  }
+  EXPECT_NE(refusal(std::string(33, '[') + std::string(33, ']')).find("nests lists and maps 33 deep"),
+            std::string::npos);
+  const std::string fine =
+      "# a comment with [ and {: ]\nbodies: {rod: {type: rod, integrator: 'euler_cromer'}}";
+  EXPECT_EQ(refusal(fine), "");
+  EXPECT_EQ(test::refusalOf([] { parseBodyText("hoop", "{type: roller, shape: \"ring\"} # [ not closed"); }),
+            "");
+}
+
 TEST(ConfigOddYaml, KeysThatAreListsOrMapsAreRefusedAsUnknownKeys) {
   for (const char* yaml : {"bodies: {rod: {type: rod, [k]: 1}}", "{[rate]: 1, bodies: {rod: {type: rod}}}",
                            "bodies: {{a: 1}: {type: rod}}"}) {

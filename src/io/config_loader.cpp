@@ -172,19 +172,30 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
   return parsed;
 }
 
-// How deep lists and maps written in brackets ([ ], { }) may nest: a config needs four levels; yaml-cpp 0.6
-// (Debian 11) takes gigabytes for a few hundred (found by the fuzzer), and ~spawn takes text from anyone.
+// Lists and maps written in brackets ([ ], { }) are checked before yaml-cpp sees them: yaml-cpp 0.6 (Debian
+// 11) loops allocating until memory runs out on a bracket left open or a ':' right before ']' ("[:", "[a:]",
+// found by the fuzzer), and deep nesting recurses; ~spawn takes such text from anyone. A config needs
+// four levels.
 constexpr int kMaxFlowDepth = 32;
 
-// The deepest nesting of brackets in `text`, outside quoted scalars and comments. As in YAML, a quote opens a
-// quoted scalar only where a scalar starts, and # begins a comment only at a line's start or after a blank.
-int flowDepth(const std::string& text) {
+struct FlowScan {
+  int deepest = 0;          // the deepest nesting
+  std::string open_at_end;  // "the '[' at line L, column C": the outermost bracket left open (invalid YAML)
+  bool colon_before_close = false;  // ":]" inside brackets: no value after the ':'
+};
+
+// Brackets in `text`, outside quoted scalars and comments. As in YAML, a quote opens a quoted scalar only
+// where a scalar starts, and # begins a comment only at a line's start or after a blank.
+FlowScan scanFlow(const std::string& text) {
+  FlowScan scan;
   int depth = 0;
-  int deepest = 0;
   char quote = 0;
   bool comment = false;
   char previous = '\n';
+  int line = 1;
+  int column = 0;
   for (const char ch : text) {
+    ++column;
     const bool scalar_may_start = std::string(" \t\n[{,:-?").find(previous) != std::string::npos;
     if (comment) {
       comment = ch != '\n';
@@ -195,20 +206,40 @@ int flowDepth(const std::string& text) {
     } else if (ch == '#' && (previous == ' ' || previous == '\t' || previous == '\n')) {
       comment = true;
     } else if (ch == '[' || ch == '{') {
-      deepest = std::max(deepest, ++depth);
+      if (depth == 0)
+        scan.open_at_end = "the '" + std::string(1, ch) + "' at line " + std::to_string(line) + ", column " +
+                           std::to_string(column);
+      scan.deepest = std::max(scan.deepest, ++depth);
     } else if ((ch == ']' || ch == '}') && depth > 0) {
+      scan.colon_before_close = scan.colon_before_close || (ch == ']' && previous == ':');
       --depth;
+    }
+    if (ch == '\n') {
+      ++line;
+      column = 0;
     }
     previous = ch;
   }
-  return deepest;
+  if (depth == 0) scan.open_at_end.clear();
+  return scan;
+}
+
+void checkFlow(const std::string& text, const std::string& what) {
+  const FlowScan scan = scanFlow(text);
+  if (scan.deepest > kMaxFlowDepth) {
+    throw ConfigError(what + " nests lists and maps " + std::to_string(scan.deepest) +
+                      " deep (allowed: at most " + std::to_string(kMaxFlowDepth) + ")");
+  }
+  if (!scan.open_at_end.empty())
+    throw ConfigError(what + " is not valid YAML: " + scan.open_at_end + " is not closed");
+  if (scan.colon_before_close) {
+    throw ConfigError(what +
+                      " is not valid YAML here: a ':' right before ']' (a key needs a value, or no ':')");
+  }
 }
 
 YAML::Node loadText(const std::string& text, const std::string& what) {
-  if (flowDepth(text) > kMaxFlowDepth) {
-    throw ConfigError(what + " nests lists and maps " + std::to_string(flowDepth(text)) +
-                      " deep (allowed: at most " + std::to_string(kMaxFlowDepth) + ")");
-  }
+  checkFlow(text, what);
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& error) {
