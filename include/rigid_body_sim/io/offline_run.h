@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 
@@ -44,20 +45,9 @@ struct OfflineSummary {
 // Checks the options against the config; throws ConfigError naming the option.
 void validate(const OfflineOptions& options, const WorldConfig& config);
 
-// Where the samples of a run go beside the CSV files: the bag of `simulate --bag`. This layer knows only
-// the interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads no
-// ROS library.
-class SampleSink {
- public:
-  virtual ~SampleSink() = default;
-  virtual void write(const World& world) = 0;  // at every sample, t = 0 included
-  // A change of the world (a replayed command, number `index` of its log; 0 is the config the sink was
-  // opened with), applied to `world` at world.time(): logged as the node logs it, the scene following.
-  virtual void applied(const WorldCommand& command, std::size_t index, const World& world) = 0;
-  virtual void commit() = 0;  // the run is complete: the output becomes final
-};
-
-// Opens the sink of options.bag for a run of `config` whose bodies start as `bodies`.
+// Opens the sink of options.bag for a run of `config` whose bodies start as `bodies`. This layer knows only
+// the sink interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads
+// no ROS library.
 using SinkOpener = std::function<std::unique_ptr<SampleSink>(
     const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies)>;
 
