@@ -1,17 +1,23 @@
 // Session: the run loop's one order (the state of a count is handed out at most once, before the commands
-// at that count apply), checked against a plain World stepped and changed by hand.
+// at that count apply), checked against a plain World stepped and changed by hand; and the replay, which
+// runs through it, against the same.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "rigid_body_sim/core/state_fields.h"
+#include "rigid_body_sim/io/csv_writer.h"
+#include "rigid_body_sim/io/replay.h"
 #include "rigid_body_sim/run/session.h"
 #include "test_util.h"
 
 using namespace rigid_body_sim;
+using rigid_body_sim::test::FolderTest;
 using rigid_body_sim::test::rodAndBall;
+using rigid_body_sim::test::slurp;
 
 namespace {
 
@@ -242,4 +248,46 @@ TEST(Session, RefusesANonPositivePeriodAndStepsBack) {
   Recorded run;
   EXPECT_THROW(run.session.advance(-1), std::invalid_argument);
   EXPECT_EQ(run.session.world().stepCount(), 0);
+}
+
+using SessionReplay = FolderTest;
+
+// Every command at its step; the CSV rows are the hand-run world's at every sampling instant, taken before
+// the commands at that count.
+TEST_F(SessionReplay, AppliesEveryCommandAtItsStep) {
+  std::vector<WorldCommand> commands(1);
+  commands[0].kind = WorldCommand::Kind::Config;
+  commands[0].world = rodAndBall();
+  const auto at = [&commands](std::int64_t step, WorldCommand command) {
+    command.step = step;
+    commands.push_back(command);
+  };
+  at(0, setState("rod", "vy", 1.5));
+  at(6, spawn("hoop"));
+  at(8, reset());
+  at(8, setState("hoop", "x", 1.0));
+  at(11, deleteOf("ball"));
+  at(25, reset());  // after the duration: not applied
+  OfflineOptions options;
+  options.duration = 0.02;    // 20 steps at rate 1000
+  options.sample_rate = 250;  // every 4 steps
+  options.out_dir = dir_.string();
+  const ReplaySummary summary = replayRun(commands, options);
+
+  World truth(rodAndBall());
+  std::map<std::string, std::string> files;
+  std::size_t next = 1;
+  for (std::int64_t count = 0; count <= 20; ++count) {
+    for (const auto& body : truth.bodies()) {
+      if (count % kStepsPerSample != 0) continue;
+      if (!files.count(body.name)) files[body.name] = csvHeader(body) + "\n";  // a file from its first row
+      files[body.name] += csvRow(truth.time(), body) + "\n";
+    }
+    for (; next < commands.size() && commands[next].step == count; ++next) truth.apply(commands[next]);
+    if (count < 20) truth.step();
+  }
+  for (const auto& [name, text] : files) EXPECT_EQ(slurp(dir_ / (name + ".csv")), text) << name;
+  EXPECT_EQ(summary.commands_applied, 5u);
+  EXPECT_EQ(summary.steps, 20);
+  EXPECT_EQ(summary.bodies, (std::vector<std::string>{"rod", "ball", "hoop"}));
 }
