@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "rigid_body_sim/core/rod_dynamics.h"
 #include "rigid_body_sim/io/csv_writer.h"
@@ -105,38 +106,13 @@ class BounceCounter {
   std::vector<int> bounces_;
 };
 
-using SampleHook = std::function<void(const World&)>;
-
-// Steps a world from t = 0 and samples it at t = j / sample_rate up to the duration, calling
-// `on_sample` at every sample (t = 0 included); tracks energies, bounces and events on the way.
-OfflineSummary stepAndSample(const WorldConfig& config, const OfflineOptions& options,
-                             const SampleHook& on_sample, ProgressBar* progress) {
-  validate(options, config);
-  World world(config);
-  const double sample_rate = effectiveSampleRate(options, config);
-  const auto steps_per_sample = static_cast<std::int64_t>(std::llround(config.rate / sample_rate));
-  // The last sample is the last t = j / sample_rate not after the duration (rounding forgiven).
-  const auto last_sample = static_cast<std::int64_t>(std::floor(options.duration * sample_rate + 1e-9));
-
+// The summary of a run that ended at `world`, with its trackers.
+OfflineSummary summaryOf(const World& world, std::int64_t samples, const EnergyTracker& energy,
+                         const BounceCounter& bounces) {
   OfflineSummary summary;
-  EnergyTracker energy(world.bodies());
-  BounceCounter bounces(world.bodies());
-  for (std::int64_t j = 0;; ++j) {
-    on_sample(world);
-    if (progress) progress->update(j);
-    if (j == last_sample) break;
-    for (std::int64_t s = 0; s < steps_per_sample; ++s) {
-      world.step();
-      bounces.step(world.bodies());
-    }
-    std::vector<WorldEvent> events = world.takeEvents();
-    energy.sample(world.bodies(), interruptedBodies(world.bodies(), events));
-    summary.events.insert(summary.events.end(), events.begin(), events.end());
-  }
-
   summary.end_time = world.time();
   summary.steps = world.stepCount();
-  summary.samples = last_sample + 1;
+  summary.samples = samples;
   for (const auto& body : world.bodies()) {
     summary.bodies.push_back(body.name);
     summary.final_rows.push_back(csvRow(world.time(), body));
@@ -147,10 +123,37 @@ OfflineSummary stepAndSample(const WorldConfig& config, const OfflineOptions& op
   return summary;
 }
 
-// How many samples a run takes, for the progress bar.
-std::int64_t sampleCount(const WorldConfig& config, const OfflineOptions& options) {
+// The last sample's index j: the last t = j / sample_rate not after the duration (rounding forgiven).
+std::int64_t lastSample(const WorldConfig& config, const OfflineOptions& options) {
   return static_cast<std::int64_t>(
       std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
+}
+
+// The session of a run of `config`, sampling at the options' rate; throws ConfigError on bad options.
+Session sessionOf(const WorldConfig& config, const OfflineOptions& options) {
+  validate(options, config);
+  return Session(config, {}, stepsPerSample(options, config));
+}
+
+// Runs `session` from t = 0 to the last sample, its sinks getting every sample (t = 0 included); tracks
+// energies (at samples), bounces (every step: a contact lasts only tens of steps) and events on the way.
+OfflineSummary stepAndSample(Session& session, std::int64_t last_sample, ProgressBar* progress) {
+  EnergyTracker energy(session.world().bodies());
+  BounceCounter bounces(session.world().bodies());
+  const StepHook count_bounces = [&bounces](World& world) { bounces.step(world.bodies()); };
+  std::vector<WorldEvent> events;
+  session.sampleNow();
+  if (progress) progress->update(0);
+  for (std::int64_t j = 1; j <= last_sample; ++j) {
+    session.advance(session.stepsPerSample(), count_bounces);
+    if (progress) progress->update(j);
+    std::vector<WorldEvent> new_events = session.takeEvents();
+    energy.sample(session.world().bodies(), interruptedBodies(session.world().bodies(), new_events));
+    events.insert(events.end(), new_events.begin(), new_events.end());
+  }
+  OfflineSummary summary = summaryOf(session.world(), last_sample + 1, energy, bounces);
+  summary.events = std::move(events);
+  return summary;
 }
 
 }  // namespace
@@ -174,27 +177,44 @@ std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig&
   return open_bag(path, config, bodies);
 }
 
+std::int64_t stepsPerSample(const OfflineOptions& options, const WorldConfig& config) {
+  return stepsPerSample(config.rate, effectiveSampleRate(options, config));
+}
+
+RunFiles::RunFiles(const std::string& out_dir, const std::string& bag, const WorldConfig& config,
+                   const std::vector<Body>& bodies, const SinkOpener& open_bag)
+    : csv_(out_dir, bodies), bag_(openSink(bag, config, bodies, open_bag)) {}
+
+void RunFiles::write(const World& world) {
+  csv_.write(world.time(), world.bodies());
+  if (bag_) bag_->write(world);
+}
+
+void RunFiles::applied(const WorldCommand& command, std::size_t index, const World& world) {
+  if (bag_) bag_->applied(command, index, world);
+}
+
+void RunFiles::commit() {
+  csv_.commit();
+  if (bag_) bag_->commit();
+}
+
 OfflineSummary runOffline(const WorldConfig& config, const OfflineOptions& options,
                           const SinkOpener& open_bag) {
-  validate(options, config);
-  const std::vector<Body> bodies = World(config).bodies();
-  CsvWriter csv(options.out_dir, bodies);
-  const std::unique_ptr<SampleSink> bag = openSink(options.bag, config, bodies, open_bag);
-  ProgressBar progress(sampleCount(config, options), "samples");
-  const auto write = [&](const World& world) {
-    csv.write(world.time(), world.bodies());
-    if (bag) bag->write(world);
-  };
-  OfflineSummary summary = stepAndSample(config, options, write, &progress);
+  Session session = sessionOf(config, options);
+  RunFiles files(options.out_dir, options.bag, config, session.world().bodies(), open_bag);
+  session.addSink(files);
+  const std::int64_t last_sample = lastSample(config, options);
+  ProgressBar progress(last_sample, "samples");
+  OfflineSummary summary = stepAndSample(session, last_sample, &progress);
   progress.finish();
-  csv.commit();
-  if (bag) bag->commit();
+  files.commit();
   return summary;
 }
 
 OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& options) {
-  const auto no_sample = [](const World&) {};
-  return stepAndSample(config, options, no_sample, nullptr);
+  Session session = sessionOf(config, options);
+  return stepAndSample(session, lastSample(config, options), nullptr);
 }
 
 std::string formatSummary(const OfflineSummary& summary) {

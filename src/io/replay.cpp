@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <sstream>
+#include <string>
+#include <vector>
 
-#include "rigid_body_sim/io/csv_writer.h"
 #include "rigid_body_sim/io/node_interface.h"
 
 namespace rigid_body_sim {
@@ -27,6 +27,29 @@ void checkStart(const std::vector<WorldCommand>& commands) {
   }
 }
 
+// Adds to `seen` the bodies of `world` it does not hold yet.
+void noteBodies(const World& world, std::vector<std::string>& seen) {
+  for (const auto& body : world.bodies()) {
+    if (std::find(seen.begin(), seen.end(), body.name) == seen.end()) seen.push_back(body.name);
+  }
+}
+
+// Advances to the command's step and applies it there: the states on the way (and at that step, if it is
+// a sampling instant) are sampled before it, as the node published them.
+void applyAtItsStep(Session& session, const WorldCommand& command, std::size_t index) {
+  const std::int64_t now = session.world().stepCount();
+  if (command.step < now) {
+    throw ConfigError(describe(index, command) + " cannot be applied: the replay is at step " +
+                      std::to_string(now) + " already (the commands in the order of their steps)");
+  }
+  session.advance(command.step - now);
+  try {
+    session.apply(command);
+  } catch (const ConfigError& error) {
+    throw ConfigError(describe(index, command) + " cannot be applied: " + error.what());
+  }
+}
+
 }  // namespace
 
 ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options,
@@ -34,45 +57,23 @@ ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const Offline
   checkStart(commands);
   const WorldConfig& config = commands[0].world;
   validate(options, config);
-  World world(config, node_interface::ownNames());
-  const double sample_rate = options.sample_rate > 0.0 ? options.sample_rate : config.publish_rate;
-  const auto steps_per_sample = static_cast<std::int64_t>(std::llround(config.rate / sample_rate));
+  Session session(config, node_interface::ownNames(), stepsPerSample(options, config));
   const auto last_step = static_cast<std::int64_t>(std::floor(options.duration * config.rate + 1e-9));
 
   ReplaySummary summary;
-  const auto note_bodies = [&] {
-    for (const auto& body : world.bodies()) {
-      const auto& seen = summary.bodies;
-      if (std::find(seen.begin(), seen.end(), body.name) == seen.end()) summary.bodies.push_back(body.name);
-    }
-  };
-  note_bodies();
-  CsvWriter csv(options.out_dir, world.bodies());
-  const std::unique_ptr<SampleSink> bag = openSink(options.bag, config, world.bodies(), open_bag);
-  std::size_t next = 1;
-  for (std::int64_t count = 0;; ++count) {
-    // As in the node: the state at a count is published before the commands at that count apply.
-    if (count % steps_per_sample == 0) {
-      csv.write(world.time(), world.bodies());
-      if (bag) bag->write(world);
-    }
-    for (; next < commands.size() && commands[next].step <= count; ++next) {
-      try {
-        world.apply(commands[next]);
-      } catch (const ConfigError& error) {
-        throw ConfigError(describe(next, commands[next]) + " cannot be applied: " + error.what());
-      }
-      if (bag) bag->applied(commands[next], next, world);
-      ++summary.commands_applied;
-      note_bodies();
-    }
-    if (count == last_step) break;
-    world.step();
+  noteBodies(session.world(), summary.bodies);
+  RunFiles files(options.out_dir, options.bag, config, session.world().bodies(), open_bag);
+  session.addSink(files);
+  session.sampleNow();  // t = 0
+  for (std::size_t next = 1; next < commands.size() && commands[next].step <= last_step; ++next) {
+    applyAtItsStep(session, commands[next], next);
+    noteBodies(session.world(), summary.bodies);
   }
-  csv.commit();
-  if (bag) bag->commit();
-  summary.end_time = world.time();
-  summary.steps = world.stepCount();
+  session.advance(last_step - session.world().stepCount());
+  files.commit();
+  summary.end_time = session.world().time();
+  summary.steps = session.world().stepCount();
+  summary.commands_applied = session.commandsApplied();
   return summary;
 }
 

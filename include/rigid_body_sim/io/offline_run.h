@@ -1,5 +1,5 @@
-// The offline run behind `simulate`: steps a world without a master, samples it at t = j / sample_rate,
-// writes the CSV files (and a bag on request), and summarises what happened.
+// The offline run behind `simulate`: runs a Session (run/session.h) without a master, samples it at
+// t = j / sample_rate, writes the CSV files (and a bag on request), and summarises what happened.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/csv_writer.h"
+#include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 
@@ -44,26 +46,33 @@ struct OfflineSummary {
 // Checks the options against the config; throws ConfigError naming the option.
 void validate(const OfflineOptions& options, const WorldConfig& config);
 
-// Where the samples of a run go beside the CSV files: the bag of `simulate --bag`. This layer knows only
-// the interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads no
-// ROS library.
-class SampleSink {
- public:
-  virtual ~SampleSink() = default;
-  virtual void write(const World& world) = 0;  // at every sample, t = 0 included
-  // A change of the world (a replayed command, number `index` of its log; 0 is the config the sink was
-  // opened with), applied to `world` at world.time(): logged as the node logs it, the scene following.
-  virtual void applied(const WorldCommand& command, std::size_t index, const World& world) = 0;
-  virtual void commit() = 0;  // the run is complete: the output becomes final
-};
+// Steps between samples: rate / options.sample_rate, or rate / publish_rate without one.
+std::int64_t stepsPerSample(const OfflineOptions& options, const WorldConfig& config);
 
-// Opens the sink of options.bag for a run of `config` whose bodies start as `bodies`.
+// Opens the bag of options.bag for a run of `config` whose bodies start as `bodies`. This layer knows only
+// the sink interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads
+// no ROS library.
 using SinkOpener = std::function<std::unique_ptr<SampleSink>(
     const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies)>;
 
 // The sink of `path` through `open_bag`; none for an empty path; std::runtime_error without `open_bag`.
 std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig& config,
                                      const std::vector<Body>& bodies, const SinkOpener& open_bag);
+
+// The files of a run of `config` whose bodies start as `bodies`: DIR/<body>.csv and, if `bag` is set, the
+// bag through `open_bag` (opened in that order). Final only on commit(); throws as CsvWriter and openSink.
+class RunFiles : public SampleSink {
+ public:
+  RunFiles(const std::string& out_dir, const std::string& bag, const WorldConfig& config,
+           const std::vector<Body>& bodies, const SinkOpener& open_bag);
+  void write(const World& world) override;  // a CSV row per body; the bag's messages
+  void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+  void commit() override;  // the CSV files, then the bag
+
+ private:
+  CsvWriter csv_;
+  std::unique_ptr<SampleSink> bag_;
+};
 
 // Runs the whole thing; throws ConfigError on bad options, std::runtime_error on an output failure (also
 // for options.bag without `open_bag`). Shows a progress bar on stderr when it is a terminal and the run

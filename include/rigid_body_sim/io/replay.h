@@ -28,11 +28,12 @@ struct ReplaySummary {
   std::vector<std::string> bodies;  // every body that existed at some point: each has its CSV file
 };
 
-// Steps from count 0 to options.duration; at each count c it samples (when c is a sampling instant: t =
-// j / sample_rate), then applies every command with step c, then steps, as the node does. options.bag, if
-// set, is written through `open_bag` as `simulate --bag` writes one, with every command in it. Throws
-// ConfigError (one line) when the first command is not the config at step 0, or a command cannot be
-// applied (named by its index, kind, body and step), std::runtime_error on an output failure (also for
+// Runs a Session (run/session.h) of the config from count 0 to options.duration, applying every command at
+// its step: the sample of a count (when it is a sampling instant, t = j / sample_rate) comes before the
+// commands at that count, as the node publishes. options.bag, if set, is written through `open_bag` as
+// `simulate --bag` writes one, with every command in it. Throws ConfigError (one line) when the first
+// command is not the config at step 0, or a command cannot be applied (named by its index, kind, body and
+// step; a step before the previous command's too), std::runtime_error on an output failure (also for
 // options.bag without `open_bag`). The CSV files and the bag are only final when the whole replay succeeds.
 ReplaySummary replayRun(const std::vector<WorldCommand>& commands, const OfflineOptions& options,
                         const SinkOpener& open_bag = nullptr);

@@ -1,8 +1,8 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
 // the node's (launch files name it `sim`): /tf, /tf_static, /sim/scene (latched, once), /sim/markers (trail
 // pieces and labels at the default marker rate), /sim/<body>/state, and /sim/commands with the config (so
-// that `simulate --replay` takes the bag). This is the sink of `simulate --bag` (io/offline_run.h) and of
-// the node's own recorder, stamped in simulated time.
+// that `simulate --replay` takes the bag). A SampleSink (run/session.h): the bag of `simulate --bag` and
+// `--replay --bag`, and the node's own recorder, stamped in simulated time.
 #pragma once
 
 #include <memory>
@@ -12,8 +12,8 @@
 #include <rosbag/bag.h>
 
 #include "rigid_body_sim/Command.h"
-#include "rigid_body_sim/io/offline_run.h"
 #include "rigid_body_sim/ros/snapshot.h"
+#include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 

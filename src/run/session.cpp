@@ -1,0 +1,52 @@
+#include "rigid_body_sim/run/session.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace rigid_body_sim {
+
+std::int64_t stepsPerSample(double rate, double sample_rate) {
+  return static_cast<std::int64_t>(std::llround(rate / sample_rate));
+}
+
+Session::Session(const WorldConfig& config, std::vector<std::string> reserved_names,
+                 std::int64_t steps_per_sample)
+    : world_(config, std::move(reserved_names)), steps_per_sample_(steps_per_sample) {
+  if (steps_per_sample_ < 1) {
+    throw std::invalid_argument("steps per sample " + std::to_string(steps_per_sample_) + " is not >= 1");
+  }
+}
+
+void Session::addSink(SampleSink& sink) { sinks_.push_back(&sink); }
+
+void Session::advance(std::int64_t steps, const StepHook& after_step) {
+  if (steps < 0) throw std::invalid_argument("cannot advance " + std::to_string(steps) + " steps");
+  for (std::int64_t i = 0; i < steps; ++i) {
+    world_.step();
+    if (after_step) after_step(world_);
+    if (atSamplingInstant()) handOut();
+  }
+}
+
+std::size_t Session::apply(WorldCommand command) {
+  if (atSamplingInstant() && !sampled()) handOut();
+  command.step = world_.stepCount();
+  world_.apply(command);  // a refusal throws here, before anything below
+  const std::size_t index = ++commands_applied_;
+  for (SampleSink* sink : sinks_) sink->applied(command, index, world_);
+  return index;
+}
+
+bool Session::sampleNow() {
+  if (sampled()) return false;
+  handOut();
+  return true;
+}
+
+void Session::handOut() {
+  last_sampled_ = world_.stepCount();
+  for (SampleSink* sink : sinks_) sink->write(world_);
+}
+
+}  // namespace rigid_body_sim
