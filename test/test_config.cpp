@@ -353,6 +353,8 @@ TEST(ConfigOddYaml, BracketsAreCheckedBeforeYamlCppSeesThem) {
   for (const std::string text : {"[:]", "[a:]", "{a: [b:]}"}) {
     EXPECT_NE(refusal(text).find("a ':' right before ']'"), std::string::npos) << text;
   }
+  EXPECT_EQ(refusal("bodies: {rod: {type: rod, k:\x04 5}}"),
+            "config file 'x.yaml' is not valid YAML: the control character \\x04 at line 1, column 29");
   EXPECT_NE(refusal(std::string(33, '[') + std::string(33, ']')).find("nests lists and maps 33 deep"),
             std::string::npos);
   const std::string fine =

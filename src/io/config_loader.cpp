@@ -173,37 +173,54 @@ std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {
 }
 
 // Lists and maps written in brackets ([ ], { }) are checked before yaml-cpp sees them: yaml-cpp 0.6 (Debian
-// 11) loops allocating until memory runs out on a bracket left open or a ':' right before ']' ("[:", "[a:]",
-// found by the fuzzer), and deep nesting recurses; ~spawn takes such text from anyone. A config needs
-// four levels.
+// 11) loops allocating until memory runs out on a bracket left open or a ':' right before ']' or the end
+// ("[:", "[a:]", "{k:\x04}": it reads \x04 as the end; found by the fuzzer), and deep nesting recurses;
+// ~spawn takes such text from anyone. Control characters, which YAML does not allow, go first. A config
+// needs four levels.
 constexpr int kMaxFlowDepth = 32;
 
 struct FlowScan {
   int deepest = 0;          // the deepest nesting
   std::string open_at_end;  // "the '[' at line L, column C": the outermost bracket left open (invalid YAML)
   bool colon_before_close = false;  // ":]" inside brackets: no value after the ':'
+  std::string control;              // "\\x04 at line L, column C": a character YAML does not allow
 };
 
 // Brackets in `text`, outside quoted scalars and comments. As in YAML, a quote opens a quoted scalar only
-// where a scalar starts, and # begins a comment only at a line's start or after a blank.
+// where a node starts (not inside a plain scalar: "it's"), and # begins a comment only at a line's start or
+// after a blank.
 FlowScan scanFlow(const std::string& text) {
   FlowScan scan;
   int depth = 0;
   char quote = 0;
   bool comment = false;
   char previous = '\n';
+  char last_mark = '\n';   // the last character but blanks
+  bool mark_opens = true;  // whether it is an indicator after which a node may start
   int line = 1;
   int column = 0;
   for (const char ch : text) {
     ++column;
-    const bool scalar_may_start = std::string(" \t\n[{,:-?").find(previous) != std::string::npos;
+    const auto code = static_cast<unsigned char>(ch);
+    if ((code < 0x20 && ch != '\t' && ch != '\n' && ch != '\r') || code == 0x7f) {
+      static const char* hex = "0123456789abcdef";
+      if (scan.control.empty()) {
+        scan.control = std::string("\\x") + hex[code >> 4] + hex[code & 15] + " at line " +
+                       std::to_string(line) + ", column " + std::to_string(column);
+      }
+    }
+    // A node (so a quoted scalar) starts at a line's start or after an indicator ('[', '{', ',', or ':', '-',
+    // '?' with a blank after them), blanks between.
+    const bool blank_before = previous == ' ' || previous == '\t';
+    const bool scalar_may_start =
+        mark_opens && (std::string(":-?").find(last_mark) == std::string::npos || blank_before);
     if (comment) {
       comment = ch != '\n';
     } else if (quote) {
       quote = ch == quote ? 0 : quote;  // an escaped \" ends it early: what follows counts, never less
     } else if ((ch == '"' || ch == '\'') && scalar_may_start) {
       quote = ch;
-    } else if (ch == '#' && (previous == ' ' || previous == '\t' || previous == '\n')) {
+    } else if (ch == '#' && (blank_before || previous == '\n')) {
       comment = true;
     } else if (ch == '[' || ch == '{') {
       if (depth == 0)
@@ -218,6 +235,12 @@ FlowScan scanFlow(const std::string& text) {
       ++line;
       column = 0;
     }
+    if (ch != ' ' && ch != '\t') {
+      const bool after_blank = blank_before || previous == '\n';  // '-' and '?' are indicators only there
+      mark_opens =
+          std::string("\n[{,:").find(ch) != std::string::npos || ((ch == '-' || ch == '?') && after_blank);
+      last_mark = ch;
+    }
     previous = ch;
   }
   if (depth == 0) scan.open_at_end.clear();
@@ -226,6 +249,9 @@ FlowScan scanFlow(const std::string& text) {
 
 void checkFlow(const std::string& text, const std::string& what) {
   const FlowScan scan = scanFlow(text);
+  if (!scan.control.empty()) {
+    throw ConfigError(what + " is not valid YAML: the control character " + scan.control);
+  }
   if (scan.deepest > kMaxFlowDepth) {
     throw ConfigError(what + " nests lists and maps " + std::to_string(scan.deepest) +
                       " deep (allowed: at most " + std::to_string(kMaxFlowDepth) + ")");
