@@ -1,7 +1,10 @@
 #include "rigid_body_sim/ros/interactive_controls.h"
 
 #include <cmath>
+#include <string>
 #include <utility>
+
+#include <ros/console.h>
 
 #include <visualization_msgs/InteractiveMarker.h>
 #include <visualization_msgs/InteractiveMarkerControl.h>
@@ -31,6 +34,20 @@ geometry_msgs::Quaternion aboutZ(double angle) {
 // The angle about z of a rotation (rviz may add rounding off the z axis: its projection on the plane).
 double angleAboutZ(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+// Why a dropped pose cannot be taken, or empty: a position that is not finite, or (for a rod's place, whose
+// turn is read from it) an orientation that is no rotation, such as the zero quaternion.
+std::string poseFault(bool reads_orientation, const geometry_msgs::Pose& pose) {
+  const auto& p = pose.position;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return "its position is not finite";
+  const auto& q = pose.orientation;
+  const double norm2 = q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w;
+  if (reads_orientation && !(std::abs(norm2 - 1.0) < 1e-3)) {
+    return "its orientation (" + formatNumber(q.x) + ", " + formatNumber(q.y) + ", " + formatNumber(q.z) +
+           ", " + formatNumber(q.w) + ") is no rotation (a unit quaternion)";
+  }
+  return "";
 }
 
 geometry_msgs::Point point(double x, double y) {
@@ -198,12 +215,20 @@ void InteractiveControls::insert(const BodyConfig& body) {
 // On a drop the handler applies the initial conditions and, if they run, shows every body anew through
 // show(); a refused drop puts both markers of the body back where its initial conditions are.
 void InteractiveControls::onFeedback(const visualization_msgs::InteractiveMarkerFeedbackConstPtr& feedback) {
-  const std::string name = feedback->marker_name.substr(0, feedback->marker_name.find('/'));
+  const std::string& marker = feedback->marker_name;
+  const std::string name = marker.substr(0, marker.find('/'));
   const auto found = bodies_.find(name);
-  if (found == bodies_.end()) return;
+  if (found == bodies_.end()) {
+    ROS_WARN_STREAM("drop of marker '" << marker << "' ignored: there is no body '" << name
+                                       << "' (deleted?)");
+    return;
+  }
   const BodyConfig body = found->second;  // the handler may replace bodies_ (through show)
+  const bool reads_orientation = std::holds_alternative<RodConfig>(body.config) && marker == body.name;
+  const std::string fault = poseFault(reads_orientation, feedback->pose);
+  if (!fault.empty()) ROS_WARN_STREAM("drop of marker '" << marker << "' refused: " << fault);
   std::string why;
-  if (!on_drop_(name, dropped(body, feedback->marker_name, feedback->pose), &why)) {
+  if (!fault.empty() || !on_drop_(name, dropped(body, marker, feedback->pose), &why)) {
     insert(body);
     server_.applyChanges();
   }

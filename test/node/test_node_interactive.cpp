@@ -1,8 +1,8 @@
 // sim_node's interactive markers (~interactive): this node sends what rviz sends when a marker is dragged
 // and dropped (POSE_UPDATE, then MOUSE_UP on /sim/interactive/feedback). A drop sets the body's initial
 // conditions through its reconfigure server (which then shows them) and restarts it exactly as the core
-// World restarts it; a refused drop (off the slope, under the floor) logs one WARN line, puts the marker
-// back and changes nothing.
+// World restarts it; a refused drop (off the slope, under the floor, a rod turned by a quaternion that is no
+// rotation) logs one WARN line, puts the marker back and changes nothing.
 #include <cmath>
 
 #include <dynamic_reconfigure/Config.h>
@@ -230,6 +230,26 @@ TEST(SimNodeInteractive, DropsSetInitialConditionsLikeAReconfigure) {
   EXPECT_EQ(2.5, watch.poses_["rod"].position.y);
   stepAndCompare(c, world, 300, "after the refused drop under the floor");
   EXPECT_EQ(2.5, doubleOf(watch.values_["rod"], "y0"));
+  {
+    std::lock_guard<std::mutex> lock(watch.mutex_);
+    EXPECT_EQ(warnings + 1, watch.warnings_.size()) << "a refused drop logs exactly one line";
+    warnings = watch.warnings_.size();
+    watch.poses_.erase("rod");
+  }
+
+  // --- refused: the rod dropped with the zero quaternion, which is no turn at all (theta0 would be read as
+  // 0)
+  geometry_msgs::Pose no_turn = pose(2.0, 3.0);
+  no_turn.orientation = geometry_msgs::Quaternion();
+  drop(feedback, "rod", "rod_floor", no_turn);
+  ASSERT_TRUE(watch.waitFor([&] { return watch.warnings_.size() > warnings; })) << "no WARN line";
+  EXPECT_NE(std::string::npos,
+            watch.warnings_.back().find("drop of marker 'rod' refused: its orientation (0, 0, 0, 0)"))
+      << watch.warnings_.back();
+  ASSERT_TRUE(watch.waitFor([&] { return watch.poses_.count("rod") > 0; })) << "the marker was not put back";
+  EXPECT_EQ(1.5, watch.poses_["rod"].position.x);
+  stepAndCompare(c, world, 300, "after the drop with no turn");
+  EXPECT_EQ(1.5, doubleOf(watch.values_["rod"], "x0"));
   std::lock_guard<std::mutex> lock(watch.mutex_);
   EXPECT_EQ(warnings + 1, watch.warnings_.size()) << "a refused drop logs exactly one line";
 }
