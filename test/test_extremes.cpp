@@ -108,9 +108,9 @@ TEST(Extremes, RodEnergyStaysWithinFivePercentEverywhere) {
 
 // The same corners with Earth's gravity and the strongest allowed, over the text's 10 s: finite, and no
 // instability. Energy is not conserved as tightly here: every entry into and exit from the floor costs or
-// gains a little, and at coarse rates the rod bounces hundreds of times, so the swing is only printed;
-// what is asserted is that energy never grows by as much as the energy in motion (an unstable step, without
-// sub-stepping, grows it by orders of magnitude within a few steps).
+// gains a little, and at coarse rates the rod bounces hundreds of times. docs/reliability.md states the
+// largest gain, 5.1 % of the energy in motion; asserted below 5.5 % at every corner (the runs are
+// deterministic: the margin is for another libm's last bits, not for chance).
 TEST(Extremes, RodWithGravityStaysFiniteAndStable) {
   double largest = 0.0;
   for (const double gravity : {9.8, 1000.0}) {
@@ -120,7 +120,7 @@ TEST(Extremes, RodWithGravityStaysFiniteAndStable) {
           SCOPED_TRACE("g " + formatNumber(gravity) + ", k " + formatNumber(k) + ", mass " +
                        formatNumber(mass) + ", rate " + formatNumber(rate));
           const double gain = runRod(k, mass, rate, gravity).largest_swing;
-          EXPECT_LT(gain, 1.0);
+          EXPECT_LT(gain, 0.055);
           largest = std::max(largest, gain);
         }
       }
