@@ -62,11 +62,26 @@ TEST_F(SimulateTest, CsvRowsAreTheCoresStatesAtThoseTimes) {
   }
 }
 
+// The bowler (demo.yaml) is launched sliding with spin, u0 = v0 + omega0 R > 0: kinetic friction brings the
+// slip speed to 0 at t* = u0 / (g cos(phi) mu_d (1 + 1/c) - g sin(phi)), where it starts rolling. The summary
+// prints that instant (to 6 digits).
 TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
   const auto run = simulate(config("demo.yaml") + " --duration 2 --out-dir " + dir_.string());
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("bowler"), std::string::npos);
-  EXPECT_NE(run.out.find("started rolling"), std::string::npos) << run.out;
+  const WorldConfig demo = loadWorldConfigFile(config("demo.yaml"));
+  const auto& bowler = std::get<RollerConfig>(demo.bodies.at(*World(demo).indexOf("bowler")).config);
+  const RollerParams& p = bowler.params;
+  const double u0 = bowler.initial.v0 + bowler.initial.omega0 * p.radius;
+  const double g = demo.gravity;
+  const double t_roll = u0 / (g * std::cos(p.incline_angle) * p.mu_d * (1.0 + 1.0 / p.inertia_factor) -
+                              g * std::sin(p.incline_angle));
+  const std::size_t section = run.out.find("bowler:");
+  ASSERT_NE(section, std::string::npos) << run.out;
+  const std::size_t at = run.out.find("t = ", section);
+  const std::size_t end = run.out.find(" s: started rolling", section);
+  ASSERT_TRUE(at != std::string::npos && end != std::string::npos && at < end) << run.out.substr(section);
+  EXPECT_NEAR(std::stod(run.out.substr(at + 4, end - at - 4)), t_roll, 5e-6 * t_roll)
+      << run.out.substr(section);
 }
 
 TEST_F(SimulateTest, SaysOncePerRodWhenAutoSplitsItsSteps) {
