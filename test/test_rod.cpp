@@ -167,6 +167,10 @@ TEST(RodTextProgram, AgreesWithNumpyRunOfTheText) {
         "10 s: %.3g\n",
         theta0, first_diff, max_3s, max_10s);
     EXPECT_LE(max_3s, 1e-9) << "theta0 " << theta0;
+    // Over the whole 10 s the bounces amplify the last bits in which numpy's sin and cos and the C library's
+    // differ (the text's operations in C++ are equal bit for bit: section 1): at most 1e-3 m or rad
+    // (4.4e-4 measured, at theta0 = 1), as README.md says.
+    EXPECT_LE(max_10s, 1e-3) << "theta0 " << theta0;
   }
 }
 
