@@ -8,6 +8,7 @@
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/io/config_writer.h"
+#include "rigid_body_sim/ros/bag_recorder.h"
 
 namespace rigid_body_sim {
 
@@ -56,7 +57,7 @@ rigid_body_sim::Command toMessage(const WorldCommand& command, std::uint32_t ind
 }
 
 RecordedRun readRecordedRun(const std::string& path) {
-  rosbag::Bag bag;
+  rosbag::Bag bag = newBag();
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& error) {
