@@ -234,14 +234,19 @@ void SimNode::onReconfigure(const std::string& name, Request& request) {
 }
 
 template <class Build>
-bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why) {
+bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
+                         double* t) {
   WorldCommand command;
   try {
     command = build();
   } catch (const ConfigError& error) {
+    if (t) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      *t = world().time();
+    }
     return refuse(kind, body, error.what(), why);
   }
-  return applyCommand(std::move(command), why);
+  return applyCommand(std::move(command), why, t);
 }
 
 bool SimNode::refuse(const std::string& kind, const std::string& body, const std::string& reason,
@@ -253,7 +258,7 @@ bool SimNode::refuse(const std::string& kind, const std::string& body, const std
   return false;
 }
 
-bool SimNode::applyCommand(WorldCommand command, std::string* why) {
+bool SimNode::applyCommand(WorldCommand command, std::string* why, double* t) {
   std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -261,8 +266,10 @@ bool SimNode::applyCommand(WorldCommand command, std::string* why) {
     try {
       session_.apply(command);  // the pending publishing instant, the command, then publication_.applied
     } catch (const ConfigError& error) {
+      if (t) *t = world().time();
       return refuse(toString(command.kind), command.body, error.what(), why);
     }
+    if (t) *t = world().time();  // the lock held since: the t on ~commands
     followWorldLocked(command, before);
     if (interactive_) interactive_->show(world().config());  // the handles where the bodies now start
   }
@@ -369,9 +376,7 @@ bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
         command.config = parseBodyText(request.name, request.body);
         return command;
       },
-      &response.message);
-  std::lock_guard<std::mutex> lock(mutex_);
-  response.t = world().time();
+      &response.message, &response.t);
   return true;
 }
 

@@ -52,9 +52,10 @@ class SimNode {
   // The one way to change the running world (the services, the reconfigure servers, the interactive tools):
   // Session::apply, which publishes a publishing instant not yet published first, then applies `command` at
   // the current step (command.step is set there), logs it (INFO) and publishes it on ~commands; then what
-  // depends on the world follows (state topics, reconfigure servers, static TF, markers). A refusal returns
-  // false: one WARN line, the same line in *why; nothing changes and nothing is published on ~commands.
-  bool applyCommand(WorldCommand command, std::string* why = nullptr);
+  // depends on the world follows (state topics, reconfigure servers, static TF, markers). *t is the
+  // simulated time it applied at, its ~commands entry's t. A refusal returns false: one WARN line, the same
+  // line in *why; nothing changes and nothing is published on ~commands; *t is the time then.
+  bool applyCommand(WorldCommand command, std::string* why = nullptr, double* t = nullptr);
 
  private:
   // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
@@ -95,7 +96,8 @@ class SimNode {
 
   // Builds a command with `build` (which may throw ConfigError: a refusal like any other) and applies it.
   template <class Build>
-  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why);
+  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
+                  double* t = nullptr);
   bool refuse(const std::string& kind, const std::string& body, const std::string& reason, std::string* why);
   // On ~commands as number `index` (header.seq; 0: the config at the start); recorded after the config.
   void publishCommandLocked(const WorldCommand& command, std::size_t index);
