@@ -12,6 +12,7 @@
 #include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
+#include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 
@@ -63,6 +64,11 @@ Config withReconfigured(const std::string& body, const Config& current,
   return fromReconfigure(body, request, current);
 }
 
+// The node's run: sampled (published) at publish_rate.
+Session sessionOf(const WorldConfig& config) {
+  return Session(config, node_interface::ownNames(), stepsPerSample(config.rate, config.publish_rate));
+}
+
 }  // namespace
 
 SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
@@ -70,25 +76,25 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       private_node_(private_node),
       start_params_(privateParams(private_node)),
       options_(parseNodeOptions(start_params_)),
-      world_(parseNodeConfig(start_params_), node_interface::ownNames()),
-      guard_(world_.bodies()),
-      steps_per_publish_(std::llround(world_.rate() / world_.config().publish_rate)),
+      session_(sessionOf(parseNodeConfig(start_params_))),
+      after_step_([this](World& world) { afterStepLocked(world); }),
+      guard_(world().bodies()),
       steps_per_markers_(
-          steps_per_publish_ *
-          std::max<std::int64_t>(1, std::llround(world_.config().publish_rate /
-                                                 markerRate(options_, world_.config().publish_rate)))),
-      pacer_(world_.rate(), options_.real_time_factor) {
+          session_.stepsPerSample() *
+          std::max<std::int64_t>(1, std::llround(world().config().publish_rate /
+                                                 markerRate(options_, world().config().publish_rate)))),
+      pacer_(world().rate(), options_.real_time_factor) {
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   paused_ = options_.start_paused;
-  const TrailOptions trail{options_.trail_length, markerRate(options_, world_.config().publish_rate)};
-  snapshots_ = std::make_unique<SnapshotBuilder>(world_.config().world_frame, options_.frame_prefix,
-                                                 world_.bodies(), trail);
-  for (const auto& note : autoSubstepNotes(world_.config())) ROS_INFO_STREAM(note);
-  for (const auto& warning : slowRunWarnings(world_.config())) ROS_WARN_STREAM(warning);
+  const TrailOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate)};
+  snapshots_ = std::make_unique<SnapshotBuilder>(world().config().world_frame, options_.frame_prefix,
+                                                 world().bodies(), trail);
+  for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
+  for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
   if (!options_.bag.empty()) {
     try {
-      recorder_ = std::make_unique<BagRecorder>(options_.bag, world_.config(), world_.bodies(),
+      recorder_ = std::make_unique<BagRecorder>(options_.bag, world().config(), world().bodies(),
                                                 private_node_.getNamespace(), options_.frame_prefix);
     } catch (const rosbag::BagException& error) {
       throw ConfigError("cannot write the bag '" + options_.bag + "': " + error.what());
@@ -97,14 +103,15 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   advertise();
   WorldCommand start;
   start.kind = WorldCommand::Kind::Config;
-  start.world = world_.config();
-  publishCommandLocked(start);  // nothing runs yet: no lock to take
+  start.world = world().config();
+  publishCommandLocked(start, 0);  // nothing runs yet: no lock to take
+  session_.addSink(publication_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
         return onDrop(body, initial, why);
       });
-  interactive_->show(world_.config());
+  interactive_->show(world().config());
 }
 
 SimNode::~SimNode() { stopThreads(); }
@@ -144,7 +151,7 @@ void SimNode::advertise() {
   }
   command_publisher_ =
       private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
-  for (const auto& body : world_.bodies()) advertiseState(body);
+  for (const auto& body : world().bodies()) advertiseState(body);
   services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
   services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
   services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
@@ -169,7 +176,7 @@ void SimNode::startReconfigureServers() {
   std::vector<std::string> names;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& body : world_.config().bodies) names.push_back(body.name);
+    for (const auto& body : world().config().bodies) names.push_back(body.name);
   }
   for (const auto& name : names) {
     if (!ros::ok() || stopping_) return;
@@ -177,9 +184,9 @@ void SimNode::startReconfigureServers() {
     BodyConfig body;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      const std::size_t index = indexIn(world_.config(), name);
-      if (index == world_.config().bodies.size() || servers_.count(name)) continue;
-      body = world_.config().bodies[index];
+      const std::size_t index = indexIn(world().config(), name);
+      if (index == world().config().bodies.size() || servers_.count(name)) continue;
+      body = world().config().bodies[index];
     }
     startReconfigureServer(body);
   }
@@ -211,7 +218,7 @@ template <class Config, class Request>
 void SimNode::onReconfigure(const std::string& name, Request& request) {
   const auto current = [&] {
     std::lock_guard<std::mutex> lock(mutex_);
-    return world_.config().bodies[indexIn(world_.config(), name)];
+    return world().config().bodies[indexIn(world().config(), name)];
   };
   const BodyConfig before = current();
   try {
@@ -227,14 +234,19 @@ void SimNode::onReconfigure(const std::string& name, Request& request) {
 }
 
 template <class Build>
-bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why) {
+bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
+                         double* t) {
   WorldCommand command;
   try {
     command = build();
   } catch (const ConfigError& error) {
+    if (t) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      *t = world().time();
+    }
     return refuse(kind, body, error.what(), why);
   }
-  return applyCommand(std::move(command), why);
+  return applyCommand(std::move(command), why, t);
 }
 
 bool SimNode::refuse(const std::string& kind, const std::string& body, const std::string& reason,
@@ -246,47 +258,49 @@ bool SimNode::refuse(const std::string& kind, const std::string& body, const std
   return false;
 }
 
-bool SimNode::applyCommand(WorldCommand command, std::string* why) {
+bool SimNode::applyCommand(WorldCommand command, std::string* why, double* t) {
   std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // States at a count are published before the commands at that count apply (docs/commands.md).
-    if (world_.stepCount() % steps_per_publish_ == 0 && last_published_step_ != world_.stepCount()) {
-      publishLocked();
-    }
-    command.step = world_.stepCount();
-    const WorldConfig before = world_.config();
+    const WorldConfig before = world().config();
     try {
-      world_.apply(command);
+      session_.apply(command);  // the pending publishing instant, the command, then publication_.applied
     } catch (const ConfigError& error) {
+      if (t) *t = world().time();
       return refuse(toString(command.kind), command.body, error.what(), why);
     }
-    ROS_INFO_STREAM(toString(command.kind)
-                    << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
-                    << " (t = " << formatNumber(world_.time()) << " s)");
-    publishCommandLocked(command);
+    if (t) *t = world().time();  // the lock held since: the t on ~commands
     followWorldLocked(command, before);
-    if (interactive_) interactive_->show(world_.config());  // the handles where the bodies now start
+    if (interactive_) interactive_->show(world().config());  // the handles where the bodies now start
   }
   followWorldServers(command);
   if (why) *why = "ok";
   return true;
 }
 
-void SimNode::publishCommandLocked(const WorldCommand& command) {
-  const auto message = toMessage(command, commands_published_++, world_.time(), stampOf(world_.time()),
-                                 world_.config().world_frame);
+void SimNode::Publication::write(const World&) { node_.publishLocked(); }
+
+void SimNode::Publication::applied(const WorldCommand& command, std::size_t index, const World& world) {
+  ROS_INFO_STREAM(toString(command.kind)
+                  << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
+                  << " (t = " << formatNumber(world.time()) << " s)");
+  node_.publishCommandLocked(command, index);
+}
+
+void SimNode::publishCommandLocked(const WorldCommand& command, std::size_t index) {
+  const auto message = toMessage(command, static_cast<std::uint32_t>(index), world().time(),
+                                 stampOf(world().time()), world().config().world_frame);
   command_publisher_.publish(message);
   // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
-  if (recorder_ && message.header.seq > 0) recorder_->writeCommand(message);
+  if (recorder_ && index > 0) recorder_->writeCommand(message);
 }
 
 void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
   const std::size_t index = indexIn(before, command.body);
   switch (command.kind) {
     case WorldCommand::Kind::Spawn:
-      advertiseState(world_.bodies().back());
-      guard_.add(world_.bodies().back());
+      advertiseState(world().bodies().back());
+      guard_.add(world().bodies().back());
       rebuildSceneLocked();
       return;
     case WorldCommand::Kind::Delete:
@@ -297,19 +311,19 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
     case WorldCommand::Kind::Reconfigure:
     case WorldCommand::Kind::SetState:
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
-      guard_.release(index, world_.bodies()[index]);
+      guard_.release(index, world().bodies()[index]);
       if (command.kind == WorldCommand::Kind::Reconfigure &&
-          placementChanged(before.bodies[index], world_.config().bodies[index])) {
+          placementChanged(before.bodies[index], world().config().bodies[index])) {
         rebuildSceneLocked();
       }
       return;
     case WorldCommand::Kind::Reset:
-      world_.takeEvents();
-      guard_.releaseAll(world_.bodies());
+      session_.takeEvents();
+      guard_.releaseAll(world().bodies());
       // Trails start anew: the viewer drops the old ones.
       snapshots_->scene().clearTrails();
       if (markers_watched_)
-        marker_publisher_.publisher.publish(snapshots_->scene().clearMarkers(stampOf(world_.time())));
+        marker_publisher_.publisher.publish(snapshots_->scene().clearMarkers(stampOf(world().time())));
       return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
@@ -335,10 +349,10 @@ bool SimNode::onDrop(const std::string& body, const std::map<std::string, double
         BodyConfig current;
         {
           std::lock_guard<std::mutex> lock(mutex_);
-          const std::size_t index = indexIn(world_.config(), body);
-          if (index == world_.config().bodies.size())
+          const std::size_t index = indexIn(world().config(), body);
+          if (index == world().config().bodies.size())
             throw ConfigError(body, "name", "'" + body + "'", "a body of the world");
-          current = world_.config().bodies[index];
+          current = world().config().bodies[index];
         }
         WorldCommand command;
         command.kind = WorldCommand::Kind::Reconfigure;
@@ -362,9 +376,7 @@ bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
         command.config = parseBodyText(request.name, request.body);
         return command;
       },
-      &response.message);
-  std::lock_guard<std::mutex> lock(mutex_);
-  response.t = world_.time();
+      &response.message, &response.t);
   return true;
 }
 
@@ -392,7 +404,7 @@ bool SimNode::onSetState(SetState::Request& request, SetState::Response& respons
 
 bool SimNode::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
-  response.yaml = toYaml(world_.config());
+  response.yaml = toYaml(world().config());
   return true;
 }
 
@@ -421,20 +433,20 @@ bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 
 bool SimNode::onStep(Step::Request& request, Step::Response& response) {
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto max_steps = static_cast<std::uint64_t>(kMaxStepSeconds * world_.rate());
+  const auto max_steps = static_cast<std::uint64_t>(kMaxStepSeconds * world().rate());
   if (!paused_) {
     response.message = "refused: call ~pause first (the simulation is running)";
   } else if (request.steps == 0 || request.steps > max_steps) {
     response.message = "refused: steps " + std::to_string(request.steps) + " is not in [1, " +
                        std::to_string(max_steps) + "] (at most " + formatNumber(kMaxStepSeconds) + " s)";
   } else {
-    for (std::uint32_t i = 0; i < request.steps; ++i) stepOnceLocked();
-    if (last_published_step_ != world_.stepCount()) publishLocked();  // show where the steps ended
+    session_.advance(request.steps, after_step_);
+    session_.sampleNow();  // show where the steps ended
     response.success = true;
     response.message = "ok";
   }
   if (!response.success) ROS_WARN_STREAM("~step " << response.message);
-  response.t = world_.time();
+  response.t = world().time();
   return true;
 }
 
@@ -451,35 +463,29 @@ ros::Time SimNode::stampOf(double t) const {
 // than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
 // the clock): stamps stay strictly increasing.
 void SimNode::anchorLocked() {
-  pacer_.restart(wallNow(), world_.stepCount());
+  pacer_.restart(wallNow(), world().stepCount());
   const ros::WallTime wall = ros::WallTime::now();
   stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
-  time_anchor_ = world_.time();
+  time_anchor_ = world().time();
 }
 
-void SimNode::stepOnceLocked() {
-  world_.step();
-  guardLocked();
-  for (const auto& event : world_.takeEvents()) {
-    ROS_DEBUG_STREAM(event.body << " " << toString(event.kind) << " at t = " << event.t << " s");
-  }
-  if (world_.stepCount() % steps_per_publish_ == 0) publishLocked();
-}
-
-void SimNode::guardLocked() {
-  for (const NonFinite& fault : guard_.afterStep(world_.bodies())) {
-    const Body& held = world_.bodies()[fault.index];  // already back at its last finite state
+void SimNode::afterStepLocked(World& world) {
+  for (const NonFinite& fault : guard_.afterStep(world.bodies())) {
+    const Body& held = world.bodies()[fault.index];  // already back at its last finite state
     ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field
-                              << " became non-finite in the step to t = " << formatNumber(world_.time())
+                              << " became non-finite in the step to t = " << formatNumber(world.time())
                               << " s; the body is paused at its last finite state, the "
                               << "others go on (a reconfigure of it or ~reset restarts it). It ran with: "
                               << describeBody(held));
+  }
+  for (const auto& event : world.takeEvents()) {
+    ROS_DEBUG_STREAM(event.body << " " << toString(event.kind) << " at t = " << event.t << " s");
   }
 }
 
 // Only forward: /clock never repeats a time (a reset or a ~step publishes the current time once more).
 void SimNode::publishClockLocked() {
-  const ros::Time now = simStamp(world_.time());
+  const ros::Time now = simStamp(world().time());
   if (!options_.publish_clock || now <= last_clock_) return;
   rosgraph_msgs::Clock clock;
   clock.clock = now;
@@ -488,10 +494,10 @@ void SimNode::publishClockLocked() {
 }
 
 void SimNode::publishLocked() {
-  const double t = world_.time();
+  const double t = world().time();
   const ros::Time stamp = stampOf(t);
   publishClockLocked();
-  const auto& bodies = world_.bodies();
+  const auto& bodies = world().bodies();
   // Every body's transform in one message and a state message per body, built only for a topic with a
   // subscriber (a viewer that joins finds every frame at the next publication). A transform is never sent
   // twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset at a publishing instant
@@ -506,13 +512,12 @@ void SimNode::publishLocked() {
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
-  if (recorder_) recorder_->write(world_);
+  if (recorder_) recorder_->write(world());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!state_publishers_[i].watched()) continue;
     std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
                snapshots_->state(i, t, stamp, bodies[i]));
   }
-  last_published_step_ = world_.stepCount();
 }
 
 void SimNode::publishMarkersLocked(const ros::Time& stamp) {
@@ -524,15 +529,15 @@ void SimNode::publishMarkersLocked(const ros::Time& stamp) {
     return;
   }
   markers_watched_ = true;
-  scene.sample(world_.bodies());
-  if (world_.stepCount() % steps_per_markers_ == 0) {
-    marker_publisher_.publisher.publish(scene.changes(stamp, world_.bodies()));
+  scene.sample(world().bodies());
+  if (world().stepCount() % steps_per_markers_ == 0) {
+    marker_publisher_.publisher.publish(scene.changes(stamp, world().bodies()));
   }
 }
 
 void SimNode::publishStaticTransformsLocked() {
   tf2_msgs::TFMessage fixed;
-  fixed.transforms = snapshots_->staticTransforms(stampOf(world_.time()));
+  fixed.transforms = snapshots_->staticTransforms(stampOf(world().time()));
   static_broadcaster_.sendTransform(fixed.transforms);
   if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
 }
@@ -545,11 +550,11 @@ void SimNode::publishSceneLocked() {
 // The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
 // when it changed; trails are kept by body name.
 void SimNode::rebuildSceneLocked() {
-  if (snapshots_->scene().rebuild(world_.bodies())) {
+  if (snapshots_->scene().rebuild(world().bodies())) {
     scene_publisher_.publish(snapshots_->scene().sceneMarkers());
   }
   publishStaticTransformsLocked();
-  if (recorder_) recorder_->rebuild(world_.bodies(), world_.time());
+  if (recorder_) recorder_->rebuild(world().bodies(), world().time());
 }
 
 void SimNode::stepLoop() {
@@ -561,20 +566,21 @@ void SimNode::stepLoop() {
                  [this] { return stopping_.load(); });
   anchorLocked();
   publishSceneLocked();
-  if (last_published_step_ != world_.stepCount()) publishLocked();  // unless a command published it
-  const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world_.rate()));
+  session_.sampleNow();  // unless a command published this count
+  const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world().rate()));
   while (!stopping_ && ros::ok()) {
     if (paused_) {
       wake_.wait_for(lock, std::chrono::milliseconds(50));
       continue;
     }
     // Step up to what is due, one publishing interval at a time so that callbacks get the lock.
-    const std::int64_t next_publish = (world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_;
+    const std::int64_t steps_per_publish = session_.stepsPerSample();
+    const std::int64_t next_publish = (world().stepCount() / steps_per_publish + 1) * steps_per_publish;
     const std::int64_t target = std::min(pacer_.dueSteps(wallNow()), next_publish);
-    while (world_.stepCount() < target) {
-      stepOnceLocked();
-      if (duration_steps > 0 && world_.stepCount() >= duration_steps) {
-        ROS_INFO("simulated %.3f s: the requested duration; shutting down", world_.time());
+    while (world().stepCount() < target) {
+      session_.advance(1, after_step_);  // one at a time: the duration ends a run at its step
+      if (duration_steps > 0 && world().stepCount() >= duration_steps) {
+        ROS_INFO("simulated %.3f s: the requested duration; shutting down", world().time());
         // A moment for subscribers (a recorder) to receive the last messages before the launch ends.
         lock.unlock();
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -589,7 +595,7 @@ void SimNode::stepLoop() {
       continue;
     }
     const double wake_at =
-        pacer_.wallTimeOf((world_.stepCount() / steps_per_publish_ + 1) * steps_per_publish_);
+        pacer_.wallTimeOf((world().stepCount() / steps_per_publish + 1) * steps_per_publish);
     const auto wait = std::chrono::duration<double>(wake_at - wallNow());
     if (wait.count() > 0) wake_.wait_for(lock, wait);
   }

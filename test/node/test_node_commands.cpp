@@ -1,6 +1,8 @@
 // sim_node's world changes against the core: ~spawn, ~set_state and ~delete while paused equal a World given
 // the same commands at the same step; ~get_config loads as a config; ~commands numbers them from the config.
-// A table of bad requests: each refused in one line, nothing changes, nothing on ~commands.
+// A table of bad requests: each refused in one line, nothing changes, nothing on ~commands. Spawns while the
+// world runs answer the t of their ~commands entry.
+#include <algorithm>
 #include <limits>
 
 #include "node_test_util.h"
@@ -90,6 +92,7 @@ std::string getConfig() {
   return srv.response.yaml;
 }
 
+// Every message on ~commands from the subscription on: the latched one first.
 class Commands {
  public:
   explicit Commands(ros::NodeHandle& nh)
@@ -97,19 +100,21 @@ class Commands {
                                                    [this](const rigid_body_sim::Command::ConstPtr& msg) {
                                                      std::lock_guard<std::mutex> lock(mutex_);
                                                      received_.push_back(*msg);
+                                                     arrived_.notify_all();
                                                    })) {}
   std::vector<rigid_body_sim::Command> received() {
     std::lock_guard<std::mutex> lock(mutex_);
     return received_;
   }
+  // Waits until `count` messages have come, at most 10 wall seconds.
   bool waitCount(std::size_t count) {
-    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
-    while (ros::WallTime::now() < end && received().size() < count) ros::WallDuration(0.01).sleep();
-    return received().size() >= count;
+    std::unique_lock<std::mutex> lock(mutex_);
+    return arrived_.wait_for(lock, std::chrono::seconds(10), [&] { return received_.size() >= count; });
   }
 
  private:
   std::mutex mutex_;
+  std::condition_variable arrived_;
   std::vector<rigid_body_sim::Command> received_;
   ros::Subscriber sub_;
 };
@@ -215,7 +220,39 @@ TEST(SimNodeCommands, ChangesEqualTheCoreAndBadRequestsChangeNothing) {
     if (i > 0) EXPECT_EQ(log[i].step, static_cast<std::uint64_t>(count + 1));
   }
   EXPECT_EQ(log[1].yaml, toYaml(world.config().bodies.back()));
+  EXPECT_EQ(spawn.response.t, log[1].t) << "the spawn's answer is not the t of its ~commands entry";
   ASSERT_TRUE(callEmpty("/sim/unpause"));
+}
+
+// While the world runs on (at wall pace, its stepping thread taking the lock between calls), every spawn
+// answers the t it applied at: that of its ~commands entry, exactly.
+TEST(SimNodeCommands, SpawnsAnswerTheTimeOfTheirCommand) {
+  ros::NodeHandle nh;
+  Commands commands(nh);
+  ASSERT_TRUE(commands.waitCount(1)) << "no latched command on ~commands";  // connected from here on
+  ASSERT_TRUE(callEmpty("/sim/unpause"));
+  constexpr std::size_t kSpawns = 12;
+  std::vector<std::pair<std::string, double>> answers;  // body, the answer's t
+  for (std::size_t i = 0; i < kSpawns; ++i) {
+    Spawn spawn;
+    spawn.request.name = "ring" + std::to_string(i);
+    spawn.request.body = "{type: roller, shape: ring, incline_angle: 0.4, x0: 0.5}";
+    ASSERT_TRUE(ros::service::call("/sim/spawn", spawn));
+    ASSERT_TRUE(spawn.response.success) << spawn.response.message;
+    answers.emplace_back(spawn.request.name, spawn.response.t);
+  }
+  ASSERT_TRUE(commands.waitCount(1 + kSpawns)) << "not every spawn came on ~commands";
+  const auto log = commands.received();
+  for (const auto& answer : answers) {
+    const std::string& name = answer.first;
+    const auto is_spawn = [&](const rigid_body_sim::Command& c) {
+      return c.kind == "spawn" && c.body == name;
+    };
+    const auto entry = std::find_if(log.begin() + 1, log.end(), is_spawn);
+    ASSERT_NE(entry, log.end()) << name << " is not on ~commands";
+    EXPECT_EQ(answer.second, entry->t)
+        << name << ": answered t = " << answer.second << ", applied at step " << entry->step;
+  }
 }
 
 RBS_ROSTEST_MAIN("test_node_commands")

@@ -1,5 +1,6 @@
-// sim_node: a thin ROS adapter around the core World. It owns the stepping thread, the publishers, the
-// reconfigure servers and the services; physics and validation stay in the core and the config loader.
+// sim_node: a thin ROS adapter around a Session (run/session.h) of the core World. It owns the stepping
+// thread, the publishers, the reconfigure servers and the services; physics and validation stay in the core
+// and the config loader, the order of steps, samples and commands in the Session.
 #pragma once
 
 #include <atomic>
@@ -25,13 +26,13 @@
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/finite_guard.h"
 #include "rigid_body_sim/io/step_pacer.h"
 #include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
+#include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 
@@ -49,11 +50,12 @@ class SimNode {
   int run();
 
   // The one way to change the running world (the services, the reconfigure servers, the interactive tools):
-  // applies `command` at the current step (command.step is set here), logs it (INFO) and publishes it on
-  // ~commands, then updates what depends on the world (state topics, reconfigure servers, static TF,
-  // markers). A refusal returns false: one WARN line, the same line in *why; nothing changes and nothing is
-  // published on ~commands.
-  bool applyCommand(WorldCommand command, std::string* why = nullptr);
+  // Session::apply, which publishes a publishing instant not yet published first, then applies `command` at
+  // the current step (command.step is set there), logs it (INFO) and publishes it on ~commands; then what
+  // depends on the world follows (state topics, reconfigure servers, static TF, markers). *t is the
+  // simulated time it applied at, its ~commands entry's t. A refusal returns false: one WARN line, the same
+  // line in *why; nothing changes and nothing is published on ~commands; *t is the time then.
+  bool applyCommand(WorldCommand command, std::string* why = nullptr, double* t = nullptr);
 
  private:
   // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
@@ -80,11 +82,25 @@ class SimNode {
   void startReconfigureServer(const BodyConfig& body);
   template <class Config, class Request>
   void onReconfigure(const std::string& name, Request& request);
+  // The node's side of the Session, called by it with mutex_ held: write publishes the states of a count
+  // (publishLocked), applied logs a command and publishes it on ~commands (publishCommandLocked).
+  class Publication : public SampleSink {
+   public:
+    explicit Publication(SimNode& node) : node_(node) {}
+    void write(const World& world) override;
+    void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+
+   private:
+    SimNode& node_;
+  };
+
   // Builds a command with `build` (which may throw ConfigError: a refusal like any other) and applies it.
   template <class Build>
-  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why);
+  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
+                  double* t = nullptr);
   bool refuse(const std::string& kind, const std::string& body, const std::string& reason, std::string* why);
-  void publishCommandLocked(const WorldCommand& command);
+  // On ~commands as number `index` (header.seq; 0: the config at the start); recorded after the config.
+  void publishCommandLocked(const WorldCommand& command, std::size_t index);
   // After an accepted command: publishers, the guard and the scene follow the world. Caller holds mutex_.
   void followWorldLocked(const WorldCommand& command, const WorldConfig& before);
   // After an accepted command, without mutex_ (a server's first callback takes it): reconfigure servers.
@@ -106,10 +122,10 @@ class SimNode {
   void watchMaster();
   void stopThreads();  // stops and joins the stepper and the watcher
   void restoreParameters();
-  // Takes one physics step and publishes when it lands on a publishing instant. Caller holds mutex_.
-  void stepOnceLocked();
-  // Holds a body that became non-finite at its last finite state and logs the one error about it.
-  void guardLocked();
+  // The step hook, after every step: holds a body that became non-finite at its last finite state (the
+  // one error about it), then the step's events (DEBUG). Caller holds mutex_.
+  void afterStepLocked(World& world);
+  // The states, TF, markers and /clock of the current count; the same into the recorder.
   void publishLocked();
   void publishClockLocked();
   // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
@@ -122,6 +138,7 @@ class SimNode {
   // the scene are sent again. Trails go on by body name.
   void rebuildSceneLocked();
   ros::Time stampOf(double t) const;
+  const World& world() const { return session_.world(); }  // caller holds mutex_
   void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
 
@@ -131,14 +148,15 @@ class SimNode {
   NodeOptions options_;
 
   std::mutex mutex_;  // guards everything below that the stepping thread touches
-  World world_;       // also the running config (what ~get_config returns)
+  // The world (also the running config, what ~get_config returns), sampled at every publishing instant.
+  Session session_;
+  Publication publication_{*this};  // the session's one sink
+  StepHook after_step_;             // afterStepLocked
   FiniteGuard guard_;
-  std::int64_t steps_per_publish_;
   std::int64_t steps_per_markers_;  // a whole number of publishing intervals
   bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
-  std::int64_t last_published_step_ = -1;
-  ros::Time last_clock_;     // the last /clock published (zero: none yet)
-  ros::Time last_tf_stamp_;  // the stamp of the last transforms on /tf
+  ros::Time last_clock_;            // the last /clock published (zero: none yet)
+  ros::Time last_tf_stamp_;         // the stamp of the last transforms on /tf
   bool paused_ = false;
   StepPacer pacer_;
   std::condition_variable wake_;
@@ -149,7 +167,6 @@ class SimNode {
   bool use_sim_time_ = false;
 
   ros::Publisher command_publisher_;
-  std::uint32_t commands_published_ = 0;  // the next command's index (header.seq); 0 is the config
   CountedPublisher marker_publisher_;
   ros::Publisher scene_publisher_;
   ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined
