@@ -55,24 +55,23 @@ class Recorder : public SampleSink {
   std::vector<std::string> lines;
 };
 
-WorldCommand setState(const std::string& body, const std::string& field, double value) {
+WorldCommand commandOf(WorldCommand::Kind kind, const std::string& body = "") {
   WorldCommand command;
-  command.kind = WorldCommand::Kind::SetState;
+  command.kind = kind;
   command.body = body;
+  return command;
+}
+
+WorldCommand setState(const std::string& body, const std::string& field, double value) {
+  WorldCommand command = commandOf(WorldCommand::Kind::SetState, body);
   command.state = {{field, value}};
   return command;
 }
 
-WorldCommand reset() {
-  WorldCommand command;
-  command.kind = WorldCommand::Kind::Reset;
-  return command;
-}
+WorldCommand reset() { return commandOf(WorldCommand::Kind::Reset); }
 
 WorldCommand spawn(const std::string& name) {
-  WorldCommand command;
-  command.kind = WorldCommand::Kind::Spawn;
-  command.body = name;
+  WorldCommand command = commandOf(WorldCommand::Kind::Spawn, name);
   RollerConfig hoop;
   hoop.params.shape = Shape::Ring;
   hoop.params.inertia_factor = 1.0;
@@ -81,12 +80,7 @@ WorldCommand spawn(const std::string& name) {
   return command;
 }
 
-WorldCommand deleteOf(const std::string& body) {
-  WorldCommand command;
-  command.kind = WorldCommand::Kind::Delete;
-  command.body = body;
-  return command;
-}
+WorldCommand deleteOf(const std::string& body) { return commandOf(WorldCommand::Kind::Delete, body); }
 
 // The truth: a plain World, changed by hand at its current step. Returns the command as applied.
 WorldCommand applyNow(World& world, WorldCommand command) {
