@@ -21,7 +21,7 @@ import yaml
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from sim_tools import free_port, node_pid, resident_kib, wait_for  # noqa: E402  (the path above first)
+from sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, wait_for  # noqa: E402  (the path first)
 
 DOC = os.path.join(ROOT, "docs", "performance.md")
 BEGIN = "<!-- make bench writes from here: do not edit by hand -->"
@@ -168,6 +168,7 @@ class Ros:
         import rosgraph
         wait_for(f"roscore (see {self.log.name})", rosgraph.is_master_online, 30.0, period=0.2)
         import rospy
+        rospy_on_python39()
         self.rospy = rospy
         rospy.init_node("bench", anonymous=True, disable_signals=True)
         self.received: List[Tuple[float, float, float]] = []  # (receipt wall time, header stamp, t)

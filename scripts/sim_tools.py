@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import socket
+import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
@@ -226,3 +227,10 @@ def resident_kib(pid: int) -> int:
             if line.startswith("VmRSS:"):
                 return int(line.split()[1])
     return -1
+
+
+def rospy_on_python39() -> None:
+    """Debian 11's rospy (1.15.9) still calls Thread.isAlive, which Python 3.9 removed: rospy.signal_shutdown and a
+    second shutdown thread raise AttributeError there. Gives the old name back (no effect elsewhere)."""
+    if not hasattr(threading.Thread, "isAlive"):
+        setattr(threading.Thread, "isAlive", threading.Thread.is_alive)

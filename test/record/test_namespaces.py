@@ -29,7 +29,10 @@ import tf2_ros
 from tf2_msgs.msg import TFMessage
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import Config, body_of_state_topic, free_port, load_config, wait_for, world_value  # noqa: E402
+from sim_tools import (Config, body_of_state_topic, free_port, load_config, rospy_on_python39,  # noqa: E402
+                       wait_for, world_value)
+
+rospy_on_python39()
 
 INSTANCES = ("a", "b")
 DURATION = 4.0  # simulated (= wall) seconds of each run, after the recorder's 2 s start delay
