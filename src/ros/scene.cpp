@@ -88,6 +88,12 @@ visualization_msgs::Marker marker(const char* ns, int id, int type, const std::s
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
   m.scale.x = m.scale.y = m.scale.z = 1.0;
+  // What a type ignores stays 0: rviz before 1.14.5 (Debian 11, Noetic's first) flags a display with a
+  // warning for a line's scale.y or z, or a text's scale.x or y.
+  using visualization_msgs::Marker;
+  if (type == Marker::LINE_STRIP || type == Marker::LINE_LIST) m.scale.y = m.scale.z = 0.0;
+  if (type == Marker::POINTS) m.scale.z = 0.0;
+  if (type == Marker::TEXT_VIEW_FACING) m.scale.x = m.scale.y = 0.0;
   return m;
 }
 

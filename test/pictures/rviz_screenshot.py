@@ -25,8 +25,8 @@ from picture_check import Finding, Pixel
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_config, wait_for,  # noqa: E402
-                       world_value)
+from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_config,  # noqa: E402
+                       rospy_on_python39, wait_for, world_value)
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
 Outline = Tuple[str, Any]
@@ -352,6 +352,7 @@ def main() -> int:
 def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     import rosgraph
     import rospy
+    rospy_on_python39()
     from rosgraph_msgs.msg import Log
     from std_srvs.srv import Empty
     from rigid_body_sim.srv import Step
