@@ -24,6 +24,7 @@ constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at mos
 // ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
 constexpr std::uint32_t kCommandQueue = 100000;
 constexpr auto kWatchPeriod = std::chrono::seconds(1);  // how often the master is asked
+constexpr auto kClockWait = std::chrono::seconds(2);    // for a /clock when /use_sim_time is true
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
 bool placementChanged(const RodConfig& a, const RodConfig& b) {
@@ -584,6 +585,7 @@ void SimNode::stepLoop() {
         // A moment for subscribers (a recorder) to receive the last messages before the launch ends.
         lock.unlock();
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
+        endCompanions();
         ros::requestShutdown();
         return;
       }
@@ -601,8 +603,39 @@ void SimNode::stepLoop() {
   }
 }
 
+// The launch ends with the run without the node being `required` (roslaunch's alarm for a normal end, and
+// under rostest the death of the tests with it, which rostest can count as passed): the nodes the launch
+// started beside it (its recorder, rviz) are shut down here; roslaunch exits once none is left.
+void SimNode::endCompanions() {
+  for (const auto& name : options_.end_with) {
+    const std::string resolved = node_.resolveName(name);
+    std::string why;
+    if (shutDownNode(resolved, "the simulation's duration ended", &why)) {
+      ROS_INFO_STREAM("shut down " << resolved << " with the run");
+    } else {
+      ROS_DEBUG_STREAM("end_with: " << why);  // already gone (rviz closed by hand)
+    }
+  }
+}
+
+// /use_sim_time left true by an earlier launch (playback.launch sets it) and no /clock: this node stamps in
+// simulated time and every node on simulated time waits for a clock that never comes. Said once.
+void SimNode::warnIfNoClock() {
+  if (!use_sim_time_ || options_.publish_clock || !ros::Time::now().isZero()) return;
+  ROS_WARN(
+      "/use_sim_time is true but nothing publishes /clock: this node stamps in simulated time and nodes on "
+      "simulated time stand still (rosparam set /use_sim_time false, or sim.launch use_sim_time:=true to "
+      "have this node publish /clock)");
+}
+
 void SimNode::watchMaster() {
+  const auto started = std::chrono::steady_clock::now();
+  bool clock_checked = false;
   while (!stopping_ && ros::ok()) {
+    if (!clock_checked && std::chrono::steady_clock::now() - started >= kClockWait) {
+      clock_checked = true;
+      warnIfNoClock();
+    }
     if (askMaster() == MasterView::Forgot) {
       // A node shutting down (its duration done, Ctrl-C) unregisters itself: then the master rightly
       // forgets it, and that is no restart. roscpp marks the shutdown before it unregisters.

@@ -2,8 +2,10 @@
 """A launch never inherits an earlier launch's parameters: launches one after the other on one master.
 
 - sim.launch on a refused config (a body `wobbly` with k = -5, which config/demo.yaml does not have):
-  the node exits 1 with its one line; then a plain sim.launch runs demo.yaml (exit 0, nothing refused).
-- rod.launch (use_sim_time:=false) leaves /use_sim_time true as it was; then incline.launch has exactly
+  the node exits 1 with its one line; then a plain sim.launch runs demo.yaml (exit 0, nothing refused, its
+  end at duration without alarm).
+- rod.launch (use_sim_time:=false) leaves /use_sim_time true as it was, and its node warns that no /clock
+  comes; then incline.launch has exactly
   incline.yaml's bodies under /sim/bodies and publishes their states, and no rod.
 
 Usage: test_fresh_params.py CONFIG_DIR   (with the package's devel space sourced)
@@ -42,18 +44,21 @@ class Run:
         return subprocess.Popen(["roslaunch", "rigid_body_sim"] + args, env=self.env, stdout=subprocess.PIPE,
                                 stderr=subprocess.STDOUT, text=True)
 
-    def expect(self, args: List[str], status: int, absent: str = "") -> None:
-        """Runs a launch to its end: its node's exit status, and a text that must not appear."""
+    def expect(self, args: List[str], status: int, absent: str = "", present: str = "") -> None:
+        """Runs a launch to its end: its node's exit status, a text that must not appear and one that must.
+        A normal end (status 0) raises no alarm: no death, no REQUIRED banner."""
         process = self.launch(args)
         output, _ = process.communicate(timeout=120)
         if status:
             ended = f"exit code {status}" in output
         else:
-            ended = process.returncode == 0 and "process has died [" not in output
+            ended = process.returncode == 0 and "process has died [" not in output and "REQUIRED" not in output
         if not ended:
             self.failures.append(f"{' '.join(args)}: expected exit code {status}:\n{output[-2000:]}")
         if absent and absent in output:
             self.failures.append(f"{' '.join(args)}: says '{absent}':\n{output[-2000:]}")
+        if present and present not in output:
+            self.failures.append(f"{' '.join(args)}: does not say '{present}':\n{output[-2000:]}")
 
     def stop(self) -> None:
         self.core.send_signal(signal.SIGINT)
@@ -74,8 +79,9 @@ def state_topics(master: rosgraph.Master) -> Set[str]:
 
 
 def incline_after_rod(run: Run, config_dir: str) -> None:
-    run.master.setParam("/use_sim_time", True)  # a system on simulated time: use_sim_time:=false leaves it so
-    run.expect(["rod.launch", "duration:=1"], 0)
+    # A system on simulated time: use_sim_time:=false leaves it so, and with no /clock the node says so.
+    run.master.setParam("/use_sim_time", True)
+    run.expect(["rod.launch", "duration:=3"], 0, present="/use_sim_time is true but nothing publishes /clock")
     if run.master.getParam("/use_sim_time") is not True:
         run.failures.append("rod.launch (use_sim_time:=false) changed /use_sim_time")
     run.master.deleteParam("/use_sim_time")

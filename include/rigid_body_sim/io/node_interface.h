@@ -19,6 +19,7 @@ inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
 inline constexpr const char* kBag = "bag";
+inline constexpr const char* kEndWith = "end_with";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
 inline constexpr const char* kMarkers = "markers";
 inline constexpr const char* kScene = "scene";
@@ -43,9 +44,9 @@ inline constexpr const char* kNamespaceTf = "tf";
 inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
-  static const std::vector<std::string> names = {kRealTimeFactor, kPublishClock, kDuration,
-                                                 kStartDelay,     kStartPaused,  kFramePrefix,
-                                                 kMarkerRate,     kTrailLength,  kBag};
+  static const std::vector<std::string> names = {
+      kRealTimeFactor, kPublishClock, kDuration,    kStartDelay, kStartPaused,
+      kFramePrefix,    kMarkerRate,   kTrailLength, kBag,        kEndWith};
   return names;
 }
 
