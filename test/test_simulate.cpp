@@ -151,6 +151,23 @@ TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "rod.csv"));
 }
 
+// --check: what a script runs before a launch (roslaunch exits 0 whatever its node does).
+TEST_F(SimulateTest, CheckSaysWhetherTheNodeWouldAcceptAConfigAndRunsNothing) {
+  const auto good = simulate(config("demo.yaml") + " --check --out-dir " + (dir_ / "out").string());
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_EQ(good.out, config("demo.yaml") + ": accepted, bodies: rod sphere cylinder ring bowler\n");
+  EXPECT_EQ(good.err, "");
+  const fs::path bad = write("bad.yaml", "bodies: {rod: {type: rod, k: -1}}\n");
+  const auto refused = simulate(bad.string() + " --check --out-dir " + (dir_ / "out").string());
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_EQ(refused.out, "");
+  EXPECT_EQ(refused.err, "simulate: " + refusalOf([&] { loadWorldConfigFile(bad.string()); }) + "\n");
+  EXPECT_FALSE(fs::exists(dir_ / "out")) << "--check writes nothing";
+  const auto mixed = simulate(config("demo.yaml") + " --check --sweep rod.k=1:2:2");
+  EXPECT_EQ(mixed.exit_code, 1);
+  EXPECT_NE(mixed.err.find("key '--check'"), std::string::npos) << mixed.err;
+}
+
 TEST_F(SimulateTest, NoArgumentsExitOneWithOneLineThatPointsToHelp) {
   const auto run = simulate("");
   EXPECT_EQ(run.exit_code, 1);

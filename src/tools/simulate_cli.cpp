@@ -113,6 +113,7 @@ struct CommandLine {
   SweepArgs sweep;
   bool duration_given = false;  // replay takes the bag's end time otherwise
   bool help = false;
+  bool check = false;
 };
 
 const char* const kDescription =
@@ -126,6 +127,8 @@ po::options_description describeOptions(CommandLine& line) {
   OfflineOptions& run = line.options;
   auto add = options.add_options();
   add("help,h", "print this help message and exit");
+  add("check", po::bool_switch(&line.check),
+      "only load and validate CONFIG as the node does: exit 0 if accepted, 1 with the refusal");
   add("replay", po::value(&line.replay_bag)->value_name("BAG"),
       "rebuild the run recorded in this bag from its /sim/commands instead of a CONFIG (duration: the "
       "bag's)");
@@ -190,12 +193,21 @@ int run(const CommandLine& line, char** argv, const SinkOpener& open_bag, const 
   const OfflineOptions& options = line.options;
   checkSource(line.config_path, line.replay_bag, line.sweep);
   checkModes(line.sweep, options);
+  if (line.check && (!line.replay_bag.empty() || !line.sweep.specs.empty() || !options.bag.empty())) {
+    throw ConfigError(kCommandLine, "--check", "with --replay, --sweep or --bag", "with a CONFIG alone");
+  }
   if ((!options.bag.empty() || !line.replay_bag.empty()) && !open_bag) handOverToRosProgram(argv);
   if (!line.replay_bag.empty()) {
     replay(line.replay_bag, line.duration_given, options, read_run, open_bag);
     return 0;
   }
   const auto config = loadWorldConfigFile(line.config_path);
+  if (line.check) {
+    std::cout << line.config_path << ": accepted, bodies:";
+    for (const auto& body : config.bodies) std::cout << ' ' << body.name;
+    std::cout << "\n";
+    return 0;
+  }
   for (const auto& note : autoSubstepNotes(config)) std::cerr << "simulate: note: " << note << "\n";
   for (const auto& warning : slowRunWarnings(config)) std::cerr << "simulate: warning: " << warning << "\n";
   if (!line.sweep.specs.empty()) {
