@@ -4,7 +4,6 @@
 
 #include <string>
 #include <tuple>
-#include <vector>
 
 #include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/params.h"
@@ -40,9 +39,12 @@ TEST(NodeOptions, EveryOptionIsReadAndAMissingOneKeepsItsDefault) {
   params["duration"] = 30.0;
   params["start_delay"] = 2.5;
   params["start_paused"] = true;
+  params["end_launch"] = true;
   const NodeOptions options = parseNodeOptions(params);
   EXPECT_FALSE(defaults.start_paused);
   EXPECT_TRUE(options.start_paused);
+  EXPECT_FALSE(defaults.end_launch);
+  EXPECT_TRUE(options.end_launch);
   EXPECT_EQ(std::make_tuple(defaults.real_time_factor, defaults.publish_clock, defaults.duration,
                             defaults.start_delay),
             std::make_tuple(1.0, false, 0.0, 0.0));
@@ -100,24 +102,6 @@ TEST(NodeOptions, FramePrefixIsEmptyByDefaultAndAPrefixOfFrameIds) {
     EXPECT_NE(message.find("key 'frame_prefix'"), std::string::npos) << message;
     EXPECT_NE(message.find("starting with a letter and ending in /"), std::string::npos) << message;
   }
-}
-
-TEST(NodeOptions, EndWithIsAListOfNodeNames) {
-  XmlRpc::XmlRpcValue params = oneRod();
-  EXPECT_TRUE(parseNodeOptions(params).end_with.empty());
-  params["end_with"][0] = std::string("record");
-  params["end_with"][1] = std::string("/left/rviz");
-  EXPECT_EQ(parseNodeOptions(params).end_with, (std::vector<std::string>{"record", "/left/rviz"}));
-  for (const std::string bad : {"1record", "re cord", "rviz!"}) {
-    SCOPED_TRACE(bad);
-    XmlRpc::XmlRpcValue refused = oneRod();
-    refused["end_with"][0] = bad;
-    EXPECT_EQ(refusal(refused), "body '(node)', key 'end_with': value '" + bad +
-                                    "' is not allowed (allowed: a list of node names (e.g. [record, rviz]))");
-  }
-  XmlRpc::XmlRpcValue text = oneRod();
-  text["end_with"] = std::string("record");
-  EXPECT_NE(refusal(text).find("(not a list)"), std::string::npos);
 }
 
 TEST(NodeConfig, LeavesOutTheOptionsAndTheReconfigureNamespaces) {

@@ -10,6 +10,7 @@
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
+#include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
 #include "rigid_body_sim/run/session.h"
@@ -585,7 +586,7 @@ void SimNode::stepLoop() {
         // A moment for subscribers (a recorder) to receive the last messages before the launch ends.
         lock.unlock();
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
-        endCompanions();
+        if (options_.end_launch) endParentRoslaunch();  // its recorder and rviz with it
         ros::requestShutdown();
         return;
       }
@@ -600,21 +601,6 @@ void SimNode::stepLoop() {
         pacer_.wallTimeOf((world().stepCount() / steps_per_publish + 1) * steps_per_publish);
     const auto wait = std::chrono::duration<double>(wake_at - wallNow());
     if (wait.count() > 0) wake_.wait_for(lock, wait);
-  }
-}
-
-// The launch ends with the run without the node being `required` (roslaunch's alarm for a normal end, and
-// under rostest the death of the tests with it, which rostest can count as passed): the nodes the launch
-// started beside it (its recorder, rviz) are shut down here; roslaunch exits once none is left.
-void SimNode::endCompanions() {
-  for (const auto& name : options_.end_with) {
-    const std::string resolved = node_.resolveName(name);
-    std::string why;
-    if (shutDownNode(resolved, "the simulation's duration ended", &why)) {
-      ROS_INFO_STREAM("shut down " << resolved << " with the run");
-    } else {
-      ROS_DEBUG_STREAM("end_with: " << why);  // already gone (rviz closed by hand)
-    }
   }
 }
 

@@ -6,7 +6,6 @@
 #include <set>
 #include <sstream>
 
-#include <ros/names.h>
 #include <ros/param.h>
 
 #include "rigid_body_sim/io/config_loader.h"
@@ -60,21 +59,6 @@ std::string framePrefixOption(const YAML::Node& params, const std::string& key) 
   const std::string prefix = params[key].Scalar();
   if (!isFramePrefix(prefix)) throw ConfigError(kNode, key, "'" + prefix + "'", allowed);
   return prefix;
-}
-
-// A list of node names (`[record, rviz]`), each a valid ROS name.
-std::vector<std::string> nodeNamesOption(const YAML::Node& params, const std::string& key) {
-  const std::string allowed = "a list of node names (e.g. [record, rviz])";
-  if (!params[key]) return {};
-  if (!params[key].IsSequence()) throw ConfigError(kNode, key, "(not a list)", allowed);
-  std::vector<std::string> names;
-  for (const auto& item : params[key]) {
-    std::string why;  // ros::names' own reason, more than a user needs here
-    const bool valid = item.IsScalar() && ros::names::validate(item.Scalar(), why);
-    if (!valid) throw ConfigError(kNode, key, "'" + item.Scalar() + "'", allowed);
-    names.push_back(item.Scalar());
-  }
-  return names;
 }
 
 bool isMap(XmlRpc::XmlRpcValue& value) { return value.getType() == XmlRpc::XmlRpcValue::TypeStruct; }
@@ -134,7 +118,7 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
     if (!yaml[names::kBag].IsScalar()) throw ConfigError(kNode, names::kBag, "(not a text)", "a file path");
     options.bag = yaml[names::kBag].Scalar();
   }
-  options.end_with = nodeNamesOption(yaml, names::kEndWith);
+  options.end_launch = boolOption(yaml, names::kEndLaunch, options.end_launch);
   return options;
 }
 

@@ -1,7 +1,9 @@
 // sim_node: steps the configured bodies at `rate` in simulated time and publishes TF, markers and states.
 #include <ros/ros.h>
 
+#include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/node/sim_node.h"
+#include "rigid_body_sim/ros/launch_end.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "sim");
@@ -14,6 +16,10 @@ int main(int argc, char** argv) {
     return sim.run();
   } catch (const rigid_body_sim::ConfigError& error) {
     ROS_FATAL_STREAM("refused config: " << error.what());
+    // sim.launch ends with its node, whatever its duration: a refused config must not leave it running.
+    if (ros::param::param("~" + std::string(rigid_body_sim::node_interface::kEndLaunch), false)) {
+      rigid_body_sim::endParentRoslaunch();
+    }
     return 1;
   }
 }

@@ -19,7 +19,7 @@ inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
 inline constexpr const char* kBag = "bag";
-inline constexpr const char* kEndWith = "end_with";
+inline constexpr const char* kEndLaunch = "end_launch";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
 inline constexpr const char* kMarkers = "markers";
 inline constexpr const char* kScene = "scene";
@@ -46,7 +46,7 @@ inline constexpr const char* kNamespaceTfStatic = "tf_static";
 inline const std::vector<std::string>& optionNames() {
   static const std::vector<std::string> names = {
       kRealTimeFactor, kPublishClock, kDuration,    kStartDelay, kStartPaused,
-      kFramePrefix,    kMarkerRate,   kTrailLength, kBag,        kEndWith};
+      kFramePrefix,    kMarkerRate,   kTrailLength, kBag,        kEndLaunch};
   return names;
 }
 

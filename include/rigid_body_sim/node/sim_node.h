@@ -120,7 +120,6 @@ class SimNode {
   // Every second: does the master still know this node? When a restarted master does not, puts the
   // parameters this node started from back on it (for the respawned node) and shuts down.
   void watchMaster();
-  void endCompanions();  // shuts down ~end_with's nodes
   void warnIfNoClock();
   void stopThreads();  // stops and joins the stepper and the watcher
   void restoreParameters();

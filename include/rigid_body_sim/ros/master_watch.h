@@ -4,8 +4,6 @@
 // watches for this and ends (sim.launch respawn:=true then starts it afresh).
 #pragma once
 
-#include <string>
-
 namespace rigid_body_sim {
 
 enum class MasterView {
@@ -16,10 +14,5 @@ enum class MasterView {
 
 // Asks the master (lookupNode of this node's own name); a few milliseconds, no retry.
 MasterView askMaster();
-
-// Shuts down the node `name` (a resolved name) as `rosnode kill` does: its address from the master, then
-// its XML-RPC `shutdown` with `reason`. False, with *why, when the master does not know it or it does not
-// answer.
-bool shutDownNode(const std::string& name, const std::string& reason, std::string* why);
 
 }  // namespace rigid_body_sim

@@ -4,7 +4,6 @@
 
 #include <optional>
 #include <string>
-#include <vector>
 
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -26,9 +25,9 @@ struct NodeOptions {
   std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
   double trail_length = TrailOptions().seconds;  // simulated seconds of trail; 0 = no trails
   std::string bag;  // if set, the node writes every publication into this bag itself (as simulate --bag)
-  // Nodes (names resolved in the node's namespace) shut down when the duration ends, as `rosnode kill`
-  // does: sim.launch names its recorder and rviz, so that the launch ends with the run.
-  std::vector<std::string> end_with;
+  // When the duration ends, end the roslaunch that started this node too (SIGINT, as Ctrl-C does): its
+  // recorder and rviz with it. Never a rostest: its tests decide when it ends.
+  bool end_launch = false;
 };
 
 // ~markers' rate: the option, at most publish_rate (refused above it in one line, as any bad option);
