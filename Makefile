@@ -7,6 +7,10 @@ SHELL := /bin/bash
 # Debian's python3 first: ROS's Python modules are Debian's (a pyenv python3 cannot import them).
 export PATH := /usr/bin:$(PATH)
 BUILD ?= build
+# The devel space lives beside build/, not in it: rosrun runs nothing under <package>/build/ (its find skips
+# that folder). Every other build (mk/: build/asan, build/fuzz, build/bench) lives there, so that rosrun
+# finds the release programs only.
+DEVEL ?= $(CURDIR)/devel
 JOBS ?= $(shell nproc)
 # Suites with a build of their own (sanitizers, fuzzing) that `make test` runs before ctest's main suite;
 # the files under mk/ add theirs, and their own targets (bench, screenshot, soak ...).
@@ -21,11 +25,13 @@ deps:
 	bash scripts/install-deps all
 
 build: deps
-	cmake -S . -B $(BUILD) -DCATKIN_ENABLE_TESTING=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	cmake -S . -B $(BUILD) -DCATKIN_DEVEL_PREFIX=$(DEVEL) -DCATKIN_ENABLE_TESTING=ON \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	touch $(DEVEL)/CATKIN_IGNORE  # keeps catkin_lint out of it, as catkin does for build/
 	cmake --build $(BUILD) -j$(JOBS) -- --no-print-directory
 
 demo: build
-	bash scripts/demo $(BUILD)
+	bash scripts/demo $(DEVEL)
 
 # ctest runs from the build folder: `ctest --test-dir` needs CMake 3.20 (Debian 11 has 3.18, Noetic 3.16).
 test: lint build $(EXTRA_TESTS)
@@ -49,4 +55,4 @@ lint: deps
 	$(if $(PYTHON_SCRIPTS),mypy $(PYTHON_SCRIPTS))
 
 clean:
-	rm -rf $(BUILD) build-*
+	rm -rf $(BUILD) $(DEVEL)

@@ -1,7 +1,7 @@
-# make bench: builds in Release with the Google Benchmark suite (build-bench/), runs every measurement (core
+# make bench: builds in Release with the Google Benchmark suite (build/bench/), runs every measurement (core
 # cost, the text's program, the node, recording, sweeps; about 7 min) and writes one table into
 # docs/performance.md. BENCH_ARGS=--quick shortens the node runs to 12 s for a try-out.
-BENCH_BUILD ?= build-bench
+BENCH_BUILD ?= build/bench
 BENCH_ARGS ?=
 BENCH_JOBS ?= 2
 

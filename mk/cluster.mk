@@ -19,4 +19,4 @@ cluster-down:
 	bash scripts/local_slurm down $(CLUSTER_DIR)
 
 cluster-test: build
-	bash test/cluster/cluster_test.sh $(BUILD) $(CLUSTER_TEST_DIR)
+	bash test/cluster/cluster_test.sh $(DEVEL) $(CLUSTER_TEST_DIR)

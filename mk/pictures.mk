@@ -4,7 +4,7 @@
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
 PICTURES_OUT = $(BUILD)/pictures
-SIMULATE = $(BUILD)/devel/lib/rigid_body_sim/simulate
+SIMULATE = $(DEVEL)/lib/rigid_body_sim/simulate
 # θ0 = i 2π/1000 (0 and 2π both included): θ0 + π (the same rod, its ends swapped) is on the grid too
 THETA0_RODS = 1001
 
@@ -12,7 +12,7 @@ THETA0_RODS = 1001
 
 screenshot: build
 	mkdir -p docs/images
-	test/pictures/rviz_screenshot.sh $(BUILD)/devel $(PICTURES_OUT)/rviz.png
+	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz.png
 	cp $(PICTURES_OUT)/rviz.png docs/images/rviz.png
 
 pictures: screenshot

@@ -1,8 +1,8 @@
 # Reliability: the config loader fuzzed with libFuzzer, and the unit tests (ctest label `unit`) under
 # AddressSanitizer + UndefinedBehaviorSanitizer, each in a build folder of its own. `make test` runs both
 # before ctest's main suite; `make fuzz` / `make asan` run one.
-FUZZ_BUILD ?= build-fuzz
-ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build/fuzz
+ASAN_BUILD ?= build/asan
 # A fixed number of runs (the same inputs for a given libFuzzer and seed), every one of them required;
 # max_total_time only stops a hang (100000 runs take 15 to 100 s here, by the load).
 FUZZ_RUNS ?= 100000

@@ -8,4 +8,4 @@ SOAK_MAX_SPEED ?= 5
 .PHONY: soak
 
 soak: build
-	bash scripts/soak --build $(BUILD) --seed $(SOAK_SEED) --duration $(SOAK_DURATION) --max-speed $(SOAK_MAX_SPEED)
+	bash scripts/soak --devel $(DEVEL) --seed $(SOAK_SEED) --duration $(SOAK_DURATION) --max-speed $(SOAK_MAX_SPEED)

@@ -8,5 +8,5 @@ STRESS_ARGS ?=
 .PHONY: stress-start
 
 stress-start: build
-	source $(BUILD)/devel/setup.bash && /usr/bin/python3 scripts/stress_start.py --build $(BUILD) \
+	source $(DEVEL)/setup.bash && /usr/bin/python3 scripts/stress_start.py --devel $(DEVEL) \
 	  --runs $(STRESS_RUNS) --keep $(BUILD)/stress-start $(STRESS_ARGS)

@@ -141,7 +141,7 @@ class Stress:
     def __init__(self, args: argparse.Namespace, scratch: Path) -> None:
         self.args = args
         self.scratch = scratch
-        self.exe = args.exe or str(Path(args.build).resolve() / "devel/lib/rigid_body_sim/sim_node")
+        self.exe = args.exe or str(Path(args.devel).resolve() / "lib/rigid_body_sim/sim_node")
         self.counts: Counter[str] = Counter({outcome: 0 for outcome in OUTCOMES})
         self.details: list[str] = []
         self.rows = refused_rows()
@@ -277,7 +277,7 @@ def parse_args() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=int(os.environ.get("STRESS_RUNS", 1000)),
                         help="starts in all, half refused, half good (default: $STRESS_RUNS or 1000)")
-    parser.add_argument("--build", default="build", help="the build folder with devel/lib/rigid_body_sim/sim_node")
+    parser.add_argument("--devel", default="devel", help="the devel space with lib/rigid_body_sim/sim_node")
     parser.add_argument("--exe", help="the program to start instead of the build's sim_node (to try a change)")
     parser.add_argument("--good-config", default="config/demo.yaml", help="the good config, relative to the repo")
     parser.add_argument("--deadline", type=float, default=15.0,

@@ -4,12 +4,12 @@
 #     byte for byte the single-machine `simulate --sweep` of the same;
 #  2. a sweep whose shard 2 of 3 fails (a stand-in for simulate that exits 3 there): slurm_sweep must exit
 #     non-zero and name that shard.
-# The cluster goes down and DIR is removed however it ends. Usage: cluster_test.sh BUILD DIR
+# The cluster goes down and DIR is removed however it ends. Usage: cluster_test.sh DEVEL DIR
 set -euo pipefail
 export PATH=/usr/bin:$PATH
-build=$(realpath "$1")
+devel=$(realpath "$1")
 dir=$(realpath -m "$2")
-simulate=$build/devel/lib/rigid_body_sim/simulate
+simulate=$devel/lib/rigid_body_sim/simulate
 sweep=(config/rod.yaml --sweep rod.theta0=0:6.283185307179586:10000 --duration 10)
 start=$SECONDS
 
@@ -34,7 +34,7 @@ mkdir "$dir/sweeps"
 
 echo "== 10,000 rods in 8 shards, against the single-machine sweep"
 "$simulate" "${sweep[@]}" --out-dir "$dir/sweeps/single" >/dev/null
-scripts/slurm_sweep "${sweep[@]}" --shards 8 --out-dir "$dir/sweeps/slurm" --simulate "$simulate" --timeout 90
+python3 scripts/slurm_sweep "${sweep[@]}" --shards 8 --out-dir "$dir/sweeps/slurm" --simulate "$simulate" --timeout 90
 cmp "$dir/sweeps/single/sweep.csv" "$dir/sweeps/slurm/sweep.csv"
 echo "cluster-test: sweep.csv is byte for byte the single-machine one ($(wc -l <"$dir/sweeps/single/sweep.csv") lines)"
 
@@ -47,7 +47,7 @@ cat >"$failing" <<SCRIPT
 exec "$simulate" "\$@"
 SCRIPT
 chmod +x "$failing"
-if scripts/slurm_sweep config/rod.yaml --sweep rod.theta0=0:1:30 --shards 3 --out-dir "$dir/sweeps/failing" \
+if python3 scripts/slurm_sweep config/rod.yaml --sweep rod.theta0=0:1:30 --shards 3 --out-dir "$dir/sweeps/failing" \
      --simulate "$failing" --timeout 60 2>"$dir/sweeps/failing.err"; then
   echo "cluster-test: slurm_sweep exited 0 although shard 2 failed" >&2
   exit 1
