@@ -48,10 +48,11 @@ PYTHON_SCRIPTS = $(shell git ls-files | grep -v '\.[^/]*$$' | xargs -r awk 'FNR 
 
 # The repository's root is the package: its folder is named after the clone, not the package.
 lint: deps
-	catkin_lint -W2 --strict --ignore package_path_name .
+	catkin_lint -W2 --strict --ignore package_path_name . examples/sim_fixture_example
 	git ls-files '*.cpp' '*.h' | xargs clang-format --dry-run -Werror
-	flake8 scripts bench test $(PYTHON_SCRIPTS)
+	flake8 scripts bench test examples $(PYTHON_SCRIPTS)
 	mypy
+	mypy examples/sim_fixture_example/test  # alone: its `rostest` is ROS's, not test/rostest/
 	$(if $(PYTHON_SCRIPTS),mypy $(PYTHON_SCRIPTS))
 
 clean:
