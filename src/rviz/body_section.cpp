@@ -79,13 +79,14 @@ QString numberText(double value) { return QString::fromStdString(formatNumber(va
 
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
                          CallQueue& calls, std::function<void(double)> on_time,
-                         std::function<void()> on_delete, QWidget* parent)
+                         std::function<void()> on_delete, const QString& read_only, QWidget* parent)
     : QGroupBox(QString::fromStdString(name), parent),
       name_(name),
       server_(server),
       state_type_(state_type),
       calls_(calls),
-      on_time_(std::move(on_time)) {
+      on_time_(std::move(on_time)),
+      read_only_(read_only) {
   setObjectName(QString::fromStdString(name));
   auto* layout = new QVBoxLayout(this);
   auto* top = new QHBoxLayout();
@@ -96,6 +97,7 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
   remove->setObjectName(QString::fromStdString(name + ".delete"));
   remove->setToolTip("~delete: the body leaves the world");
   connect(remove, &QPushButton::clicked, this, std::move(on_delete));
+  holdIfReadOnly(remove);
   top->addWidget(remove);
   layout->addLayout(top);
   form_ = new QFormLayout();
@@ -282,11 +284,19 @@ void BodySection::addField(const dynamic_reconfigure::ParamDescription& param, d
   }
   if (widget->objectName().isEmpty()) widget->setObjectName(object);
   widget->setToolTip(QString::fromStdString(param.description));
+  holdIfReadOnly(widget);
+  for (auto* child : widget->findChildren<QWidget*>()) holdIfReadOnly(child);  // a number's box and slider
   auto* label = new QLabel(QString::fromStdString(key), this);
   label->setToolTip(QString::fromStdString(param.description));
   form_->addRow(label, widget);
   fields_[key] = std::move(field);
   order_.push_back(key);
+}
+
+void BodySection::holdIfReadOnly(QWidget* widget) {
+  if (read_only_.isEmpty()) return;
+  widget->setEnabled(false);
+  widget->setToolTip(widget->toolTip().isEmpty() ? read_only_ : read_only_ + "\n" + widget->toolTip());
 }
 
 void BodySection::showValues(const dynamic_reconfigure::Config& values) {
@@ -334,12 +344,16 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
 }
 
 void BodySection::onRodState(const RodState& state) {
-  // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values).
+  // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values;
+  // a replay has no server: the energy alone).
+  const QString energy = QString("E = %1 J").arg(state.energy, 0, 'f', 3);
   const auto* length = parameterNamed(values_.doubles, "length");
-  const double lowest_end = state.y - (length ? 0.5 * length->value : 0.0) * std::abs(std::sin(state.theta));
-  motion_->setText(QString("%1 · E = %2 J")
-                       .arg(lowest_end < 0 ? "on the floor" : "in the air")
-                       .arg(state.energy, 0, 'f', 3));
+  if (length) {
+    const double lowest_end = state.y - 0.5 * length->value * std::abs(std::sin(state.theta));
+    motion_->setText(QString(lowest_end < 0 ? "on the floor" : "in the air") + " · " + energy);
+  } else {
+    motion_->setText(energy);
+  }
   on_time_(state.t);
 }
 

@@ -12,6 +12,7 @@
 #include <QScrollArea>
 
 #include <std_srvs/Empty.h>
+#include <std_srvs/SetBool.h>
 #include <pluginlib/class_list_macros.hpp>
 
 #include "rigid_body_sim/Delete.h"
@@ -28,7 +29,11 @@ constexpr int kDiscoverMs = 1000;
 constexpr int kClockMs = 200;
 constexpr double kFactorWindow = 1.0;  // wall seconds over which the real-time factor is measured
 constexpr double kStoppedAfter = 0.5;  // wall seconds without a state: simulated time stands still
-const std::string kDescriptions = "/parameter_descriptions";
+// The tool tip of what is disabled during a replay.
+const QString kRecordingFixed =
+    "replay of a recording: a recording cannot be changed (Pause and Run drive the player)";
+const QString kPauseTip = "~pause: simulated time stops";
+const QString kRunTip = "~unpause: simulated time goes on";
 
 QPushButton* button(const QString& text, const QString& name, const QString& tip, QWidget* parent) {
   auto* b = new QPushButton(text, parent);
@@ -38,6 +43,25 @@ QPushButton* button(const QString& text, const QString& name, const QString& tip
 }
 
 double wallNow() { return ros::WallTime::now().toSec(); }
+
+// The master's published topics (with their types and publishers) and services; false if it does not answer.
+bool readMaster(MasterLists& lists) {
+  ros::master::V_TopicInfo topics;
+  if (!ros::master::getTopics(topics)) return false;
+  for (const auto& topic : topics) lists.topic_types[topic.name] = topic.datatype;
+  XmlRpc::XmlRpcValue args, result, state;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", args, result, state, true)) return false;
+  // [publishers, subscribers, services], each a list of [name, [node ...]]
+  if (state.getType() != XmlRpc::XmlRpcValue::TypeArray || state.size() != 3) return false;
+  for (int i = 0; i < state[0].size(); ++i) {
+    auto& nodes = lists.publishers[static_cast<std::string&>(state[0][i][0])];
+    for (int j = 0; j < state[0][i][1].size(); ++j)
+      nodes.push_back(static_cast<std::string&>(state[0][i][1][j]));
+  }
+  for (int i = 0; i < state[2].size(); ++i) lists.services.insert(static_cast<std::string&>(state[2][i][0]));
+  return true;
+}
 
 }  // namespace
 
@@ -55,8 +79,8 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
           [this] { setNode(node_edit_->text().toStdString()); });
 
   auto* controls = new QHBoxLayout();
-  auto* pause = button("Pause", "pause", "~pause: simulated time stops", this);
-  auto* run = button("Run", "run", "~unpause: simulated time goes on", this);
+  pause_ = button("Pause", "pause", kPauseTip, this);
+  run_ = button("Run", "run", kRunTip, this);
   auto* step_button = button("Step", "step", "pauses, then ~step: this many physics steps", this);
   step_count_ = new QSpinBox(this);
   step_count_->setObjectName("step_count");
@@ -64,11 +88,13 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   step_count_->setValue(20);
   step_count_->setToolTip("physics steps per Step");
   auto* reset = button("Reset", "reset", "~reset: every body back to its initial conditions", this);
-  for (QWidget* w : std::initializer_list<QWidget*>{pause, run, step_button, step_count_, reset})
+  for (QWidget* w : std::initializer_list<QWidget*>{pause_, run_, step_button, step_count_, reset})
     controls->addWidget(w);
   layout->addLayout(controls);
-  connect(pause, &QPushButton::clicked, this, [this] { callEmpty("pause", "paused"); });
-  connect(run, &QPushButton::clicked, this, [this] { callEmpty("unpause", "running"); });
+  connect(pause_, &QPushButton::clicked, this,
+          [this] { source_ == Source::Replay ? pauseReplay(true) : callEmpty("pause", "paused"); });
+  connect(run_, &QPushButton::clicked, this,
+          [this] { source_ == Source::Replay ? pauseReplay(false) : callEmpty("unpause", "running"); });
   connect(step_button, &QPushButton::clicked, this, [this] { step(); });
   connect(reset, &QPushButton::clicked, this, [this] { callEmpty("reset", "reset"); });
 
@@ -88,6 +114,9 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   spawn_row->addWidget(spawn_button);
   layout->addLayout(spawn_row);
   connect(spawn_button, &QPushButton::clicked, this, [this] { spawn(); });
+  for (QWidget* w : std::initializer_list<QWidget*>{step_button, step_count_, reset, spawn_name_, spawn_kind_,
+                                                    spawn_button})
+    changes_.emplace_back(w, w->toolTip());
 
   clock_ = new QLabel("t = ?", this);
   clock_->setObjectName("clock");
@@ -150,37 +179,88 @@ void SimPanel::setNode(const std::string& node) {
   Q_EMIT configChanged();
 }
 
-// Bodies: the node's reconfigure servers (<ns>/<body>/parameter_descriptions), each with its state type.
+// Bodies: the node's reconfigure servers (<ns>/<body>/parameter_descriptions), each with its state type; or,
+// with no node, the state topics a player publishes (discoverBodies).
 void SimPanel::discover() {
   if (discovering_) return;
   discovering_ = true;
-  const std::string prefix = ns_ + "/";
-  using Bodies = std::map<std::string, std::string>;
-  calls_->post<std::pair<bool, Bodies>>(
+  const std::string node = ns_;
+  calls_->post<std::pair<bool, Discovery>>(
       this,
-      [prefix] {
-        ros::master::V_TopicInfo topics;
-        Bodies bodies;
-        if (!ros::master::getTopics(topics)) return std::make_pair(false, bodies);
-        std::map<std::string, std::string> types;
-        for (const auto& topic : topics) types[topic.name] = topic.datatype;
-        for (const auto& [name, type] : types) {
-          if (name.rfind(prefix, 0) != 0 || name.size() <= prefix.size() + kDescriptions.size() ||
-              name.compare(name.size() - kDescriptions.size(), kDescriptions.size(), kDescriptions) != 0)
-            continue;
-          const std::string body =
-              name.substr(prefix.size(), name.size() - prefix.size() - kDescriptions.size());
-          if (body.find('/') != std::string::npos) continue;
-          const auto state = types.find(prefix + body + "/state");
-          bodies[body] = state == types.end() ? "" : state->second;
-        }
-        return std::make_pair(true, bodies);
+      [node] {
+        MasterLists lists;
+        const bool answered = readMaster(lists);
+        return std::make_pair(answered, answered ? discoverBodies(lists, node) : Discovery{});
       },
-      [this, prefix](const std::pair<bool, Bodies>& found) {
+      [this, node](const std::pair<bool, Discovery>& found) {
         discovering_ = false;
-        if (prefix == ns_ + "/") follow(found.second);
+        if (node == ns_) onDiscovered(found.second);
         if (!found.first) showStatus("no ROS master", true);
       });
+}
+
+// A replay is followed while its player publishes; when it stops publishing, the sections stay as the
+// recording ended, until a node or another replay comes.
+void SimPanel::onDiscovered(const Discovery& found) {
+  Source next = found.source == BodySource::Replay ? Source::Replay : Source::Node;
+  if (next == Source::Node && source_ != Source::Node && found.bodies.empty()) next = Source::Ended;
+  if (next != source_ || (next == Source::Replay && found.pause_service != pause_service_))
+    enter(next, found);
+  if (source_ != Source::Ended) follow(found.bodies);
+}
+
+void SimPanel::enter(Source source, const Discovery& found) {
+  const bool rebuild = (source == Source::Node) != (source_ == Source::Node);  // sections editable or not
+  source_ = source;
+  if (rebuild) follow({});
+  replay_paused_at_ = -1;
+  switch (source) {
+    case Source::Node:
+      player_.clear();
+      pause_service_.clear();
+      enableChanges(true, {});
+      enablePlayer(true, {});
+      showStatus("");
+      break;
+    case Source::Replay:
+      player_ = found.player;
+      pause_service_ = found.pause_service;
+      enableChanges(false, kRecordingFixed);
+      enablePlayer(!pause_service_.empty(),
+                   QString::fromStdString(player_ + " offers no " + kPlayerPauseService + " service"));
+      showStatus(replayStatus(""));
+      break;
+    case Source::Ended:
+      enablePlayer(false, "the recording has ended");
+      showStatus(times_.empty()
+                     ? QString("end of recording")
+                     : QString("end of recording at t = %1 s").arg(times_.back().second, 0, 'f', 3));
+      break;
+  }
+}
+
+void SimPanel::enableChanges(bool enabled, const QString& why) {
+  for (const auto& [widget, tip] : changes_) {
+    widget->setEnabled(enabled);
+    widget->setToolTip(enabled ? tip : why + "\n" + tip);
+  }
+}
+
+// Pause and Run: the node's services, a player's pause_playback, or disabled with the reason as tool tip.
+void SimPanel::enablePlayer(bool enabled, const QString& why) {
+  const QString service = QString::fromStdString(pause_service_);
+  pause_->setEnabled(enabled);
+  run_->setEnabled(enabled);
+  if (source_ == Source::Node) {
+    pause_->setToolTip(kPauseTip);
+    run_->setToolTip(kRunTip);
+  } else if (enabled) {
+    pause_->setToolTip(service + ": the replay stops");
+    run_->setToolTip(service + ": the replay goes on");
+  } else {
+    pause_->setToolTip(why);
+    run_->setToolTip(why);
+  }
 }
 
 // A section per body the node serves now, in the order of their names; sections of gone bodies go.
@@ -199,7 +279,7 @@ void SimPanel::follow(const std::map<std::string, std::string>& bodies) {
     if (!sections_.count(name)) {
       auto* section = new BodySection(
           name, ns_ + "/" + name, type, *calls_, [this](double t) { onTime(t); },
-          [this, name = name] { remove(name); });
+          [this, name = name] { remove(name); }, source_ == Source::Node ? QString() : kRecordingFixed);
       sections_layout_->insertWidget(index, section);
       sections_[name] = section;
     }
@@ -222,6 +302,30 @@ void SimPanel::callEmpty(const std::string& service, const QString& done) {
           showStatus(QString::fromStdString("no answer from " + name), true);
         }
       });
+}
+
+// rosbag play's pause_playback: true pauses, false resumes. Its answer "already paused" (or running) is
+// the state asked for, too.
+void SimPanel::pauseReplay(bool pause) {
+  const std::string service = pause_service_;
+  calls_->post<std::pair<bool, std::string>>(
+      this,
+      [service, pause] {
+        std_srvs::SetBool srv;
+        srv.request.data = pause;
+        if (!ros::service::call(service, srv)) return std::make_pair(false, "no answer from " + service);
+        return std::make_pair(true, std::string(pause ? "paused" : "running"));
+      },
+      [this, service, pause](const std::pair<bool, std::string>& answer) {
+        if (source_ != Source::Replay || service != pause_service_) return;  // that replay has gone
+        if (answer.first) replay_paused_at_ = pause ? wallNow() : -1;
+        showStatus(replayStatus(QString::fromStdString(answer.second)), !answer.first);
+      });
+}
+
+QString SimPanel::replayStatus(const QString& text) const {
+  const QString status = "replay of a recording, played by " + QString::fromStdString(player_);
+  return text.isEmpty() ? status : status + ": " + text;
 }
 
 // ~step only while paused: Step pauses first.
@@ -281,6 +385,7 @@ void SimPanel::onTime(double t) {
   if (!times_.empty() && times_.back().first == now) return;
   if (!times_.empty() && t < times_.back().second) times_.clear();  // the node started afresh
   times_.emplace_back(now, t);
+  if (replay_paused_at_ >= 0 && now > replay_paused_at_ + kStoppedAfter) replay_paused_at_ = -1;  // resumed
 }
 
 // t, and the simulated seconds per wall second over the last kFactorWindow; "stopped" once no state has
@@ -289,17 +394,23 @@ void SimPanel::showClock() {
   const double now = wallNow();
   while (times_.size() > 1 && times_[1].first < now - kFactorWindow) times_.pop_front();
   if (times_.empty()) {
-    clock_->setText("t = ?  (no state from " + QString::fromStdString(ns_) + ")");
+    const QString from = source_ == Source::Node ? QString::fromStdString(ns_) : "the replay";
+    clock_->setText(source_ == Source::Ended ? "t = ?  (the recording has ended)"
+                                             : "t = ?  (no state from " + from + ")");
     return;
   }
-  const QString t = QString("t = %1 s   ").arg(times_.back().second, 0, 'f', 3);
-  if (now - times_.back().first > kStoppedAfter) {
-    clock_->setText(t + "stopped");
-    return;
-  }
+  clock_->setText(QString("t = %1 s   ").arg(times_.back().second, 0, 'f', 3) + clockState(now));
+}
+
+// A replay paused from the panel says so (states already on their way may still come); "stopped" once no
+// state has come for kStoppedAfter; otherwise the real-time factor.
+QString SimPanel::clockState(double now) const {
+  if (source_ == Source::Ended) return "end of recording";
+  if (source_ == Source::Replay && replay_paused_at_ >= 0) return "paused";
+  if (now - times_.back().first > kStoppedAfter) return "stopped";
   const double span = now - times_.front().first;
   const double factor = span > 0 ? (times_.back().second - times_.front().second) / span : 0.0;
-  clock_->setText(t + QString("real-time factor %1").arg(factor, 0, 'f', 2));
+  return QString("real-time factor %1").arg(factor, 0, 'f', 2);
 }
 
 // The node's WARN and ERROR lines (a refused reconfigure, drop or ~step) go to the status line, and those
@@ -319,8 +430,9 @@ void SimPanel::showStatus(const QString& text, bool refusal) {
 }
 
 // With RBS_PANEL_LAYOUT set: each named widget's visible part on the screen and its text, one per line
-// ("name x y width height text"; width and height 0 when scrolled out of sight), rewritten when something
-// changed. The GUI test (test/pictures/rviz_panel.py) clicks and reads by it.
+// ("name x y width height enabled text"; width and height 0 when scrolled out of sight, enabled 1 or 0),
+// rewritten when something changed. The GUI tests (test/pictures/rviz_panel.py, rviz_playback.py) click and
+// read by it.
 void SimPanel::writeLayout() {
   if (layout_file_.empty()) return;
   std::ostringstream out;
@@ -334,7 +446,8 @@ void SimPanel::writeLayout() {
     if (auto* box = qobject_cast<QComboBox*>(w)) text = box->currentText();
     if (auto* line = qobject_cast<QLineEdit*>(w)) text = line->text();
     out << w->objectName().toStdString() << ' ' << at.x() << ' ' << at.y() << ' ' << shown.width() << ' '
-        << shown.height() << ' ' << text.simplified().toStdString() << '\n';
+        << shown.height() << ' ' << (w->isEnabled() ? 1 : 0) << ' ' << text.simplified().toStdString()
+        << '\n';
   }
   if (out.str() == layout_written_) return;
   layout_written_ = out.str();

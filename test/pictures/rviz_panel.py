@@ -44,18 +44,24 @@ class Panel:
     def __init__(self, layout_file: str) -> None:
         self.layout_file = layout_file
 
-    def widgets(self) -> Dict[str, Widget]:
-        found: Dict[str, Widget] = {}
+    def lines(self) -> Dict[str, List[str]]:
+        """Each widget's line: name, x, y, width, height, enabled (1 or 0), text."""
+        found: Dict[str, List[str]] = {}
         try:
             with open(self.layout_file) as f:
                 for line in f:
-                    parts = line.rstrip("\n").split(" ", 5)
-                    if len(parts) >= 5:
-                        found[parts[0]] = (int(parts[1]), int(parts[2]), int(parts[3]), int(parts[4]),
-                                           parts[5] if len(parts) > 5 else "")
+                    parts = line.rstrip("\n").split(" ", 6)
+                    if len(parts) >= 6:
+                        found[parts[0]] = parts + [""] * (7 - len(parts))
         except FileNotFoundError:
             pass
         return found
+
+    def widgets(self) -> Dict[str, Widget]:
+        return {name: (int(p[1]), int(p[2]), int(p[3]), int(p[4]), p[6]) for name, p in self.lines().items()}
+
+    def enabled(self, name: str) -> bool:
+        return self.lines().get(name, ["", "", "", "", "", "0"])[5] == "1"
 
     def text(self, name: str) -> str:
         return self.widgets().get(name, (0, 0, 0, 0, ""))[4]

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """rod.launch and incline.launch take every argument of sim.launch but config, with the same defaults and docs,
-and every argument has a doc (roslaunch --ros-args shows it).
+and every argument of sim.launch and playback.launch has a doc (roslaunch --ros-args shows it). playback.launch's
+player is required (the launch ends with the bag) without rviz or with close_at_end, and only then; start_paused
+passes --pause.
 
 Usage: test_launch_files.py LAUNCH_DIR
 """
@@ -8,7 +10,7 @@ import argparse
 import os
 import sys
 import xml.etree.ElementTree as ElementTree
-from typing import Dict, Tuple
+from typing import Dict, List, Tuple
 
 Args = Dict[str, Tuple[str, str]]  # name: (default, doc)
 
@@ -17,6 +19,36 @@ def launch_args(path: str) -> Args:
     """The top-level <arg>s of a launch file."""
     root = ElementTree.parse(path).getroot()
     return {arg.get("name", ""): (arg.get("default", ""), arg.get("doc", "")) for arg in root.findall("arg")}
+
+
+def player(launch_dir: str, argv: List[str]) -> Tuple[bool, str]:
+    """playback.launch's player with these arguments, as roslaunch loads it: (required, its arguments)."""
+    import roslaunch.config
+    import roslaunch.xmlloader
+    config = roslaunch.config.ROSLaunchConfig()
+    roslaunch.xmlloader.XmlLoader().load(os.path.join(launch_dir, "playback.launch"), config,
+                                         argv=["bag:=/tmp/run.bag"] + argv, verbose=False)
+    node = next(n for n in config.nodes if n.name == "player")
+    return bool(node.required), str(node.args)
+
+
+def playback_failures(launch_dir: str) -> List[str]:
+    args = launch_args(os.path.join(launch_dir, "playback.launch"))
+    failures = [f"playback.launch: {name} has no doc" for name, (_, doc) in args.items() if not doc]
+    failures += [f"playback.launch: {name} has no default" for name, (default, _) in args.items()
+                 if not default and name != "bag"]
+    for rviz in ("true", "false"):
+        for close_at_end in ("true", "false"):
+            for start_paused in ("true", "false"):
+                argv = [f"rviz:={rviz}", f"close_at_end:={close_at_end}", f"start_paused:={start_paused}"]
+                required, words = player(launch_dir, argv)
+                if required != (rviz == "false" or close_at_end == "true"):
+                    failures.append(f"playback.launch {' '.join(argv)}: player required is {required}")
+                if ("--pause" in words.split()) != (start_paused == "true"):
+                    failures.append(f"playback.launch {' '.join(argv)}: player's arguments {words}")
+    if player(launch_dir, [])[0]:
+        failures.append("playback.launch: the player is required by default (rviz would close at the end)")
+    return failures
 
 
 def main() -> None:
@@ -31,6 +63,7 @@ def main() -> None:
         for name in sorted(set(sim) | set(args)):
             if args.get(name) != sim.get(name):
                 failures.append(f"{wrapper}: {name} is {args.get(name)}, sim.launch has {sim.get(name)}")
+    failures += playback_failures(launch_dir)
     print("\n".join(failures) or "launch files: ok")
     sys.exit(1 if failures else 0)
 

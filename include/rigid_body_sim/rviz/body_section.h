@@ -1,7 +1,8 @@
 // One body's section of the SimPanel: its keys as widgets built from its dynamic_reconfigure server's
 // descriptions (a key added to a .cfg appears without code), showing the server's values; edits go to the
 // server (set_parameters), so that a refused value snaps back to what runs, and the refusal is shown. Also
-// the body's mode and energy, from its state topic, and a Delete button.
+// the body's mode and energy, from its state topic, and a Delete button. Read-only (a replay of a recording):
+// Delete and every field disabled, each with a tool tip that says why.
 #pragma once
 
 #include <functional>
@@ -30,9 +31,10 @@ class BodySection : public QGroupBox {
  public:
   // `server` is the body's reconfigure namespace (e.g. /sim/rod), `state_type` its state message type;
   // `on_time` receives the simulated time of every state; `on_delete` is called by the Delete button.
+  // `read_only`: why nothing can be changed (the tool tip of every disabled widget); empty: editable.
   BodySection(const std::string& name, const std::string& server, const std::string& state_type,
               CallQueue& calls, std::function<void(double)> on_time, std::function<void()> on_delete,
-              QWidget* parent = nullptr);
+              const QString& read_only = {}, QWidget* parent = nullptr);
 
   const std::string& name() const { return name_; }
   const std::string& stateType() const { return state_type_; }
@@ -52,10 +54,12 @@ class BodySection : public QGroupBox {
   void request(dynamic_reconfigure::Config asked, const std::string& key, const QString& asked_text);
   void onRodState(const RodState& state);
   void onRollerState(const RollerState& state);
+  void holdIfReadOnly(QWidget* widget);  // disabled, its tool tip the reason
 
   std::string name_, server_, state_type_;
   CallQueue& calls_;
   std::function<void(double)> on_time_;
+  QString read_only_;
   QFormLayout* form_;
   QLabel* motion_;   // mode and energy
   QLabel* message_;  // the last refusal (or acceptance) of a request
