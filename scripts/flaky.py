@@ -4,6 +4,7 @@ per test, its failures out of RUNS and its time; exits 1 if any test failed once
 
 Every round is one ctest run as `make test` runs it (serially, a fresh ROS_HOME, the loopback by address).
 The output of every failed test is kept in KEEP/round<i>/ (ctest's log and its JUnit file).
+With --hog N, N processes spin on the CPU for the whole run: the busy machine the tests must pass on.
 """
 from __future__ import annotations
 
@@ -16,9 +17,10 @@ import sys
 import tempfile
 import time
 import xml.etree.ElementTree as ElementTree
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List
+from typing import Dict, Iterator, List
 
 
 @dataclass
@@ -70,6 +72,18 @@ def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
     return read_junit(junit)
 
 
+@contextmanager
+def cpu_hogs(count: int) -> Iterator[None]:
+    """`count` processes that keep a core busy each (at normal priority, as another user's job would)."""
+    hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(count)]
+    try:
+        yield
+    finally:
+        for hog in hogs:
+            hog.kill()
+            hog.wait()
+
+
 def table(records: Dict[str, Record], rounds: int, wall: float) -> str:
     """The Markdown table: per test its failures out of the rounds and its time."""
     lines = [f"| test | failures of {rounds} | rounds failed | mean time (s) | max time (s) |",
@@ -90,6 +104,7 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
     parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
     parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
+    parser.add_argument("--hog", type=int, default=0, help="processes that keep a core busy each, all along")
     return parser.parse_args()
 
 
@@ -100,11 +115,23 @@ def main() -> int:
     shutil.rmtree(keep, ignore_errors=True)
     records: Dict[str, Record] = {}
     began = time.monotonic()
-    for index in range(1, args.runs + 1):
+    with cpu_hogs(args.hog):
+        run_rounds(args.runs, build, args.labels, keep, records)
+    busy = f", {args.hog} cores kept busy" if args.hog else ""
+    print(table(records, args.runs, time.monotonic() - began) + busy)
+    flaky = [name for name, record in records.items() if record.failures]
+    print("flaky: " + (f"{len(flaky)} tests failed at least once: {', '.join(sorted(flaky))}" if flaky
+                       else "every test passed every round"))
+    return 1 if flaky else 0
+
+
+def run_rounds(runs: int, build: Path, labels: str, keep: Path, records: Dict[str, Record]) -> None:
+    """Every round, its outcomes added to `records`; a round's logs kept if a test failed in it."""
+    for index in range(1, runs + 1):
         folder = keep / f"round{index}"
         folder.mkdir(parents=True)
         round_began = time.monotonic()
-        outcomes = run_round(build, args.labels, folder)
+        outcomes = run_round(build, labels, folder)
         for outcome in outcomes:
             record = records.setdefault(outcome.name, Record())
             record.runs += 1
@@ -112,15 +139,10 @@ def main() -> int:
             if outcome.failed:
                 record.failures.append(index)
         failed = [o.name for o in outcomes if o.failed]
-        print(f"flaky: round {index} of {args.runs}: {len(outcomes)} tests in {time.monotonic() - round_began:.0f} s, "
+        print(f"flaky: round {index} of {runs}: {len(outcomes)} tests in {time.monotonic() - round_began:.0f} s, "
               + (f"FAILED: {', '.join(failed)} (log in {folder})" if failed else "all passed"), flush=True)
         if not failed:
             shutil.rmtree(folder)
-    print(table(records, args.runs, time.monotonic() - began))
-    flaky = [name for name, record in records.items() if record.failures]
-    print("flaky: " + (f"{len(flaky)} tests failed at least once: {', '.join(sorted(flaky))}" if flaky
-                       else "every test passed every round"))
-    return 1 if flaky else 0
 
 
 if __name__ == "__main__":
