@@ -11,6 +11,7 @@
 
 #include "node_test_util.h"
 #include "rigid_body_sim/core/constants.h"
+#include "test_util.h"
 
 using namespace rigid_body_sim;
 using namespace rigid_body_sim::test;
@@ -61,6 +62,12 @@ const std::vector<BadRequest>& badRequests() {
       {"sphere shape cube", "sphere", {}, {{"shape", "cube"}}},
       {"sphere custom with factor 0", "sphere", {{"inertia_factor", 0.0}}, {{"shape", "custom"}}},
       {"bowler x0 beyond the slope", "bowler", {{"x0", 20.0}}, {}},
+      {"rod moment of inertia underflows to 0",
+       "rod",
+       {{"mass", 1e-160}, {"length", 1e-160}, {"k", 1e-150}},
+       {},
+       "moment of inertia M L^2 / 12 = 0 is not allowed"},
+      {"sphere c M R underflows", "sphere", {{"mass", 1e-160}, {"radius", 1e-160}}, {}, "c M R = 4e-321"},
   };
   return rows;
 }
@@ -119,6 +126,13 @@ void expectOneWarningNaming(const std::vector<std::string>& lines, const std::st
 }
 
 }  // namespace
+
+TEST(SimNodeBadInputRuntime, TheDocsCountTheRequestsThereAre) {
+  const std::string docs = slurp(fs::path(RBS_README).parent_path() / "docs" / "reliability.md");
+  const std::string count =
+      "`bad_input_runtime.test` | " + std::to_string(badRequests().size()) + " reconfigure";
+  EXPECT_NE(docs.find(count), std::string::npos) << "docs/reliability.md should say " << count;
+}
 
 TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
   ros::NodeHandle nh;
