@@ -3,8 +3,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
+
+#include <yaml-cpp/yaml.h>
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
@@ -139,7 +142,19 @@ TEST_F(SimulateTest, WritesABag) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(fs::exists(dir_ / "run.bag"));
   EXPECT_FALSE(fs::exists(dir_ / "run.bag.active"));
-  EXPECT_GT(fs::file_size(dir_ / "run.bag"), 1000u);
+  // What the node publishes in 1 s of rod.yaml: a state and a /tf per publishing period (50 Hz) and one at
+  // t = 0, the markers at marker_rate (10 Hz, the default) and at t = 0, the latched ones once.
+  const fs::path info_dir = dir_ / "info";
+  fs::create_directories(info_dir);
+  const auto info = runTool("rosbag info --yaml --key=topics " + (dir_ / "run.bag").string(), info_dir);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  std::map<std::string, int> counts;
+  for (const auto& topic : YAML::Load(info.out))
+    counts[topic["topic"].as<std::string>()] = topic["messages"].as<int>();
+  const std::map<std::string, int> expected = {{"/sim/rod/state", 51}, {"/tf", 51},
+                                               {"/sim/markers", 11},   {"/tf_static", 1},
+                                               {"/sim/scene", 1},      {"/sim/commands", 1}};
+  EXPECT_EQ(counts, expected);
 }
 
 TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
