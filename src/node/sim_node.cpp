@@ -294,7 +294,7 @@ void SimNode::publishCommandLocked(const WorldCommand& command, std::size_t inde
                                  stampOf(world().time()), world().config().world_frame);
   command_publisher_.publish(message);
   // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
-  if (recorder_ && index > 0) recorder_->writeCommand(message);
+  if (index > 0) recordLocked([&](BagRecorder& recorder) { recorder.writeCommand(message); });
 }
 
 void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
@@ -514,7 +514,7 @@ void SimNode::publishLocked() {
     last_tf_stamp_ = stamp;
   }
   publishMarkersLocked(stamp);
-  if (recorder_) recorder_->write(world());
+  recordLocked([&](BagRecorder& recorder) { recorder.write(world()); });
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!state_publishers_[i].watched()) continue;
     std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
@@ -556,7 +556,22 @@ void SimNode::rebuildSceneLocked() {
     scene_publisher_.publish(snapshots_->scene().sceneMarkers());
   }
   publishStaticTransformsLocked();
-  if (recorder_) recorder_->rebuild(world().bodies(), world().time());
+  recordLocked([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
+}
+
+void SimNode::recordLocked(const std::function<void(BagRecorder&)>& write) {
+  if (!recorder_) return;
+  try {
+    write(*recorder_);
+  } catch (const rosbag::BagException& error) {
+    recorder_.reset();
+    ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d",
+              formatNumber(world().time()).c_str(), error.what(), kRecordingFailedStatus);
+    exit_status_ = kRecordingFailedStatus;
+    stopping_ = true;
+    if (options_.end_launch) endParentRoslaunch();
+    ros::requestShutdown();
+  }
 }
 
 void SimNode::stepLoop() {
@@ -669,7 +684,10 @@ int SimNode::run() {
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();
   stopThreads();
-  if (recorder_) recorder_->commit();
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    recordLocked([](BagRecorder& recorder) { recorder.commit(); });
+  }
   return exit_status_;
 }
 

@@ -54,11 +54,33 @@ struct LeaksIgnored {
 #endif
 };
 
+// rosbag::Bag's destructor closes the bag, writing its index; after a failed write that write fails too,
+// and a throw from a destructor ends the process. A failed bag is never destroyed: it is kept here
+// (reachable, so no leak to report) until the process ends, which closes its file.
+void keepUnclosed(std::unique_ptr<rosbag::Bag> bag) {
+  static auto* const kept = new std::vector<std::unique_ptr<rosbag::Bag>>();
+  kept->push_back(std::move(bag));
+}
+
 }  // namespace
 
-rosbag::Bag newBag() {
+std::unique_ptr<rosbag::Bag> newBag() {
   [[maybe_unused]] const LeaksIgnored ignored;
-  return rosbag::Bag();
+  return std::make_unique<rosbag::Bag>();  // made in place: rosbag's move constructor loses its streams
+}
+
+template <class Write>
+void BagRecorder::guarded(Write&& write) {
+  if (failed_)
+    throw rosbag::BagIOException("'" + path_ + ".active' is no longer written after a write error");
+  try {
+    write(*bag_);
+  } catch (const rosbag::BagException& error) {
+    failed_ = true;
+    keepUnclosed(std::move(bag_));
+    throw rosbag::BagIOException("writing '" + path_ + ".active' failed (" + error.what() +
+                                 "): the recording ends there, unindexed (rosbag reindex recovers it)");
+  }
 }
 
 BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
@@ -68,45 +90,53 @@ BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, con
       snapshots_(config.world_frame, std::move(frame_prefix), bodies),
       marker_rate_(TrailOptions().pieces_rate),
       bag_(newBag()) {
-  bag_.open(path_ + ".active", rosbag::bagmode::Write);
-  open_ = true;
+  bag_->open(path_ + ".active", rosbag::bagmode::Write);  // a failure here leaves no file
   const ros::Time start = simStamp(0.0);
   WorldCommand config_command;
   config_command.kind = WorldCommand::Kind::Config;
   config_command.world = config;
-  bag_.write(node_namespace_ + "/" + node_interface::kCommands, start,
-             toMessage(config_command, 0, 0.0, start, config.world_frame),
-             latchedHeader<rigid_body_sim::Command>(node_namespace_));
-  tf2_msgs::TFMessage message;
-  message.transforms = snapshots_.staticTransforms(start);
-  bag_.write("/tf_static", start, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
-  bag_.write(nodeTopic(node_namespace_, node_interface::kScene), start, snapshots_.scene().sceneMarkers(),
-             latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
+  guarded([&](rosbag::Bag& bag) {
+    bag.write(node_namespace_ + "/" + node_interface::kCommands, start,
+              toMessage(config_command, 0, 0.0, start, config.world_frame),
+              latchedHeader<rigid_body_sim::Command>(node_namespace_));
+    tf2_msgs::TFMessage message;
+    message.transforms = snapshots_.staticTransforms(start);
+    bag.write("/tf_static", start, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
+    bag.write(nodeTopic(node_namespace_, node_interface::kScene), start, snapshots_.scene().sceneMarkers(),
+              latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
+  });
 }
 
 BagRecorder::~BagRecorder() {
   // An unfinished recording stays as <path>.active, the way `rosbag record` leaves one.
-  if (open_) bag_.close();
+  if (!bag_) return;
+  try {
+    bag_->close();
+  } catch (const rosbag::BagException&) {
+    keepUnclosed(std::move(bag_));
+  }
 }
 
 void BagRecorder::write(const World& world) {
   const double t = world.time();
   const ros::Time stamp = simStamp(t);
   const Snapshot snapshot = snapshots_.build(t, stamp, world.bodies());
-  bag_.write("/tf", stamp, snapshot.tf);
-  // The trails grow at every sample and are written at the marker rate, as the node publishes them.
-  Scene& scene = snapshots_.scene();
-  scene.sample(world.bodies());
-  const auto marker_instant = static_cast<long long>(std::floor(t * marker_rate_ + 1e-9));
-  if (marker_instant > last_marker_instant_) {
-    bag_.write(nodeTopic(node_namespace_, node_interface::kMarkers), stamp,
-               scene.changes(stamp, world.bodies()));
-    last_marker_instant_ = marker_instant;
-  }
-  for (std::size_t i = 0; i < world.bodies().size(); ++i) {
-    const std::string topic = stateTopic(node_namespace_, world.bodies()[i].name);
-    std::visit([&](const auto& msg) { bag_.write(topic, stamp, msg); }, snapshot.states[i]);
-  }
+  guarded([&](rosbag::Bag& bag) {
+    bag.write("/tf", stamp, snapshot.tf);
+    // The trails grow at every sample and are written at the marker rate, as the node publishes them.
+    Scene& scene = snapshots_.scene();
+    scene.sample(world.bodies());
+    const auto marker_instant = static_cast<long long>(std::floor(t * marker_rate_ + 1e-9));
+    if (marker_instant > last_marker_instant_) {
+      bag.write(nodeTopic(node_namespace_, node_interface::kMarkers), stamp,
+                scene.changes(stamp, world.bodies()));
+      last_marker_instant_ = marker_instant;
+    }
+    for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+      const std::string topic = stateTopic(node_namespace_, world.bodies()[i].name);
+      std::visit([&](const auto& msg) { bag.write(topic, stamp, msg); }, snapshot.states[i]);
+    }
+  });
 }
 
 // As the node logs a change: the command, then the scene and fixed frames of a changed set of bodies.
@@ -121,25 +151,29 @@ void BagRecorder::applied(const WorldCommand& command, std::size_t index, const 
 }
 
 void BagRecorder::writeCommand(const rigid_body_sim::Command& command) {
-  bag_.write(node_namespace_ + "/" + node_interface::kCommands, simStamp(command.t), command,
-             latchedHeader<rigid_body_sim::Command>(node_namespace_));
+  guarded([&](rosbag::Bag& bag) {
+    bag.write(node_namespace_ + "/" + node_interface::kCommands, simStamp(command.t), command,
+              latchedHeader<rigid_body_sim::Command>(node_namespace_));
+  });
 }
 
 void BagRecorder::rebuild(const std::vector<Body>& bodies, double t) {
   const ros::Time stamp = simStamp(t);
-  if (snapshots_.scene().rebuild(bodies)) {
-    bag_.write(nodeTopic(node_namespace_, node_interface::kScene), stamp, snapshots_.scene().sceneMarkers(),
-               latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
-  }
-  tf2_msgs::TFMessage message;
-  message.transforms = snapshots_.staticTransforms(stamp);
-  bag_.write("/tf_static", stamp, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
+  guarded([&](rosbag::Bag& bag) {
+    if (snapshots_.scene().rebuild(bodies)) {
+      bag.write(nodeTopic(node_namespace_, node_interface::kScene), stamp, snapshots_.scene().sceneMarkers(),
+                latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
+    }
+    tf2_msgs::TFMessage message;
+    message.transforms = snapshots_.staticTransforms(stamp);
+    bag.write("/tf_static", stamp, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
+  });
 }
 
 void BagRecorder::commit() {
-  if (!open_) return;
-  bag_.close();
-  open_ = false;
+  if (!bag_ && !failed_) return;  // committed before
+  guarded([](rosbag::Bag& bag) { bag.close(); });
+  bag_.reset();
   if (std::rename((path_ + ".active").c_str(), path_.c_str()) != 0) {
     throw rosbag::BagException("cannot rename '" + path_ + ".active' to '" + path_ + "'");
   }

@@ -57,15 +57,15 @@ rigid_body_sim::Command toMessage(const WorldCommand& command, std::uint32_t ind
 }
 
 RecordedRun readRecordedRun(const std::string& path) {
-  rosbag::Bag bag = newBag();
+  const std::unique_ptr<rosbag::Bag> bag = newBag();
   try {
-    bag.open(path, rosbag::bagmode::Read);
+    bag->open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& error) {
     throw ConfigError("cannot read bag '" + path + "': " + error.what());
   }
-  const std::string topic = commandTopic(bag, path);
+  const std::string topic = commandTopic(*bag, path);
   RecordedRun run;
-  for (const rosbag::MessageInstance& message : rosbag::View(bag)) {
+  for (const rosbag::MessageInstance& message : rosbag::View(*bag)) {
     run.end_time = std::max(run.end_time, simulatedTimeOf(message));
     if (message.getTopic() != topic) continue;
     const auto command = message.instantiate<rigid_body_sim::Command>();

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -40,13 +41,15 @@ class SimNode {
  public:
   // The exit status after the master restarted and forgot the node (roslaunch's respawn starts it again).
   static constexpr int kMasterForgotStatus = 3;
+  // The exit status after the node's own recorder (~bag) could not write (a full disk, a file-size limit).
+  static constexpr int kRecordingFailedStatus = 4;
 
   // Loads and validates the private parameters; throws ConfigError with the one refusal line.
   SimNode(ros::NodeHandle node, ros::NodeHandle private_node);
   ~SimNode();
 
-  // Starts the stepping thread and spins the callbacks until shutdown; returns the exit status: 0, or
-  // kMasterForgotStatus.
+  // Starts the stepping thread and spins the callbacks until shutdown; returns the exit status: 0,
+  // kMasterForgotStatus or kRecordingFailedStatus.
   int run();
 
   // The one way to change the running world (the services, the reconfigure servers, the interactive tools):
@@ -138,6 +141,9 @@ class SimNode {
   // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
   // the scene are sent again. Trails go on by body name.
   void rebuildSceneLocked();
+  // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
+  // line (kRecordingFailedStatus), never the process.
+  void recordLocked(const std::function<void(BagRecorder&)>& write);
   ros::Time stampOf(double t) const;
   const World& world() const { return session_.world(); }  // caller holds mutex_
   void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step

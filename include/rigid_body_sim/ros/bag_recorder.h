@@ -20,7 +20,10 @@ namespace rigid_body_sim {
 class BagRecorder : public SampleSink {
  public:
   // Writes to `path`.active, renamed to `path` by commit(), as `rosbag record` does; starts with the
-  // config command of `config`, the fixed frames and the scene of `bodies` (at t = 0).
+  // config command of `config`, the fixed frames and the scene of `bodies` (at t = 0). A failed write (a
+  // full disk, a file-size limit) throws rosbag::BagIOException naming the file; the recording ends there,
+  // `path`.active left unindexed (`rosbag reindex` recovers what reached the disk), and every later call
+  // throws too.
   BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
               std::string node_namespace = "/sim", std::string frame_prefix = "");
   ~BagRecorder() override;
@@ -42,14 +45,17 @@ class BagRecorder : public SampleSink {
   SnapshotBuilder snapshots_;
   double marker_rate_;                  // Hz
   long long last_marker_instant_ = -1;  // floor(t * marker_rate_) of the last markers written
-  rosbag::Bag bag_;
-  bool open_ = false;
+  std::unique_ptr<rosbag::Bag> bag_;    // null once committed or failed
+  bool failed_ = false;
+
+  template <class Write>
+  void guarded(Write&& write);
 };
 
 // A new rosbag::Bag. Its constructor loads rosbag's encryption plugin, whose class_loader metadata Debian
 // 11's class_loader never frees (616 bytes, in a plugin unloaded before LeakSanitizer looks): under the
 // sanitizer that allocation is not counted, every other one is. Every Bag of the package is made here.
-rosbag::Bag newBag();
+std::unique_ptr<rosbag::Bag> newBag();
 
 // The SinkOpener of `simulate --bag`.
 std::unique_ptr<SampleSink> openBag(const std::string& path, const WorldConfig& config,
