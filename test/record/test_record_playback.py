@@ -26,6 +26,7 @@ import rosbag
 import rosgraph
 import rospy
 from rosgraph_msgs.msg import Clock
+from std_srvs.srv import Empty
 from rigid_body_sim.msg import RodState, RollerState
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
@@ -128,48 +129,51 @@ class NodeOutput(unittest.TestCase):
         cls.master.stop()
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def expect_every_sample(self, states: States, duration: float, what: str) -> None:
-        """Each body's states: every publishing instant up to duration exactly once, each equal to the CSV."""
+    def expect_every_sample(self, states: States, duration: float, what: str, first: int = 0) -> None:
+        """Each body's states: every publishing instant from sample `first` up to duration exactly once, each
+        equal to the CSV. Before `first`, samples may be missing (published before the test subscribed)."""
         samples = int(round(duration * self.publish_rate))
         for name, msgs in states.items():
+            msgs = [m for m in msgs if m.t >= first / self.publish_rate]
             ts = [m.t for m in msgs]
-            self.assertEqual(len(ts), samples + 1, f"{what}: {name} has {len(ts)} states for {duration:g} s")
-            self.assertEqual(ts, [j / self.publish_rate for j in range(samples + 1)], f"{what}: {name}")
+            self.assertEqual(len(ts), samples + 1 - first, f"{what}: {name} has {len(ts)} states for {duration:g} s")
+            self.assertEqual(ts, [j / self.publish_rate for j in range(first, samples + 1)], f"{what}: {name}")
             header, rows = self.csv[name]
-            for row, msg in zip(rows, msgs):
+            for row, msg in zip(rows[first:], msgs):
                 self.assertEqual(header, state_fields(msg), name)
                 self.assertEqual(row, as_row(msg), f"{what}: {name} at t = {msg.t}")
 
     def test_as_fast_as_possible_every_state_once(self) -> None:
-        listener = Listener(self.config)
-        clocks: List[Any] = []
-        clock_sub = rospy.Subscriber("/clock", Clock, lambda msg: clocks.append(msg.clock), queue_size=None)
         self.master.run(["rosparam", "load", self.tools.config, "/sim"])
         node = subprocess.Popen([self.tools.sim_node, "__name:=sim", "_real_time_factor:=0", "_duration:=60",
-                                 "_start_delay:=2", "_publish_clock:=true"],
+                                 "_start_paused:=true", "_publish_clock:=true"],
                                 env=self.master.env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        clocks: List[Any] = []
         try:
+            # The node publishes its first /clock (latched) and the states at t = 0, then waits. Subscribing
+            # after that first /clock, this test gets it once, as the latched copy: a subscriber that
+            # connects while a latched topic publishes gets that message twice (the copy and the message).
+            rospy.wait_for_service("/sim/unpause", timeout=20.0)
+            rospy.wait_for_message("/clock", Clock, timeout=20.0)
+            listener = Listener(self.config)
+            clock_sub = rospy.Subscriber("/clock", Clock, lambda msg: clocks.append(msg.clock), queue_size=None)
             listener.wait_connected()
             wait_for("a /clock publisher", lambda: clock_sub.get_num_connections() > 0, 20.0)
-        except TimeoutError:
+        except (TimeoutError, rospy.ROSException) as error:
             node.kill()
-            raise AssertionError("no state or /clock publisher; the node said:\n" + node.communicate()[0])
+            raise AssertionError(f"{error}; the node said:\n" + node.communicate()[0])
+        rospy.ServiceProxy("/sim/unpause", Empty)()
         log, _ = node.communicate(timeout=120)
         listener.close(60.0)
         clock_sub.unregister()
         self.assertEqual(node.returncode, 0, log)
         self.assertIn("simulated 60.000 s", log)
-        self.expect_every_sample(listener.states, 60.0, "live, real_time_factor 0")
-        self.assertGreater(clocks[0], rospy.Time(0))
-        # The node never publishes a time twice. /clock is latched: a subscriber link gets the last message as
-        # it connects, and rospy connects again a subscriber whose connection failed, so one value may come
-        # twice in a row at a subscriber; never a step back, never more than once.
-        repeats = [i for i in range(1, len(clocks)) if clocks[i] == clocks[i - 1]]
-        backwards = [i for i in range(1, len(clocks)) if clocks[i] < clocks[i - 1]]
-        self.assertEqual(backwards, [], "/clock went back at: " + ", ".join(
-            f"[{i}] {clocks[i - 1].to_sec()} -> {clocks[i].to_sec()}" for i in backwards[:5]))
-        self.assertLessEqual(len(repeats), 1, "/clock repeated at: " + ", ".join(
-            f"[{i}] {clocks[i].to_sec()}" for i in repeats[:5]))
+        # The states at t = 0 came before this test subscribed: every one after, exactly once.
+        self.expect_every_sample(listener.states, 60.0, "live, real_time_factor 0", first=1)
+        self.assertEqual(clocks[0], sim_stamp(0.0), "the first /clock is the latched one of t = 0")
+        not_increasing = [i for i in range(1, len(clocks)) if clocks[i] <= clocks[i - 1]]
+        self.assertEqual(not_increasing, [], "/clock not strictly increasing at: " + ", ".join(
+            f"[{i}] {clocks[i - 1].to_sec()} -> {clocks[i].to_sec()}" for i in not_increasing[:5]))
         self.assertEqual(clocks[-1], sim_stamp(60.0))
 
     def test_recording_and_playback(self) -> None:
