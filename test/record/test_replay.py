@@ -12,6 +12,7 @@ Usage: test_replay.py SIMULATE_EXE CONFIG.yaml   (with the package's devel space
 """
 import argparse
 import csv
+import math
 import os
 import shutil
 import signal
@@ -160,6 +161,7 @@ class Replay(unittest.TestCase):
 
         kinds: List[str] = []
         compared: Dict[str, int] = {}
+        recorded_ts: Dict[str, List[float]] = {}
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 if topic == "/sim/commands":
@@ -175,15 +177,31 @@ class Replay(unittest.TestCase):
                     self.assertTrue(same(getattr(msg, field), cell),
                                     f"{body} at t = {msg.t!r}: {field} {getattr(msg, field)!r} vs {cell}")
                 compared[body] = compared.get(body, 0) + 1
+                recorded_ts.setdefault(body, []).append(msg.t)
         self.assertEqual(kinds[0], "config")
         for kind in ("reconfigure", "spawn", "set_state", "delete", "reset"):
             self.assertIn(kind, kinds)
         # Every body of the run, spawned and deleted ones included, was recorded and compared.
         self.assertEqual(set(compared), set(rows))
         self.assertIn("stick", rows)
+        self.every_publishing_instant_recorded(recorded_ts)
         print(f"{sum(compared.values())} state messages equal to the replay ({compared}), {len(kinds)} commands",
               file=sys.stderr)
         self.replayed_bag_holds_the_run(bag_path, again, rate, out_dir)
+
+    def every_publishing_instant_recorded(self, recorded_ts: Dict[str, List[float]]) -> None:
+        """The config's bodies that live through the run: a state at every publishing instant from t = 0 to
+        their last (the recorder subscribes before stepping starts), besides those where a ~step ended."""
+        publish_rate = world_value(load_config(ARGS.config), "publish_rate")
+        for body in set(load_config(ARGS.config)["bodies"]) - {"cylinder"}:  # the script deletes the cylinder
+            ts = recorded_ts[body]
+            on_grid = {round(t * publish_rate) for t in ts if abs(t * publish_rate - round(t * publish_rate)) < 1e-6}
+            last = math.floor(max(ts) * publish_rate + 1e-6)  # the last instant on the grid at or before it
+            missing = sorted(set(range(last + 1)) - on_grid)
+            self.assertEqual(missing, [], f"{body}: no state at t = {[k / publish_rate for k in missing[:5]]}")
+            self.assertGreater(last, 100, f"{body}: a run of {max(ts)} s is too short to compare")
+            print(f"{body}: a state at each of the {last + 1} publishing instants to t = {last / publish_rate:g} s",
+                  file=sys.stderr)
 
     def replayed_bag_holds_the_run(self, bag_path: str, again: str, rate: float, out_dir: str) -> None:
         """The replay's --bag: the recorded commands and states unchanged in it, and it replays the same."""
