@@ -353,6 +353,18 @@ TEST(ConfigOddYaml, BracketsAreCheckedBeforeYamlCppSeesThem) {
   for (const std::string text : {"[:]", "[a:]", "{a: [b:]}"}) {
     EXPECT_NE(refusal(text).find("a ':' right before ']'"), std::string::npos) << text;
   }
+  // yaml-cpp reads a # right after '[', '{', ',' or a quoted scalar as a comment or not: refused.
+  EXPECT_EQ(
+      refusal("{a,#}\n:"),
+      "config file 'x.yaml' is not valid YAML here: a '#' right after ',' at line 1, column 4 (a comment "
+      "needs a blank before its '#')");
+  for (const std::string text : {"[#]\n:", "{a: b,#}\n:", "{a: [#]}\n:", "{\"a\"#}\n:", "0,#: {:"}) {
+    EXPECT_NE(refusal(text).find("a comment needs a blank before its '#'"), std::string::npos) << text;
+  }
+  // In a block, ',' is a plain character: the quote after it opens no quoted scalar, and the '{' is open.
+  EXPECT_NE(refusal("0,\": {:").find("the '{' at line 1, column 6 is not closed"), std::string::npos);
+  EXPECT_EQ(refusal("bodies: {rod: {type: rod, integrator: euler#cromer}}").find("'#'"),
+            std::string::npos);  // inside a plain scalar, # is a character
   EXPECT_EQ(refusal("bodies: {rod: {type: rod, k:\x04 5}}"),
             "config file 'x.yaml' is not valid YAML: the control character \\x04 at line 1, column 29");
   EXPECT_NE(refusal(std::string(33, '[') + std::string(33, ']')).find("nests lists and maps 33 deep"),

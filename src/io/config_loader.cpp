@@ -184,15 +184,19 @@ struct FlowScan {
   std::string open_at_end;  // "the '[' at line L, column C": the outermost bracket left open (invalid YAML)
   bool colon_before_close = false;  // ":]" inside brackets: no value after the ':'
   std::string control;              // "\\x04 at line L, column C": a character YAML does not allow
+  std::string hash_unspaced;        // "a '#' right after ',' at line L, column C": a comment or not?
 };
 
 // Brackets in `text`, outside quoted scalars and comments. As in YAML, a quote opens a quoted scalar only
 // where a node starts (not inside a plain scalar: "it's"), and # begins a comment only at a line's start or
-// after a blank.
+// after a blank. A # right after '[', '{', ',' or a quoted scalar is refused: yaml-cpp reads some of those
+// as comments and some not ("{a,#}" leaves its '{' open; "0,#: {:" does not), and yaml-cpp 0.6 allocates
+// until memory runs out on either misreading (found by the fuzzer on Debian 11).
 FlowScan scanFlow(const std::string& text) {
   FlowScan scan;
   int depth = 0;
   char quote = 0;
+  bool quote_closed = false;  // the character before ended a quoted scalar
   bool comment = false;
   char previous = '\n';
   char last_mark = '\n';   // the last character but blanks
@@ -214,14 +218,22 @@ FlowScan scanFlow(const std::string& text) {
     const bool blank_before = previous == ' ' || previous == '\t';
     const bool scalar_may_start =
         mark_opens && (std::string(":-?").find(last_mark) == std::string::npos || blank_before);
+    const bool after_quote = quote_closed;
+    quote_closed = false;
     if (comment) {
       comment = ch != '\n';
     } else if (quote) {
+      quote_closed = ch == quote;
       quote = ch == quote ? 0 : quote;  // an escaped \" ends it early: what follows counts, never less
     } else if ((ch == '"' || ch == '\'') && scalar_may_start) {
       quote = ch;
     } else if (ch == '#' && (blank_before || previous == '\n')) {
       comment = true;
+    } else if (ch == '#' && (after_quote || std::string("[{,").find(previous) != std::string::npos)) {
+      if (scan.hash_unspaced.empty()) {
+        scan.hash_unspaced = "a '#' right after '" + std::string(1, previous) + "' at line " +
+                             std::to_string(line) + ", column " + std::to_string(column);
+      }
     } else if (ch == '[' || ch == '{') {
       if (depth == 0)
         scan.open_at_end = "the '" + std::string(1, ch) + "' at line " + std::to_string(line) + ", column " +
@@ -237,8 +249,9 @@ FlowScan scanFlow(const std::string& text) {
     }
     if (ch != ' ' && ch != '\t') {
       const bool after_blank = blank_before || previous == '\n';  // '-' and '?' are indicators only there
-      mark_opens =
-          std::string("\n[{,:").find(ch) != std::string::npos || ((ch == '-' || ch == '?') && after_blank);
+      // ',' separates entries only inside brackets: in a block, "0,\"" is one plain scalar.
+      mark_opens = std::string("\n[{:").find(ch) != std::string::npos || (ch == ',' && depth > 0) ||
+                   ((ch == '-' || ch == '?') && after_blank);
       last_mark = ch;
     }
     previous = ch;
@@ -255,6 +268,10 @@ void checkFlow(const std::string& text, const std::string& what) {
   if (scan.deepest > kMaxFlowDepth) {
     throw ConfigError(what + " nests lists and maps " + std::to_string(scan.deepest) +
                       " deep (allowed: at most " + std::to_string(kMaxFlowDepth) + ")");
+  }
+  if (!scan.hash_unspaced.empty()) {
+    throw ConfigError(what + " is not valid YAML here: " + scan.hash_unspaced +
+                      " (a comment needs a blank before its '#')");
   }
   if (!scan.open_at_end.empty())
     throw ConfigError(what + " is not valid YAML: " + scan.open_at_end + " is not closed");
