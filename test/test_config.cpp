@@ -361,6 +361,8 @@ TEST(ConfigOddYaml, BracketsAreCheckedBeforeYamlCppSeesThem) {
   for (const std::string text : {"[#]\n:", "{a: b,#}\n:", "{a: [#]}\n:", "{\"a\"#}\n:", "0,#: {:"}) {
     EXPECT_NE(refusal(text).find("a comment needs a blank before its '#'"), std::string::npos) << text;
   }
+  // Where yaml-cpp opens a quoted scalar differs from YAML: brackets must balance with quotes read or not.
+  EXPECT_NE(refusal(":{\": {:]\"}").find("a ':' right before ']'"), std::string::npos);
   // In a block, ',' is a plain character: the quote after it opens no quoted scalar, and the '{' is open.
   EXPECT_NE(refusal("0,\": {:").find("the '{' at line 1, column 6 is not closed"), std::string::npos);
   EXPECT_EQ(refusal("bodies: {rod: {type: rod, integrator: euler#cromer}}").find("'#'"),

@@ -191,8 +191,10 @@ struct FlowScan {
 // where a node starts (not inside a plain scalar: "it's"), and # begins a comment only at a line's start or
 // after a blank. A # right after '[', '{', ',' or a quoted scalar is refused: yaml-cpp reads some of those
 // as comments and some not ("{a,#}" leaves its '{' open; "0,#: {:" does not), and yaml-cpp 0.6 allocates
-// until memory runs out on either misreading (found by the fuzzer on Debian 11).
-FlowScan scanFlow(const std::string& text) {
+// until memory runs out on either misreading (found by the fuzzer on Debian 11). Where yaml-cpp opens a
+// quoted scalar differs from YAML too (":{\": {:]\"}"), so the text is also scanned with `quotes` false,
+// every quote a plain character, and must pass both readings.
+FlowScan scanFlow(const std::string& text, bool quotes) {
   FlowScan scan;
   int depth = 0;
   char quote = 0;
@@ -225,7 +227,7 @@ FlowScan scanFlow(const std::string& text) {
     } else if (quote) {
       quote_closed = ch == quote;
       quote = ch == quote ? 0 : quote;  // an escaped \" ends it early: what follows counts, never less
-    } else if ((ch == '"' || ch == '\'') && scalar_may_start) {
+    } else if ((ch == '"' || ch == '\'') && scalar_may_start && quotes) {
       quote = ch;
     } else if (ch == '#' && (blank_before || previous == '\n')) {
       comment = true;
@@ -260,8 +262,7 @@ FlowScan scanFlow(const std::string& text) {
   return scan;
 }
 
-void checkFlow(const std::string& text, const std::string& what) {
-  const FlowScan scan = scanFlow(text);
+void checkFlowScan(const FlowScan& scan, const std::string& what) {
   if (!scan.control.empty()) {
     throw ConfigError(what + " is not valid YAML: the control character " + scan.control);
   }
@@ -279,6 +280,10 @@ void checkFlow(const std::string& text, const std::string& what) {
     throw ConfigError(what +
                       " is not valid YAML here: a ':' right before ']' (a key needs a value, or no ':')");
   }
+}
+
+void checkFlow(const std::string& text, const std::string& what) {
+  for (const bool quotes : {true, false}) checkFlowScan(scanFlow(text, quotes), what);
 }
 
 YAML::Node loadText(const std::string& text, const std::string& what) {
