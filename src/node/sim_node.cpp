@@ -444,6 +444,7 @@ bool SimNode::onStep(Step::Request& request, Step::Response& response) {
   } else {
     session_.advance(request.steps, after_step_);
     session_.sampleNow();  // show where the steps ended
+    publishMarkersNowLocked();
     response.success = true;
     response.message = "ok";
   }
@@ -535,6 +536,13 @@ void SimNode::publishMarkersLocked(const ros::Time& stamp) {
   if (world().stepCount() % steps_per_markers_ == 0) {
     marker_publisher_.publisher.publish(scene.changes(stamp, world().bodies()));
   }
+}
+
+// A ~step ends anywhere between marker periods: its labels (and the trail up to there) go out at once, so
+// that a paused picture shows them where the bodies are, not where the last period left them.
+void SimNode::publishMarkersNowLocked() {
+  if (!markers_watched_) return;
+  marker_publisher_.publisher.publish(snapshots_->scene().changes(stampOf(world().time()), world().bodies()));
 }
 
 void SimNode::publishStaticTransformsLocked() {

@@ -26,7 +26,7 @@ constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
 constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
-constexpr double kRodThickness = 0.05;   // also a rod's "radius" for its label
+constexpr double kRodThickness = 0.05;
 constexpr double kCylinderLength = 0.8;  // of a cylinder's diameter
 constexpr double kRingWidth = 0.15;      // of a ring's radius
 constexpr int kRingSegments = 48;
@@ -34,8 +34,12 @@ constexpr double kSpokeLength = 2.02;  // of the radius: just out of the body
 constexpr double kSpokeWidth = 0.25;   // of the radius
 constexpr double kTrailWidth = 0.01;
 constexpr float kTrailAlpha = 0.6f;
-constexpr double kLabelAbove = 0.35;  // between the body's top and its label
+constexpr double kLabelAbove = 0.25;  // between the body's top and its label
 constexpr double kLabelHeight = 0.15;
+// Each further roller lane lifts its label by this much: rollers released side by side (the race) move
+// together, and a view from the side would otherwise draw their labels on top of one another.
+constexpr double kLabelStagger = kLabelHeight;
+constexpr double kGlyphWidth = 0.55;  // rviz's text: a glyph's width over the text's height
 
 // Marker namespaces: fixed, so that a user can toggle them in rviz.
 const char* const kNsFloor = "floor";
@@ -75,6 +79,12 @@ std_msgs::ColorRGBA bodyColour(const Body& body) {
 double radiusOf(const Body& body) {
   if (const auto* roller = std::get_if<Roller>(&body.model)) return roller->params().radius;
   return kRodThickness;
+}
+
+// How far above its centre a body reaches whatever its angle: its label floats above that.
+double reachOf(const Body& body) {
+  if (const auto* rod = std::get_if<Rod>(&body.model)) return 0.5 * rod->params().length;
+  return radiusOf(body);
 }
 
 visualization_msgs::Marker marker(const char* ns, int id, int type, const std::string& frame,
@@ -246,14 +256,16 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
     if (const auto* rod = std::get_if<Rod>(&body.model)) {
       placements.push_back({frame_prefix + fixedFrameOf(body),
                             uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
-                            rod->params().floor_length});
+                            rod->params().floor_length, kLabelAbove});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
-    const double lane_y = kFirstLaneY + lane_spacing * rollers++;
+    const double lane_y = kFirstLaneY + lane_spacing * rollers;
     placements.push_back({frame_prefix + fixedFrameOf(body),
-                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length});
+                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length, 0.0,
+                          kLabelAbove + kLabelStagger * rollers});
+    ++rollers;
   }
   return placements;
 }
@@ -360,11 +372,16 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     }
     auto label =
         marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-    label.pose.position =
-        toPoint(worldPosition(placements_[i], body) + Eigen::Vector3d(0, 0, radiusOf(body) + kLabelAbove));
+    label.text = labelText(body);
+    // A roller's label starts above it and runs downhill (world +x): centred, its uphill half would cut
+    // into the slope that rises behind the body.
+    const double downhill = std::holds_alternative<Roller>(body.model)
+                                ? 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size())
+                                : 0.0;
+    label.pose.position = toPoint(worldPosition(placements_[i], body) +
+                                  Eigen::Vector3d(downhill, 0, reachOf(body) + placements_[i].label_above));
     label.scale.z = kLabelHeight;
     label.color = kLabelColour;
-    label.text = labelText(body);
     array.markers.push_back(std::move(label));
   }
   return array;

@@ -65,8 +65,10 @@ class Camera:
     height: int
 
     @classmethod
-    def from_rviz(cls, view: Dict[str, Any], window: Tuple[int, int, int, int]) -> "Camera":
-        focal = np.array([view["Focal Point"][k] for k in "XYZ"], dtype=float)
+    def from_rviz(cls, view: Dict[str, Any], window: Tuple[int, int, int, int],
+                  target: Any = (0.0, 0.0, 0.0)) -> "Camera":
+        """`target`: the world position of the view's Target Frame (rviz adds it to the focal point)."""
+        focal = np.array([view["Focal Point"][k] for k in "XYZ"], dtype=float) + np.asarray(target, dtype=float)
         return cls(focal, float(view["Distance"]), float(view["Pitch"]), float(view["Yaw"]),
                    float(view.get("Field of View", 0.785398)), *window)
 
@@ -157,6 +159,33 @@ def quadrants_with(image: np.ndarray, region: np.ndarray, centre: Any, colour: s
     found = colour_mask(image, colour) & region
     right, below = cols >= centre[0], rows >= centre[1]
     return sum(int((found & (right == r) & (below == b)).any()) for r in (False, True) for b in (False, True))
+
+
+def white_mask(image: np.ndarray) -> np.ndarray:
+    """rviz's label text (white, unlit): every channel at 235 or more; the floor's lit grey stays below."""
+    return (image[..., :3] >= 235).all(axis=-1)
+
+
+def ink_box(mask: np.ndarray, region: np.ndarray) -> Optional[Tuple[int, int, int, int]]:
+    """(top, left, bottom, right) of the mask's pixels inside the region, inclusive; None when there are none."""
+    rows, cols = np.nonzero(mask & region)
+    if rows.size == 0:
+        return None
+    return int(rows.min()), int(cols.min()), int(rows.max()), int(cols.max())
+
+
+def boxes_overlap(a: Tuple[int, int, int, int], b: Tuple[int, int, int, int]) -> bool:
+    return a[0] <= b[2] and b[0] <= a[2] and a[1] <= b[3] and b[1] <= a[3]
+
+
+def extent_along(mask: np.ndarray, a: Any, b: Any) -> float:
+    """Length in pixels of the mask's pixels projected on the line from a to b (0 when none)."""
+    rows, cols = np.nonzero(mask)
+    if rows.size == 0:
+        return 0.0
+    d = (np.asarray(b, float) - a) / max(float(np.linalg.norm(np.asarray(b, float) - a)), 1e-9)
+    s = (cols - a[0]) * d[0] + (rows - a[1]) * d[1]
+    return float(s.max() - s.min() + 1)
 
 
 @dataclass

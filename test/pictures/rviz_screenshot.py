@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""rviz, for real: starts sim_node (launch/sim.launch) and rviz with rviz/sim.rviz on this X display,
-lets the simulation run a few simulated seconds, pauses it, takes a screenshot (ImageMagick's import)
-and checks the picture against what the node published: the floor, every slope, every roller and the
-rod must show their colours where rviz's camera puts them, and rviz must report no error.
+"""rviz, for real: starts sim_node and rviz (launch/sim.launch with rviz/sim.rviz, or --launch rod.launch,
+incline.launch with their own views) on this X display, steps the simulation a few simulated seconds, takes a
+screenshot (ImageMagick's import) and checks the picture against what the node published: the floor, every
+slope, every roller and the rod must show their colours where rviz's camera puts them, each body must measure
+at least MIN_BODY_PX across (a rod MIN_ROD_PX along), each label's text MIN_LABEL_PX high and clear of the
+others, and rviz must report no error.
 
 Run under Xvfb (test/pictures/rviz_screenshot.sh does). Exit 0 when every check passes, 1 otherwise.
 Writes OUT (the screenshot), OUT's stem + "_regions.png" (the regions checked, outlined) and
@@ -29,6 +31,13 @@ from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_c
                        rospy_on_python39, wait_for, world_value)
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
+# What a class must see from the back row at 1600x900: bodies this many pixels across, a rod this long,
+# label text this high (ink, from its tallest letter to its lowest).
+MIN_BODY_PX = 20
+MIN_ROD_PX = 150
+MIN_LABEL_PX = 14
+# The config each launch file runs (the wrappers take no config argument).
+LAUNCH_CONFIGS = {"sim.launch": "demo.yaml", "rod.launch": "rod.yaml", "incline.launch": "incline.yaml"}
 Outline = Tuple[str, Any]
 Disc = Tuple[np.ndarray, Any, float]  # mask, centre pixel, radius in pixels
 
@@ -172,6 +181,69 @@ class Checker:
                                                     (col + half_w, row + half_h), (col - half_w, row + half_h)])
         return covered
 
+    def label_boxes(self) -> Dict[str, Optional[Tuple[int, int, int, int]]]:
+        """{label text: ink box (top, left, bottom, right)} of each label's white pixels, searched in a box
+        around its projected centre a little larger than its text."""
+        white = pc.white_mask(self.image) & self.view
+        found: Dict[str, Optional[Tuple[int, int, int, int]]] = {}
+        for (ns, _), m in sorted(self.scene.markers.items()):
+            if ns != "label":
+                continue
+            _, centre = self.scene.world_pose(m.header.frame_id, m.pose)
+            (pixel,), (depth,) = self.camera.project(centre)
+            height = m.scale.z * self.camera.pixels_per_metre_at(depth) if depth > 0 else 0.0
+            half_w, half_h = 0.5 * (0.9 * len(m.text) + 1) * height, 1.2 * height
+            col, row = pixel
+            region = pc.polygon_mask(self.shape, [(col - half_w, row - half_h), (col + half_w, row - half_h),
+                                                  (col + half_w, row + half_h), (col - half_w, row + half_h)])
+            found[m.text.split(":")[0]] = pc.ink_box(white, region)
+            self.outlines.append(("box", found[m.text.split(":")[0]]))
+        return found
+
+    def label_sizes(self) -> None:
+        """Each label's text at least MIN_LABEL_PX high, and no two labels' ink boxes touching."""
+        boxes = self.label_boxes()
+        for name, box in boxes.items():
+            height = 0 if box is None else box[2] - box[0] + 1
+            self.findings.append(Measure(f"{name}'s label: text height", "white", 1, height, MIN_LABEL_PX))
+        named = [(name, box) for name, box in boxes.items() if box is not None]
+        for i, (a, box_a) in enumerate(named):
+            for b, box_b in named[i + 1:]:
+                self.findings.append(flag(f"labels of {a} and {b} apart", not pc.boxes_overlap(box_a, box_b)))
+
+    def roller_size(self, name: str, shape_name: str, disc: Optional[Disc]) -> None:
+        """Pixels across: the extent of the body's colour in its projected disc (2 px margin)."""
+        if disc is None:
+            return
+        mask, centre, radius = disc
+        region = self.in_view(name, pc.disc_mask(self.shape, centre, radius + 2.0))
+        box = pc.ink_box(pc.colour_mask(self.image, pc.SHAPE_CLASS[shape_name]), region)
+        across = 0 if box is None else max(box[2] - box[0], box[3] - box[1]) + 1
+        self.findings.append(Measure(f"{name}: across", pc.SHAPE_CLASS[shape_name], int(region.sum()), across,
+                                     MIN_BODY_PX))
+
+    def rod_size(self, name: str, length: float) -> None:
+        """Pixels along: the extent of blue along the rod's projected segment (3 px either side)."""
+        ends = self.rod_ends(name, length)
+        if ends is None:
+            return
+        a, b = ends
+        region = self.in_view(f"{name} along", pc.segment_mask(self.shape, a, b, 3.0))
+        along = pc.extent_along(pc.colour_mask(self.image, "blue") & region, a, b)
+        self.findings.append(Measure(f"{name}: along", "blue", int(region.sum()), int(along), MIN_ROD_PX))
+
+    def rod_ends(self, name: str, length: float) -> Optional[Tuple[np.ndarray, np.ndarray]]:
+        """The projected ends of the rod's part above the floor (an end in the floor's spring is hidden)."""
+        rotation, centre = self.scene.frames[name]
+        half = 0.5 * length * rotation[:, 0]
+        low, high = sorted([centre - half, centre + half], key=lambda end: end[2])
+        if high[2] <= 0.0:
+            return None
+        if low[2] < 0.0:
+            low = low + (high - low) * (-low[2] / (high[2] - low[2]))
+        (a, b), _ = self.camera.project(np.array([low, high]))
+        return a, b
+
     def count_unlabelled(self, region: np.ndarray, labels: np.ndarray, colour: str, what: str, share: float) -> Finding:
         """pc.count on the region less what the labels may cover; a region mostly under a label cannot show
         its colour and is not counted (a finding that says so)."""
@@ -259,15 +331,11 @@ class Checker:
         if name not in self.scene.frames:
             self.findings.append(flag(f"{name}'s pose received", False))
             return
-        rotation, centre = self.scene.frames[name]
-        half = 0.5 * length * rotation[:, 0]
-        low, high = sorted([centre - half, centre + half], key=lambda end: end[2])
-        if high[2] <= 0.0:
+        ends = self.rod_ends(name, length)
+        if ends is None:
             self.findings.append(flag(f"{name}: below the floor, not counted", True))
             return
-        if low[2] < 0.0:
-            low = low + (high - low) * (-low[2] / (high[2] - low[2]))
-        (a, b), _ = self.camera.project(np.array([low, high]))
+        a, b = ends
         self.outlines.append(("segment", (a, b)))
         for k in range(4):
             p, q = a + (b - a) * k / 4, a + (b - a) * (k + 1) / 4
@@ -294,9 +362,12 @@ def check_picture(image: np.ndarray, scene: Scene, camera: pc.Camera,
     for spec in specs:
         if isinstance(spec, RodSpec):
             checker.rod(spec.name, spec.length, labels)
+            checker.rod_size(spec.name, spec.length)
         else:
             checker.slope(spec.name, slopes, bodies_only)
             checker.roller(spec.name, spec.shape, discs.get(spec.name), labels)
+            checker.roller_size(spec.name, spec.shape, discs.get(spec.name))
+    checker.label_sizes()
     return checker.findings, checker.outlines
 
 
@@ -316,6 +387,11 @@ def save_outlined(image: np.ndarray, outlines: List[Outline], path: str) -> None
             ax.add_patch(Circle(shape[0], shape[1], fill=False, color="cyan", lw=0.8))
         elif kind == "segment":
             ax.plot(*np.transpose(shape), color="cyan", lw=0.8)
+        elif kind == "box":
+            if shape is not None:
+                top, left, bottom, right = shape
+                ax.add_patch(Polygon([(left, top), (right, top), (right, bottom), (left, bottom)], closed=True,
+                                     fill=False, color="magenta", lw=0.8))
         elif shape is not None:
             ax.add_patch(Polygon(shape, closed=True, fill=False, color="cyan" if kind == "brown" else "yellow", lw=0.8))
     fig.savefig(path)
@@ -324,9 +400,11 @@ def save_outlined(image: np.ndarray, outlines: List[Outline], path: str) -> None
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--config", default=os.path.join(PACKAGE, "config", "demo.yaml"))
+    parser.add_argument("--launch", default="sim.launch", choices=sorted(LAUNCH_CONFIGS),
+                        help="the launch file, started with rviz:=true; its view is rviz/<launch>.rviz")
+    parser.add_argument("--config", help="sim.launch's config (default: config/demo.yaml)")
     parser.add_argument("--out", required=True, help="the screenshot (PNG)")
-    parser.add_argument("--settle", type=float, default=3.0, help="simulated seconds before the picture")
+    parser.add_argument("--settle", type=float, default=1.0, help="simulated seconds before the picture")
     parser.add_argument("--timeout", type=float, default=150.0, help="wall seconds for everything")
     args = parser.parse_args()
     start = time.monotonic()
@@ -336,8 +414,12 @@ def main() -> int:
     port = free_port()
     os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
     log = open(stem + "_roslaunch.log", "w")
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", "sim.launch",
-                               f"config:={args.config}", "rviz:=true"], stdout=log, stderr=subprocess.STDOUT)
+    if args.config and args.launch != "sim.launch":
+        parser.error("--config is sim.launch's: the other launch files run their own")
+    config_arg = [f"config:={args.config}"] if args.config else []
+    args.config = args.config or os.path.join(PACKAGE, "config", LAUNCH_CONFIGS[args.launch])
+    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", args.launch, "rviz:=true"] + config_arg,
+                              stdout=log, stderr=subprocess.STDOUT)
     try:
         return run(args, start, stem, launch)
     finally:
@@ -405,9 +487,13 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
             break
         steps = round(0.05 * rate)
 
-    with open(os.path.join(PACKAGE, "rviz", "sim.rviz")) as f:  # the view sim.launch gives rviz
+    view_file = os.path.join(PACKAGE, "rviz", args.launch.replace(".launch", ".rviz"))  # the launch's view
+    with open(view_file) as f:
         manager = yaml.safe_load(f)["Visualization Manager"]
-    camera = pc.Camera.from_rviz(manager["Views"]["Current"], render_window())
+    view = manager["Views"]["Current"]
+    target = view.get("Target Frame", "<Fixed Frame>")
+    camera = pc.Camera.from_rviz(view, render_window(),
+                                 scene.frames[target][1] if target != "<Fixed Frame>" else (0.0, 0.0, 0.0))
     background = [int(v) for v in manager["Global Options"]["Background Color"].split(";")]
     # rviz renders in its own time (software OpenGL on a loaded machine): look again until it is there.
     look_until = time.monotonic() + min(30.0, left())
@@ -425,7 +511,8 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     findings.append(flag(f"rviz: {len(rviz_errors)} ERROR messages on /rosout", not rviz_errors))
     findings.append(flag(f"rviz: {len(rviz_log)} ERROR lines in its log", not rviz_log))
     findings += [flag(f"  {m[:100]}", False) for m in rviz_errors + rviz_log]
-    report = [f"t = {t_connected:.3f} s when rviz had subscribed, {scene.t:.3f} s at the picture; "
+    report = [f"{args.launch}, view {os.path.basename(view_file)}: "
+              f"t = {t_connected:.3f} s when rviz had subscribed, {scene.t:.3f} s at the picture; "
               f"render view {camera.width}x{camera.height}+{camera.left}+{camera.top}; "
               f"{time.monotonic() - start:.1f} s wall"] + [f.line() for f in findings]
     with open(stem + ".txt", "w") as f:
@@ -443,6 +530,14 @@ def control(image: np.ndarray, scene: Scene, camera: pc.Camera, config: Config, 
     passed = [f.what for f in check_picture(empty, scene, camera, config)[0] if f.ok and f.colour != "-"]
     return flag("control: an empty view fails every marker check" +
                 (f" (passed: {', '.join(passed)})" if passed else ""), not passed)
+
+
+class Measure(pc.Finding):
+    """A size in pixels measured on the picture (colour_px), against the least needed (needed_px)."""
+
+    def line(self) -> str:
+        return (f"{'ok  ' if self.ok else 'FAIL'} {self.what:28s} {self.colour:7s} {self.colour_px:6d} px, "
+                f"needed {self.needed_px}")
 
 
 def try_render_window() -> Optional[Tuple[int, int, int, int]]:

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""rod.launch and incline.launch take every argument of sim.launch but config, with the same defaults and docs,
+"""rod.launch and incline.launch take every argument of sim.launch but config, with the same defaults and docs
+(rviz_config: the same doc, its default the wrapper's own rviz/<wrapper>.rviz),
 and every argument of sim.launch and playback.launch has a doc (roslaunch --ros-args shows it). playback.launch's
 player is required (the launch ends with the bag) without rviz or with close_at_end, and only then; start_paused
 passes --pause.
@@ -60,9 +61,11 @@ def main() -> None:
     del sim["config"]
     for wrapper in ("rod.launch", "incline.launch"):
         args = launch_args(os.path.join(launch_dir, wrapper))
-        for name in sorted(set(sim) | set(args)):
-            if args.get(name) != sim.get(name):
-                failures.append(f"{wrapper}: {name} is {args.get(name)}, sim.launch has {sim.get(name)}")
+        own_view = "$(find rigid_body_sim)/rviz/" + wrapper.replace(".launch", ".rviz")
+        expected = dict(sim, rviz_config=(own_view, sim["rviz_config"][1]))
+        for name in sorted(set(expected) | set(args)):
+            if args.get(name) != expected.get(name):
+                failures.append(f"{wrapper}: {name} is {args.get(name)}, expected {expected.get(name)}")
     failures += playback_failures(launch_dir)
     print("\n".join(failures) or "launch files: ok")
     sys.exit(1 if failures else 0)

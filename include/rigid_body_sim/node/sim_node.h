@@ -134,6 +134,7 @@ class SimNode {
   void publishClockLocked();
   // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
   void publishMarkersLocked(const ros::Time& stamp);
+  void publishMarkersNowLocked();
   // The fixed frames on /tf_static (and <ns>/tf_static).
   void publishStaticTransformsLocked();
   // The fixed frames and the latched ~scene.

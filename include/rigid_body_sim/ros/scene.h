@@ -5,7 +5,10 @@
 //   a rod's `<body>_floor` (x along the world x, y up = world z, on the floor z = 0) and a roller's
 //   `<body>_slope` (x down the slope, y normal to it, origin at the top of the slope);
 // - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes world y = 1 + 0.5 j (wider for
-//   large radii): side by side, never overlapping; every slope ends on the floor at its lower end.
+//   large radii): side by side, never overlapping; every slope ends on the floor at its lower end;
+// - a label floats above the highest point its body can reach (a rod's half length), higher in each
+//   further lane, so that the labels of rollers racing side
+//   by side do not cover one another in a view from the side.
 // Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
 // instances publish distinct frames on one /tf.
 //
@@ -38,6 +41,7 @@ struct BodyPlacement {
   Eigen::Isometry3d world_from_frame;
   double slope_length = 0.0;  // m; 0 for a rod's floor
   double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
+  double label_above = 0.0;   // m between the body's top and its label: higher in each further lane
 };
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix = "");
 
