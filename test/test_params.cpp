@@ -39,12 +39,15 @@ TEST(NodeOptions, EveryOptionIsReadAndAMissingOneKeepsItsDefault) {
   params["duration"] = 30.0;
   params["start_delay"] = 2.5;
   params["start_paused"] = true;
+  params["start_on_subscribers"] = true;
   params["end_launch"] = true;
   const NodeOptions options = parseNodeOptions(params);
   EXPECT_FALSE(defaults.start_paused);
   EXPECT_TRUE(options.start_paused);
   EXPECT_FALSE(defaults.end_launch);
   EXPECT_TRUE(options.end_launch);
+  EXPECT_FALSE(defaults.start_on_subscribers);
+  EXPECT_TRUE(options.start_on_subscribers);
   EXPECT_EQ(std::make_tuple(defaults.real_time_factor, defaults.publish_clock, defaults.duration,
                             defaults.start_delay),
             std::make_tuple(1.0, false, 0.0, 0.0));

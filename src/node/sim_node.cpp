@@ -582,13 +582,37 @@ void SimNode::recordLocked(const std::function<void(BagRecorder&)>& write) {
   }
 }
 
+// start_delay wall seconds; with start_on_subscribers only until every state topic and the transforms (/tf,
+// or the namespace's tf) have a subscriber (a recorder that found them), start_delay the most it waits.
+void SimNode::waitForStartLocked(std::unique_lock<std::mutex>& lock) {
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(options_.start_delay));
+  const auto subscribed = [this] {
+    return (tf_publisher_.watched() || namespace_tf_.watched()) &&
+           std::all_of(state_publishers_.begin(), state_publishers_.end(),
+                       [](const CountedPublisher& p) { return p.watched(); });
+  };
+  while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
+    if (options_.start_on_subscribers && subscribed()) return;
+    // Subscriptions arrive on the spinner's thread, which does not wake this one: look again soon.
+    wake_.wait_until(lock,
+                     std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
+  }
+  if (options_.start_on_subscribers && !stopping_ && !subscribed()) {
+    ROS_WARN(
+        "stepping starts after start_delay (%s s) although not every state topic and /tf has a subscriber: "
+        "a recorder misses the first states",
+        formatNumber(options_.start_delay).c_str());
+  }
+}
+
 void SimNode::stepLoop() {
   std::unique_lock<std::mutex> lock(mutex_);
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
   publishClockLocked();
-  wake_.wait_for(lock, std::chrono::duration<double>(options_.start_delay),
-                 [this] { return stopping_.load(); });
+  waitForStartLocked(lock);
   anchorLocked();
   publishSceneLocked();
   session_.sampleNow();  // unless a command published this count

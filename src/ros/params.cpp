@@ -108,6 +108,7 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
   options.publish_clock = boolOption(yaml, names::kPublishClock, options.publish_clock);
   options.duration = numberOption(yaml, names::kDuration, options.duration, {0.0, 1e7});
   options.start_delay = numberOption(yaml, names::kStartDelay, options.start_delay, {0.0, 60.0});
+  options.start_on_subscribers = boolOption(yaml, names::kStartOnSubscribers, options.start_on_subscribers);
   options.start_paused = boolOption(yaml, names::kStartPaused, options.start_paused);
   options.frame_prefix = framePrefixOption(yaml, names::kFramePrefix);
   if (yaml[names::kMarkerRate]) {

@@ -15,6 +15,7 @@ inline constexpr const char* kPublishClock = "publish_clock";
 inline constexpr const char* kDuration = "duration";
 inline constexpr const char* kStartDelay = "start_delay";
 inline constexpr const char* kStartPaused = "start_paused";
+inline constexpr const char* kStartOnSubscribers = "start_on_subscribers";
 inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
@@ -45,7 +46,7 @@ inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
   static const std::vector<std::string> names = {
-      kRealTimeFactor, kPublishClock, kDuration,    kStartDelay, kStartPaused,
+      kRealTimeFactor, kPublishClock, kDuration,    kStartDelay, kStartOnSubscribers, kStartPaused,
       kFramePrefix,    kMarkerRate,   kTrailLength, kBag,        kEndLaunch};
   return names;
 }

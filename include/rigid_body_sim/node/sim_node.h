@@ -142,6 +142,7 @@ class SimNode {
   // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
   // the scene are sent again. Trails go on by body name.
   void rebuildSceneLocked();
+  void waitForStartLocked(std::unique_lock<std::mutex>& lock);
   // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
   // line (kRecordingFailedStatus), never the process.
   void recordLocked(const std::function<void(BagRecorder&)>& write);

@@ -20,6 +20,7 @@ struct NodeOptions {
   bool publish_clock = false;         // publish /clock (simulated time) for use_sim_time users
   double duration = 0.0;              // simulated seconds before the node shuts down; 0 = run until stopped
   double start_delay = 0.0;           // wall seconds before stepping starts (lets a recorder subscribe first)
+  bool start_on_subscribers = false;  // start before start_delay once every state topic and /tf is subscribed
   bool start_paused = false;          // publish the first state, then wait for ~unpause or ~step
   std::string frame_prefix;           // in front of every frame published but world_frame ("left/": left/rod)
   std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
