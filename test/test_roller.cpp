@@ -6,6 +6,7 @@
 // O(dt) integration error (~1e-3) or a wrong constant would fail it by many orders of magnitude.
 // "Relative" is measured against the largest magnitude the quantity has had so far, because rounding
 // errors scale with that and a pure relative error is meaningless where a quantity crosses zero.
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/roller.h"
 
 #include <gtest/gtest.h>
@@ -307,6 +308,22 @@ TEST(RollerCritical, RollsJustBelowAndSlipsJustAbove) {
       ASSERT_EQ(st.mode, RollMode::Slipping) << "t = " << st.t;
       ASSERT_GT(st.u, 0.0) << "t = " << st.t;
     }
+  }
+}
+
+// The critical angle against the text's table, tan(phi_c) = mu_s (1 + c) / c, and against physics.md's
+// degrees for mu_s = 0.2 (35.0, 31.0, 21.8, 26.6 and, for c = 1/4, atan(1.0) = 45).
+TEST(RollerCritical, AngleIsTheClosedForm) {
+  const std::vector<double> degrees_at_02 = {35.0, 31.0, 21.8, 26.6, 45.0};
+  for (std::size_t i = 0; i < shapeCases().size(); ++i) {
+    const ShapeCase& sc = shapeCases()[i];
+    SCOPED_TRACE(toString(sc.shape));
+    const double c = sc.shape == Shape::Custom ? sc.c : inertiaFactorOf(sc.shape);
+    for (const double mu_s : {0.05, 0.2, 0.3, 1.0}) {
+      EXPECT_DOUBLE_EQ(criticalTangent(mu_s, c), sc.critical_factor * mu_s);
+      EXPECT_DOUBLE_EQ(criticalAngle(mu_s, c), std::atan(sc.critical_factor * mu_s));
+    }
+    EXPECT_NEAR(criticalAngle(0.2, c) * 180.0 / kPi, degrees_at_02[i], 0.05);
   }
 }
 

@@ -47,9 +47,16 @@ std::optional<Shape> shapeFromString(const std::string& name) {
 
 std::string toString(RollMode mode) { return mode == RollMode::Rolling ? "rolling" : "slipping"; }
 
+double criticalTangent(double mu_s, double inertia_factor) {
+  return mu_s * (1.0 + inertia_factor) / inertia_factor;
+}
+
+double criticalAngle(double mu_s, double inertia_factor) {
+  return std::atan(criticalTangent(mu_s, inertia_factor));
+}
+
 bool Roller::canRoll(const RollerParams& params) {
-  const double c = params.inertia_factor;
-  return std::tan(params.incline_angle) <= params.mu_s * (1.0 + c) / c;
+  return std::tan(params.incline_angle) <= criticalTangent(params.mu_s, params.inertia_factor);
 }
 
 Roller::Roller(const RollerParams& params, const RollerInitial& initial)

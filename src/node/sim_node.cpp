@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <rosgraph_msgs/Clock.h>
+#include <std_msgs/Bool.h>
 
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/config_writer.h"
@@ -153,6 +154,8 @@ void SimNode::advertise() {
   }
   command_publisher_ =
       private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
+  paused_publisher_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
+  publishPaused(paused_);
   for (const auto& body : world().bodies()) advertiseState(body);
   services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
   services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
@@ -420,13 +423,21 @@ bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   std::lock_guard<std::mutex> lock(mutex_);
   paused_ = true;
+  publishPaused(true);
   return true;
+}
+
+void SimNode::publishPaused(bool paused) {
+  std_msgs::Bool message;
+  message.data = paused;
+  paused_publisher_.publish(message);
 }
 
 bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     paused_ = false;
+    publishPaused(false);
     anchorLocked();
   }
   wake_.notify_all();

@@ -8,6 +8,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
+#include <QFontMetrics>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLineEdit>
@@ -17,21 +18,26 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/call_queue.h"
+#include "rigid_body_sim/rviz/focus_wheel.h"
 
 namespace rigid_body_sim {
 
 namespace {
 
 constexpr int kSliderTicks = 1000;
+constexpr int kNumberChars = 8;  // a number box is at least this many digits wide
 const char* const kNoteStyle = "color: palette(mid);";
 
 // A spin box for any double: shows the shortest text that reads back the same number, takes any number
-// typed (1e-3 included), and reports a value only when the edit is done (Enter, focus out, arrows).
-class NumberBox : public QDoubleSpinBox {
+// typed (1e-3 included), and reports a value only when the edit is done (Enter, focus out, arrows, the wheel
+// once it has focus).
+class NumberBox : public FocusWheel<QDoubleSpinBox> {
  public:
-  explicit NumberBox(QWidget* parent) : QDoubleSpinBox(parent) {
+  explicit NumberBox(QWidget* parent) : FocusWheel<QDoubleSpinBox>(parent) {
     setDecimals(std::numeric_limits<double>::max_exponent10);  // no rounding of what is typed
     setKeyboardTracking(false);
     setAccelerated(true);
@@ -65,6 +71,20 @@ std::vector<std::pair<std::string, std::string>> enumConstants(const std::string
   return constants;
 }
 
+// The unit a key's .cfg description names, written "(unit)": letters, and '/' between them (N/m, rad/s).
+// Empty for a pure number (mu_s; "(M R^2)" is a formula, not a unit).
+QString unitOf(const std::string& description) {
+  static const std::regex unit(R"(\(([A-Za-z]+(?:/[A-Za-z]+)*)\))");
+  std::smatch found;
+  return std::regex_search(description, found, unit) ? QString::fromStdString(found[1]) : QString();
+}
+
+// A change accepted while the node is paused: no state comes to show it until the next Step or Run.
+QString pausedNote(const std::string& key, const QString& value) {
+  return QString("paused: %1 = %2 is set; the mode and energy above follow it at the next Step or Run")
+      .arg(QString::fromStdString(key), value);
+}
+
 QString valueText(const dynamic_reconfigure::Config& config, const std::string& key) {
   if (const auto* p = parameterNamed(config.doubles, key)) return numberText(p->value);
   if (const auto* p = parameterNamed(config.ints, key)) return QString::number(p->value);
@@ -76,6 +96,10 @@ QString valueText(const dynamic_reconfigure::Config& config, const std::string& 
 }  // namespace
 
 QString numberText(double value) { return QString::fromStdString(formatNumber(value)); }
+
+QString degreesText(double radians, int decimals) {
+  return QString("%1").arg(radians * 180.0 / kPi, 0, 'f', decimals) + QChar(0x00B0);
+}
 
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
                          CallQueue& calls, std::function<void(double)> on_time,
@@ -92,6 +116,7 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
   auto* top = new QHBoxLayout();
   motion_ = new QLabel("waiting for its state", this);
   motion_->setObjectName(QString::fromStdString(name + ".motion"));
+  motion_->setWordWrap(true);
   top->addWidget(motion_, 1);
   auto* remove = new QPushButton("Delete", this);
   remove->setObjectName(QString::fromStdString(name + ".delete"));
@@ -100,6 +125,12 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
   holdIfReadOnly(remove);
   top->addWidget(remove);
   layout->addLayout(top);
+  critical_ = new QLabel(this);
+  critical_->setObjectName(QString::fromStdString(name + ".critical"));
+  critical_->setToolTip("rolling holds while tan(slope) <= mu_s (1 + c) / c, with c = I / (M R^2)");
+  critical_->setWordWrap(true);
+  critical_->hide();
+  layout->addWidget(critical_);
   form_ = new QFormLayout();
   form_->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
   layout->addLayout(form_);
@@ -155,134 +186,25 @@ void BodySection::build(const dynamic_reconfigure::ConfigDescription& descriptio
   showValues(values_);
 }
 
-// One key: an enum as a combo box, a number as a spin box (and a slider when its .cfg gives it a finite
-// range), a bool as a check box, other text as a line. Its tool tip is the .cfg's description.
+// One key: an enum as a combo box, a number as a spin box with its unit (and a slider when its .cfg gives it
+// a finite range), a bool as a check box, other text as a line. Its tool tip is the .cfg's description.
 void BodySection::addField(const dynamic_reconfigure::ParamDescription& param, double min, double max) {
-  const std::string key = param.name;
-  const QString object = QString::fromStdString(name_ + "." + key);
-  QWidget* widget = nullptr;
+  const std::string& key = param.name;
   Field field{param.type, {}};
+  QWidget* widget = nullptr;
   const auto constants = enumConstants(param.edit_method);
   if (!constants.empty()) {
-    auto* box = new QComboBox(this);
-    for (const auto& [label, value] : constants)
-      box->addItem(QString::fromStdString(label), QString::fromStdString(value));
-    field.show = [box, key](const dynamic_reconfigure::Config& c) {
-      const int index = box->findData(valueText(c, key));
-      QSignalBlocker block(box);
-      box->setCurrentIndex(index);
-    };
-    connect(box, QOverload<int>::of(&QComboBox::activated), this,
-            [this, box, key, type = param.type](int index) {
-              const std::string value = box->itemData(index).toString().toStdString();
-              dynamic_reconfigure::Config asked;
-              if (type == "str") {
-                asked.strs.resize(1);
-                asked.strs[0].name = key;
-                asked.strs[0].value = value;
-              } else if (type == "int") {
-                asked.ints.resize(1);
-                asked.ints[0].name = key;
-                asked.ints[0].value = std::stoi(value);
-              } else {
-                asked.doubles.resize(1);
-                asked.doubles[0].name = key;
-                asked.doubles[0].value = std::stod(value);
-              }
-              request(asked, key, QString::fromStdString(value));
-            });
-    widget = box;
+    widget = enumField(key, param.type, constants, field);
   } else if (param.type == "double") {
-    auto* row = new QWidget(this);
-    row->setObjectName(object + ".row");  // its spin box has the key's name
-    auto* row_layout = new QHBoxLayout(row);
-    row_layout->setContentsMargins(0, 0, 0, 0);
-    auto* box = new NumberBox(row);
-    box->setObjectName(object);
-    const bool bounded = std::isfinite(min) && std::isfinite(max) && max > min;
-    box->setRange(bounded ? min : std::numeric_limits<double>::lowest(),
-                  bounded ? max : std::numeric_limits<double>::max());
-    row_layout->addWidget(box, 1);
-    QSlider* slider = nullptr;
-    if (bounded) {
-      slider = new QSlider(Qt::Horizontal, row);
-      slider->setRange(0, kSliderTicks);
-      slider->setTracking(false);
-      row_layout->addWidget(slider, 1);
-      connect(slider, &QSlider::valueChanged, box, [box, min, max](int tick) {
-        box->setValue(min + (max - min) * tick / kSliderTicks);  // the box sends it
-      });
-    }
-    field.show = [box, slider, key, min, max](const dynamic_reconfigure::Config& c) {
-      const auto* p = parameterNamed(c.doubles, key);
-      if (!p) return;
-      QSignalBlocker block(box);
-      box->setValue(p->value);
-      box->setSingleStep(p->value != 0 ? std::pow(10.0, std::floor(std::log10(std::abs(p->value)))) / 10
-                                       : 0.1);
-      if (slider) {
-        QSignalBlocker block_slider(slider);
-        slider->setValue(static_cast<int>(std::lround((p->value - min) / (max - min) * kSliderTicks)));
-      }
-    };
-    connect(box, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, key](double value) {
-      dynamic_reconfigure::Config asked;
-      asked.doubles.resize(1);
-      asked.doubles[0].name = key;
-      asked.doubles[0].value = value;
-      request(asked, key, numberText(value));
-    });
-    widget = row;
+    widget = numberField(param, min, max, field);
   } else if (param.type == "int") {
-    auto* box = new QSpinBox(this);
-    box->setKeyboardTracking(false);
-    box->setRange(std::isfinite(min) ? static_cast<int>(min) : std::numeric_limits<int>::min(),
-                  std::isfinite(max) ? static_cast<int>(max) : std::numeric_limits<int>::max());
-    field.show = [box, key](const dynamic_reconfigure::Config& c) {
-      if (const auto* p = parameterNamed(c.ints, key)) {
-        QSignalBlocker block(box);
-        box->setValue(p->value);
-      }
-    };
-    connect(box, QOverload<int>::of(&QSpinBox::valueChanged), this, [this, key](int value) {
-      dynamic_reconfigure::Config asked;
-      asked.ints.resize(1);
-      asked.ints[0].name = key;
-      asked.ints[0].value = value;
-      request(asked, key, QString::number(value));
-    });
-    widget = box;
+    widget = intField(key, min, max, field);
   } else if (param.type == "bool") {
-    auto* box = new QCheckBox(this);
-    field.show = [box, key](const dynamic_reconfigure::Config& c) {
-      if (const auto* p = parameterNamed(c.bools, key)) {
-        QSignalBlocker block(box);
-        box->setChecked(p->value);
-      }
-    };
-    connect(box, &QCheckBox::toggled, this, [this, key](bool value) {
-      dynamic_reconfigure::Config asked;
-      asked.bools.resize(1);
-      asked.bools[0].name = key;
-      asked.bools[0].value = value;
-      request(asked, key, value ? "true" : "false");
-    });
-    widget = box;
+    widget = boolField(key, field);
   } else {
-    auto* line = new QLineEdit(this);
-    field.show = [line, key](const dynamic_reconfigure::Config& c) {
-      if (const auto* p = parameterNamed(c.strs, key)) line->setText(QString::fromStdString(p->value));
-    };
-    connect(line, &QLineEdit::editingFinished, this, [this, line, key] {
-      dynamic_reconfigure::Config asked;
-      asked.strs.resize(1);
-      asked.strs[0].name = key;
-      asked.strs[0].value = line->text().toStdString();
-      request(asked, key, line->text());
-    });
-    widget = line;
+    widget = textField(key, field);
   }
-  if (widget->objectName().isEmpty()) widget->setObjectName(object);
+  if (widget->objectName().isEmpty()) widget->setObjectName(QString::fromStdString(name_ + "." + key));
   widget->setToolTip(QString::fromStdString(param.description));
   holdIfReadOnly(widget);
   for (auto* child : widget->findChildren<QWidget*>()) holdIfReadOnly(child);  // a number's box and slider
@@ -293,6 +215,161 @@ void BodySection::addField(const dynamic_reconfigure::ParamDescription& param, d
   order_.push_back(key);
 }
 
+QWidget* BodySection::enumField(const std::string& key, const std::string& type,
+                                const std::vector<std::pair<std::string, std::string>>& constants,
+                                Field& field) {
+  auto* box = new FocusWheel<QComboBox>(this);
+  for (const auto& [label, value] : constants)
+    box->addItem(QString::fromStdString(label), QString::fromStdString(value));
+  field.show = [box, key](const dynamic_reconfigure::Config& c) {
+    const int index = box->findData(valueText(c, key));
+    QSignalBlocker block(box);
+    box->setCurrentIndex(index);
+  };
+  connect(box, QOverload<int>::of(&QComboBox::activated), this, [this, box, key, type](int index) {
+    const std::string value = box->itemData(index).toString().toStdString();
+    dynamic_reconfigure::Config asked;
+    if (type == "str") {
+      asked.strs.resize(1);
+      asked.strs[0].name = key;
+      asked.strs[0].value = value;
+    } else if (type == "int") {
+      asked.ints.resize(1);
+      asked.ints[0].name = key;
+      asked.ints[0].value = std::stoi(value);
+    } else {
+      asked.doubles.resize(1);
+      asked.doubles[0].name = key;
+      asked.doubles[0].value = std::stod(value);
+    }
+    request(asked, key, QString::fromStdString(value));
+  });
+  return box;
+}
+
+// A row named <body>.<key>.row: the spin box (named <body>.<key>), a slider for a finite range, the unit
+// (<body>.<key>.unit) and, for an angle, the value in degrees (<body>.<key>.degrees).
+QWidget* BodySection::numberField(const dynamic_reconfigure::ParamDescription& param, double min, double max,
+                                  Field& field) {
+  const std::string key = param.name;
+  const QString object = QString::fromStdString(name_ + "." + key);
+  auto* row = new QWidget(this);
+  row->setObjectName(object + ".row");
+  auto* row_layout = new QHBoxLayout(row);
+  row_layout->setContentsMargins(0, 0, 0, 0);
+  auto* box = new NumberBox(row);
+  box->setObjectName(object);
+  // Narrower than its range's text (-1.7976931348623157e+308) would make it: the row, its unit included,
+  // fits the panel; a longer number scrolls inside the box.
+  box->setMinimumWidth(box->fontMetrics().horizontalAdvance(QString(kNumberChars, '0')));
+  const bool bounded = std::isfinite(min) && std::isfinite(max) && max > min;
+  box->setRange(bounded ? min : std::numeric_limits<double>::lowest(),
+                bounded ? max : std::numeric_limits<double>::max());
+  row_layout->addWidget(box, 1);
+  QSlider* slider = nullptr;
+  if (bounded) {
+    slider = new FocusWheel<QSlider>(Qt::Horizontal, row);
+    slider->setRange(0, kSliderTicks);
+    slider->setTracking(false);
+    row_layout->addWidget(slider, 1);
+    connect(slider, &QSlider::valueChanged, box, [box, min, max](int tick) {
+      box->setValue(min + (max - min) * tick / kSliderTicks);  // the box sends it
+    });
+  }
+  field.show = [box, slider, key, min, max](const dynamic_reconfigure::Config& c) {
+    const auto* p = parameterNamed(c.doubles, key);
+    if (!p) return;
+    QSignalBlocker block(box);
+    box->setValue(p->value);
+    box->setSingleStep(p->value != 0 ? std::pow(10.0, std::floor(std::log10(std::abs(p->value)))) / 10 : 0.1);
+    if (slider) {
+      QSignalBlocker block_slider(slider);
+      slider->setValue(static_cast<int>(std::lround((p->value - min) / (max - min) * kSliderTicks)));
+    }
+  };
+  addUnit(row, object, unitOf(param.description), key, field);
+  connect(box, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, key](double value) {
+    dynamic_reconfigure::Config asked;
+    asked.doubles.resize(1);
+    asked.doubles[0].name = key;
+    asked.doubles[0].value = value;
+    request(asked, key, numberText(value));
+  });
+  return row;
+}
+
+// The unit after a number's box, and for an angle (rad) the value in degrees, kept with the value shown.
+void BodySection::addUnit(QWidget* row, const QString& object, const QString& unit, const std::string& key,
+                          Field& field) {
+  if (unit.isEmpty()) return;  // a pure number
+  auto* unit_label = new QLabel(unit, row);
+  unit_label->setObjectName(object + ".unit");
+  row->layout()->addWidget(unit_label);
+  if (unit != "rad") return;
+  auto* degrees = new QLabel(row);
+  degrees->setObjectName(object + ".degrees");
+  degrees->setToolTip("the same angle in degrees");
+  row->layout()->addWidget(degrees);
+  field.show = [show = std::move(field.show), degrees, key](const dynamic_reconfigure::Config& c) {
+    show(c);
+    if (const auto* p = parameterNamed(c.doubles, key)) degrees->setText(degreesText(p->value, 2));
+  };
+}
+
+QWidget* BodySection::intField(const std::string& key, double min, double max, Field& field) {
+  auto* box = new FocusWheel<QSpinBox>(this);
+  box->setKeyboardTracking(false);
+  box->setRange(std::isfinite(min) ? static_cast<int>(min) : std::numeric_limits<int>::min(),
+                std::isfinite(max) ? static_cast<int>(max) : std::numeric_limits<int>::max());
+  field.show = [box, key](const dynamic_reconfigure::Config& c) {
+    if (const auto* p = parameterNamed(c.ints, key)) {
+      QSignalBlocker block(box);
+      box->setValue(p->value);
+    }
+  };
+  connect(box, QOverload<int>::of(&QSpinBox::valueChanged), this, [this, key](int value) {
+    dynamic_reconfigure::Config asked;
+    asked.ints.resize(1);
+    asked.ints[0].name = key;
+    asked.ints[0].value = value;
+    request(asked, key, QString::number(value));
+  });
+  return box;
+}
+
+QWidget* BodySection::boolField(const std::string& key, Field& field) {
+  auto* box = new QCheckBox(this);
+  field.show = [box, key](const dynamic_reconfigure::Config& c) {
+    if (const auto* p = parameterNamed(c.bools, key)) {
+      QSignalBlocker block(box);
+      box->setChecked(p->value);
+    }
+  };
+  connect(box, &QCheckBox::toggled, this, [this, key](bool value) {
+    dynamic_reconfigure::Config asked;
+    asked.bools.resize(1);
+    asked.bools[0].name = key;
+    asked.bools[0].value = value;
+    request(asked, key, value ? "true" : "false");
+  });
+  return box;
+}
+
+QWidget* BodySection::textField(const std::string& key, Field& field) {
+  auto* line = new QLineEdit(this);
+  field.show = [line, key](const dynamic_reconfigure::Config& c) {
+    if (const auto* p = parameterNamed(c.strs, key)) line->setText(QString::fromStdString(p->value));
+  };
+  connect(line, &QLineEdit::editingFinished, this, [this, line, key] {
+    dynamic_reconfigure::Config asked;
+    asked.strs.resize(1);
+    asked.strs[0].name = key;
+    asked.strs[0].value = line->text().toStdString();
+    request(asked, key, line->text());
+  });
+  return line;
+}
+
 void BodySection::holdIfReadOnly(QWidget* widget) {
   if (read_only_.isEmpty()) return;
   widget->setEnabled(false);
@@ -301,6 +378,29 @@ void BodySection::holdIfReadOnly(QWidget* widget) {
 
 void BodySection::showValues(const dynamic_reconfigure::Config& values) {
   for (auto& [key, field] : fields_) field.show(values);
+  showCritical(values);
+}
+
+void BodySection::setPaused(bool paused) { paused_ = paused; }
+
+// A roller's critical angle for its mu_s and c (the core's), and whether its slope lets it roll.
+void BodySection::showCritical(const dynamic_reconfigure::Config& values) {
+  const auto* mu_s = parameterNamed(values.doubles, "mu_s");
+  const auto* c = parameterNamed(values.doubles, "inertia_factor");
+  const auto* slope = parameterNamed(values.doubles, "incline_angle");
+  critical_->setVisible(mu_s && c && slope);
+  if (!mu_s || !c || !slope) return;
+  RollerParams params;
+  params.mu_s = mu_s->value;
+  params.inertia_factor = c->value;
+  params.incline_angle = slope->value;
+  const QString head = QString("critical angle %1 for %2s %3: ")
+                           .arg(degreesText(criticalAngle(params.mu_s, params.inertia_factor), 1))
+                           .arg(QChar(0x03BC))
+                           .arg(numberText(params.mu_s));
+  const QString at = degreesText(params.incline_angle, 1);
+  critical_->setText(head + (Roller::canRoll(params) ? "can roll without slipping (slope " + at + ")"
+                                                     : "slips (slope " + at + " above it)"));
 }
 
 // Sends one key to the server. Its answer is what runs: shown at once, so that a refused value snaps back;
@@ -334,7 +434,8 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
         showValues(values_);
         const QString now = valueText(values_, key);
         if (now == asked_text) {
-          showMessage("", false);
+          pending_note_ = paused_;
+          showMessage(paused_ ? pausedNote(key, now) : QString(), false);
         } else if (!node_line_shown_) {
           showMessage(QString("refused %1 = %2: snapped back to %3")
                           .arg(QString::fromStdString(key), asked_text, now),
@@ -346,7 +447,8 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
 void BodySection::onRodState(const RodState& state) {
   // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values;
   // a replay has no server: the energy alone).
-  const QString energy = QString("E = %1 J").arg(state.energy, 0, 'f', 3);
+  const QString energy =
+      QString("E = %1 J (potential 0 with its centre at floor level)").arg(state.energy, 0, 'f', 3);
   const auto* length = parameterNamed(values_.doubles, "length");
   if (length) {
     const double lowest_end = state.y - 0.5 * length->value * std::abs(std::sin(state.theta));
@@ -354,12 +456,22 @@ void BodySection::onRodState(const RodState& state) {
   } else {
     motion_->setText(energy);
   }
+  clearPendingNote();
   on_time_(state.t);
 }
 
+// A state after a change made while paused: the mode and energy now show it.
+void BodySection::clearPendingNote() {
+  if (!pending_note_) return;
+  pending_note_ = false;
+  showMessage("", false);
+}
+
 void BodySection::onRollerState(const RollerState& state) {
-  motion_->setText(
-      QString("%1 · E = %2 J").arg(QString::fromStdString(state.mode)).arg(state.energy, 0, 'f', 3));
+  motion_->setText(QString("%1 · E = %2 J (potential 0 with its centre at the slope's top)")
+                       .arg(QString::fromStdString(state.mode))
+                       .arg(state.energy, 0, 'f', 3));
+  clearPendingNote();
   on_time_(state.t);
 }
 

@@ -10,7 +10,9 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScrollBar>
 
+#include <std_msgs/Bool.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/SetBool.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -20,6 +22,7 @@
 #include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/body_section.h"
+#include "rigid_body_sim/rviz/focus_wheel.h"
 
 namespace rigid_body_sim {
 
@@ -82,7 +85,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   pause_ = button("Pause", "pause", kPauseTip, this);
   run_ = button("Run", "run", kRunTip, this);
   auto* step_button = button("Step", "step", "pauses, then ~step: this many physics steps", this);
-  step_count_ = new QSpinBox(this);
+  step_count_ = new FocusWheel<QSpinBox>(this);
   step_count_->setObjectName("step_count");
   step_count_->setRange(1, 1000000);
   step_count_->setValue(20);
@@ -103,7 +106,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   spawn_name_->setObjectName("spawn_name");
   spawn_name_->setPlaceholderText("new body's name");
   spawn_name_->setToolTip("the name of the body Spawn adds: its TF frame and topics");
-  spawn_kind_ = new QComboBox(this);
+  spawn_kind_ = new FocusWheel<QComboBox>(this);
   spawn_kind_->setObjectName("spawn_kind");
   spawn_kind_->addItem("rod");
   for (const Shape shape : namedShapes()) spawn_kind_->addItem(QString::fromStdString(toString(shape)));
@@ -151,6 +154,7 @@ SimPanel::~SimPanel() = default;
 void SimPanel::onInitialize() {
   ns_ = ros::names::resolve(node_);
   log_subscriber_ = ros::NodeHandle().subscribe("/rosout", 100, &SimPanel::onLog, this);
+  followPaused();
   discover_timer_.start(kDiscoverMs);
   clock_timer_.start(kClockMs);
   discover();
@@ -176,6 +180,7 @@ void SimPanel::setNode(const std::string& node) {
   ns_ = ros::names::resolve(node_);
   node_edit_->setText(QString::fromStdString(node_));
   follow({});
+  if (log_subscriber_) followPaused();  // initialized
   Q_EMIT configChanged();
 }
 
@@ -280,6 +285,7 @@ void SimPanel::follow(const std::map<std::string, std::string>& bodies) {
       auto* section = new BodySection(
           name, ns_ + "/" + name, type, *calls_, [this](double t) { onTime(t); },
           [this, name = name] { remove(name); }, source_ == Source::Node ? QString() : kRecordingFixed);
+      section->setPaused(node_paused_);
       sections_layout_->insertWidget(index, section);
       sections_[name] = section;
     }
@@ -380,6 +386,20 @@ void SimPanel::callChange(const std::string& service, Service srv, const std::st
       });
 }
 
+// The node's latched ~paused. When it goes on, the real-time factor is measured from then: the node takes up
+// wall-clock pace from its latest t.
+void SimPanel::followPaused() {
+  setPaused(false);
+  paused_subscriber_ = ros::NodeHandle().subscribe<std_msgs::Bool>(
+      ns_ + "/paused", 1, [this](const std_msgs::Bool::ConstPtr& paused) { setPaused(paused->data); });
+}
+
+void SimPanel::setPaused(bool paused) {
+  if (node_paused_ && !paused && !times_.empty()) times_ = {{wallNow(), times_.back().second}};
+  node_paused_ = paused;
+  for (auto& [name, section] : sections_) section->setPaused(paused);
+}
+
 void SimPanel::onTime(double t) {
   const double now = wallNow();
   if (!times_.empty() && times_.back().first == now) return;
@@ -388,8 +408,8 @@ void SimPanel::onTime(double t) {
   if (replay_paused_at_ >= 0 && now > replay_paused_at_ + kStoppedAfter) replay_paused_at_ = -1;  // resumed
 }
 
-// t, and the simulated seconds per wall second over the last kFactorWindow; "stopped" once no state has
-// come for kStoppedAfter (paused, or the node is gone).
+// t, and the simulated seconds per wall second over the last kFactorWindow; "paused" while the node says so
+// (~paused), "stopped" once no state has come for kStoppedAfter (the node is gone, or a replay stands).
 void SimPanel::showClock() {
   const double now = wallNow();
   while (times_.size() > 1 && times_[1].first < now - kFactorWindow) times_.pop_front();
@@ -402,11 +422,12 @@ void SimPanel::showClock() {
   clock_->setText(QString("t = %1 s   ").arg(times_.back().second, 0, 'f', 3) + clockState(now));
 }
 
-// A replay paused from the panel says so (states already on their way may still come); "stopped" once no
-// state has come for kStoppedAfter; otherwise the real-time factor.
+// A replay paused from the panel says so (states already on their way may still come), and so does a paused
+// node; "stopped" once no state has come for kStoppedAfter; otherwise the real-time factor.
 QString SimPanel::clockState(double now) const {
   if (source_ == Source::Ended) return "end of recording";
   if (source_ == Source::Replay && replay_paused_at_ >= 0) return "paused";
+  if (source_ == Source::Node && node_paused_) return "paused";  // ~step's states give no factor
   if (now - times_.back().first > kStoppedAfter) return "stopped";
   const double span = now - times_.front().first;
   const double factor = span > 0 ? (times_.back().second - times_.front().second) / span : 0.0;
@@ -430,7 +451,8 @@ void SimPanel::showStatus(const QString& text, bool refusal) {
 }
 
 // With RBS_PANEL_LAYOUT set: each named widget's visible part on the screen and its text, one per line
-// ("name x y width height enabled text"; width and height 0 when scrolled out of sight, enabled 1 or 0),
+// ("name x y width height enabled text"; width and height 0 when scrolled out of sight, enabled 1 or 0; the
+// text of a scroll area, the sections, is its vertical scroll position and how far it scrolls sideways),
 // rewritten when something changed. The GUI tests (test/pictures/rviz_panel.py, rviz_playback.py) click and
 // read by it.
 void SimPanel::writeLayout() {
@@ -445,6 +467,10 @@ void SimPanel::writeLayout() {
     if (auto* spin = qobject_cast<QAbstractSpinBox*>(w)) text = spin->text();
     if (auto* box = qobject_cast<QComboBox*>(w)) text = box->currentText();
     if (auto* line = qobject_cast<QLineEdit*>(w)) text = line->text();
+    if (auto* area = qobject_cast<QAbstractScrollArea*>(w))
+      text = QString("%1 %2")
+                 .arg(area->verticalScrollBar()->value())
+                 .arg(area->horizontalScrollBar()->maximum());
     out << w->objectName().toStdString() << ' ' << at.x() << ' ' << at.y() << ' ' << shown.width() << ' '
         << shown.height() << ' ' << (w->isEnabled() ? 1 : 0) << ' ' << text.simplified().toStdString()
         << '\n';

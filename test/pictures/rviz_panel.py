@@ -2,12 +2,18 @@
 """The Simulation panel (rigid_body_sim/SimPanel) in a real rviz, driven with xdotool: sim.launch with
 rviz/sim.rviz on config/demo.yaml, under Xvfb (test/pictures/rviz_screenshot.sh with RVIZ_SCRIPT=rviz_panel.py).
 - rviz loads the panel with no plugin error, and it shows a section for every body;
-- Pause stops simulated time (~step now succeeds; no later state; the panel's clock says stopped); Run
-  starts it again;
+- every number shows its unit (sim_tools.KEY_UNITS), an angle also in degrees (radians * 180 / pi); a
+  roller's section its critical angle atan(mu_s (1 + c) / c) and whether its slope is above it;
+- Pause stops simulated time (~step now succeeds; no later state; the node's ~paused says so and the panel's
+  clock says paused); Run starts it again and the clock gives the real-time factor;
 - Reset, a rod k typed into the rod's section and Step with a typed count: the server shows k, and the rod
   after the steps is, field for field, simulate's rod (config/demo.yaml's rod with that k) at that time;
 - a refused k (-5) snaps back to the value that runs, the node logs one WARN line, and the panel shows the
-  refusal (its words in the panel's text, its colour in the picture);
+  refusal (its words in the panel's text, its colour in the picture); a change accepted while paused says
+  it shows at the next Step or Run, until it does; after Step the clock says paused (no real-time factor
+  from a ~step's states), and each energy shown is the documented formula with its zero, from the state;
+- the mouse wheel over a field without focus scrolls the sections (their scroll position) and changes
+  nothing: the field, the node's world and its servers keep the value;
 - Spawn with a typed name and a chosen shape adds that body to the node's world (~get_config) and its
   section to the panel; a spawn under a taken name is refused and adds nothing; the new body's Delete
   takes it out of the world and its section out of the panel.
@@ -15,7 +21,9 @@ Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every c
 writes OUT (a screenshot at the end) and OUT's stem + ".txt" (the findings)."""
 import argparse
 import csv
+import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -30,11 +38,15 @@ import rviz_screenshot as shot
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import free_port, load_config, state_fields, wait_for  # noqa: E402
+from sim_tools import KEY_UNITS, body_type, free_port, load_config, state_fields, wait_for  # noqa: E402
 
 REFUSAL_COLOUR = (230, 90, 60)  # the panel's refusal text (kRefusalStyle, body_section.h)
 TYPED_K = 2000.0
 STEPS = 1500  # 1.5 s: the rod reaches the floor, and k matters
+SHAPE_C = {"sphere": 2 / 5, "cylinder": 1 / 2, "ring": 1.0, "spherical_shell": 2 / 3}  # the text's I / (M R^2)
+PAUSED_NOTE = "the mode and energy above follow it at the next Step or Run"
+ROD_ZERO = "(potential 0 with its centre at floor level)"
+ROLLER_ZERO = "(potential 0 with its centre at the slope's top)"
 Widget = Tuple[int, int, int, int, str]  # x, y, width, height (the part in sight), text
 
 
@@ -48,7 +60,7 @@ class Panel:
         """Each widget's line: name, x, y, width, height, enabled (1 or 0), text."""
         found: Dict[str, List[str]] = {}
         try:
-            with open(self.layout_file) as f:
+            with open(self.layout_file, encoding="utf-8") as f:
                 for line in f:
                     parts = line.rstrip("\n").split(" ", 6)
                     if len(parts) >= 6:
@@ -168,7 +180,8 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     import rosgraph
     import rospy
     from dynamic_reconfigure.msg import Config as ReconfigureConfig
-    from rigid_body_sim.msg import RodState
+    from rigid_body_sim.msg import RodState, RollerState
+    from std_msgs.msg import Bool
     from rigid_body_sim.srv import GetConfig, Step
     from rosgraph_msgs.msg import Log
 
@@ -187,7 +200,15 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     rods: List[Any] = []
     server_k: List[float] = []
     warnings: List[str] = []
+    bowlers: List[Any] = []  # the roller whose energy has every term: launched spinning, off the slope's top
+    paused_topic: List[bool] = []
+    updates: Dict[str, int] = {name: 0 for name in config["bodies"]}  # parameter_updates per body
     rospy.Subscriber("/sim/rod/state", RodState, rods.append, queue_size=1000)
+    rospy.Subscriber("/sim/bowler/state", RollerState, bowlers.append, queue_size=1000)
+    rospy.Subscriber("/sim/paused", Bool, lambda m: paused_topic.append(m.data), queue_size=10)
+    for name in config["bodies"]:
+        rospy.Subscriber(f"/sim/{name}/parameter_updates", ReconfigureConfig,
+                         lambda _, name=name: updates.__setitem__(name, updates[name] + 1), queue_size=10)
     rospy.Subscriber("/sim/rod/parameter_updates", ReconfigureConfig,
                      lambda c: server_k.extend(p.value for p in c.doubles if p.name == "k"), queue_size=10)
     rospy.Subscriber("/rosout", Log, lambda m: warnings.append(m.msg)
@@ -207,6 +228,16 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check(f"rviz loads the panel: no ERROR line in its log ({len(errors)})", not errors)
     for line in errors:
         findings.check(f"  {line[:100]}", False)
+    wait("every number's field", lambda: all(f"{name}.{key}" in panel.widgets() for name in config["bodies"]
+                                             for key in KEY_UNITS[body_type(config, name)]))
+    check_units(panel.widgets(), config, findings)
+    sideways = panel.text("sections").split()[-1]
+    findings.check(f"  the sections fit the panel's width, units in sight (sideways scroll: {sideways})",
+                   sideways == "0")
+    for name, body in world_bodies().items():
+        if body["type"] == "roller":
+            wait(f"{name}'s critical angle", lambda name=name: panel.text(f"{name}.critical") != "")
+            check_critical(panel.text(f"{name}.critical"), name, body, findings)
 
     # --- Pause: ~step now succeeds (it refuses while running), no state after it, the clock stopped
     probe: List[Any] = []
@@ -219,15 +250,19 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     t_paused = probe[-1].t
     wait(f"the state at t = {t_paused:.3f} s (~step publishes where it ends)",
          lambda: any(m.t == t_paused for m in rods))
-    wait("the panel's clock stopped at that time", lambda: panel.text("clock") == f"t = {t_paused:.3f} s stopped")
+    wait("the panel's clock paused at that time", lambda: panel.text("clock") == f"t = {t_paused:.3f} s paused")
     latest = max(m.t for m in rods)
     findings.check(f"Pause: no state after t = {t_paused:.3f} s (latest {latest:.3f} s); the panel shows it",
                    latest == t_paused)
+    findings.check(f"  the node's ~paused says so ({paused_topic[-1:]}), and the clock: {panel.text('clock')}",
+                   paused_topic[-1:] == [True])
 
     # --- Run: time goes on
     panel.click("run")
     wait("states after Run", lambda: max(m.t for m in rods) > t_paused + 0.5)
-    findings.check("Run: simulated time goes on", True)
+    wait("the real-time factor on the clock", lambda: "real-time factor" in panel.text("clock"))
+    findings.check(f"Run: simulated time goes on; ~paused {paused_topic[-1:]}; the clock: {panel.text('clock')}",
+                   paused_topic[-1:] == [False])
 
     # --- Pause, Reset, type k for the rod and a step count, Step: the rod is simulate's with that k
     panel.click("pause")
@@ -239,6 +274,9 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     wait("the rod's server to show k = 2000", lambda: bool(server_k) and server_k[-1] == TYPED_K)
     wait("the panel to show k = 2000", lambda: panel.text("rod.k") == "2000")
     findings.check("k typed in the panel: the rod's server shows 2000", True)
+    wait("the paused note in the rod's section", lambda: PAUSED_NOTE in panel.text("rod.message"))
+    findings.check(f"  paused: the section says when it shows: {panel.text('rod.message')}",
+                   panel.text("rod.message") == f"paused: k = 2000 is set; {PAUSED_NOTE}")
     panel.type_into("step_count", str(STEPS))
     wait("the step count", lambda: panel.text("step_count") == str(STEPS))
     t_reset = probe[-1].t
@@ -255,6 +293,16 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check("  and k mattered (simulate with the old k differs)", any(other[f] != want[f] for f in fields))
     wait("the panel to report the steps", lambda: f"after {STEPS} steps" in panel.text("status"))
     findings.check(f"Step: the panel says so ({panel.text('status')})", True)
+    wait("the panel's clock at the end of the steps", lambda: panel.text("clock").startswith(f"t = {t_end:.3f} s"))
+    findings.check(f"  its clock says paused, no real-time factor from the steps: {panel.text('clock')}",
+                   panel.text("clock") == f"t = {t_end:.3f} s paused")
+    wait("the paused note to go with the state after Step", lambda: PAUSED_NOTE not in panel.text("rod.message"))
+    findings.check("  the paused note went with the first state after the change", True)
+    bowler = next(m for m in bowlers if abs(m.t - t_end) < 1e-9)
+    wait("the bowler's state at the end of the steps", lambda: f"{bowler.energy:.3f} J" in panel.text("bowler.motion"))
+    check_energy(panel.text("rod.motion"), rod_energy(got, config, TYPED_K), ROD_ZERO, "rod", findings)
+    check_energy(panel.text("bowler.motion"), roller_energy(bowler, world_bodies()["bowler"], config["gravity"]),
+                 ROLLER_ZERO, "bowler", findings)
 
     # --- refused: k = -5 snaps back, one WARN line, the refusal shown
     before = len(warnings)
@@ -268,6 +316,21 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check(f"  the panel shows: {panel.text('rod.message')[:90]}", "refused" in panel.text("rod.message"))
     findings.check(f"  and in its status line: {panel.text('status')[:80]}", "'k'" in panel.text("status"))
     findings.check("  the picture shows it", refusal_in_picture(args.out, panel.widgets()["status"]))
+
+    # --- the mouse wheel over a field that has no focus (rod.k has it): the sections scroll, nothing changes
+    name, key = field_in_sight(panel.widgets(), config, "rod.k")
+    widgets = panel.widgets()
+    was, position, sent = widgets[f"{name}.{key}"][4], scrolled(widgets), dict(updates)
+    x, y, w, h, _ = widgets[f"{name}.{key}"]
+    xdotool("mousemove", str(x + w // 2), str(y + h // 2), "click", "4" if position > 0 else "5")
+    wait("the sections to scroll under the wheel", lambda: scrolled(panel.widgets()) != position)
+    after = panel.widgets()
+    findings.check(f"the wheel over {name}.{key} (no focus) scrolled the sections ({position} -> "
+                   f"{after['sections'][4]}); the field still shows {after[f'{name}.{key}'][4]} ({was} before)",
+                   after[f"{name}.{key}"][4] == was)
+    in_world = float(world_bodies()[name][key])
+    findings.check(f"  the node's world keeps {name}.{key} = {in_world:g}; no reconfigure ({updates == sent})",
+                   in_world == float(was) and updates == sent)
 
     # --- Run; Spawn a spherical shell named wheel (last in name order: its section comes at the bottom), a refused
     # spawn, then the wheel's Delete
@@ -287,6 +350,9 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     panel.scroll_to("wheel.delete", 20.0)
     wait("the wheel's state in its section", lambda: "E = " in panel.text("wheel.motion"))
     findings.check(f"  its section shows it: {panel.text('wheel.motion')[:60]}", True)
+    check_critical(panel.text("wheel.critical"), "wheel", world_bodies()["wheel"], findings)
+    findings.check(f"  the sections still fit sideways ({panel.text('sections')})",
+                   panel.text("sections").endswith(" 0"))
     before = len(world_bodies())
     panel.type_into("spawn_name", "rod")
     panel.click("spawn")
@@ -300,6 +366,78 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check("Delete: wheel is out of the node's world", "wheel" not in world_bodies())
     wait("the wheel's section to go", lambda: not any(name.startswith("wheel.") for name in panel.widgets()))
     findings.check("  and its section out of the panel", True)
+
+
+def scrolled(widgets: Dict[str, Widget]) -> int:
+    """The sections' vertical scroll position, from their layout line ("vertical sideways-range")."""
+    return int(widgets["sections"][4].split()[0])
+
+
+def check_units(widgets: Dict[str, Widget], config: Dict[str, Any], findings: Findings) -> None:
+    """Every number's unit is sim_tools.KEY_UNITS's (the .cfg files'); an angle's degrees are its radians'."""
+    for name in config["bodies"]:
+        wrong, angles = [], []
+        for key, unit in KEY_UNITS[body_type(config, name)].items():
+            shown = widgets.get(f"{name}.{key}.unit", (0, 0, 0, 0, ""))[4]
+            if shown != unit:
+                wrong.append(f"{key}: {shown!r}, not {unit!r}")
+            if unit == "rad":
+                radians = float(widgets[f"{name}.{key}"][4])
+                degrees = widgets.get(f"{name}.{key}.degrees", (0, 0, 0, 0, "?"))[4]
+                angles.append(f"{key} {radians:g} rad = {degrees}")
+                if not degrees.endswith("\u00b0") or abs(float(degrees[:-1]) - math.degrees(radians)) > 0.005:
+                    wrong.append(f"{key} in degrees: {degrees}")
+        findings.check(f"{name}: every number's unit as KEY_UNITS; {', '.join(angles)} {wrong or ''}", not wrong)
+
+
+def check_critical(shown: str, name: str, body: Dict[str, Any], findings: Findings) -> None:
+    """A roller's critical angle and verdict against the closed form tan(phi_c) = mu_s (1 + c) / c."""
+    mu_s, slope, c = float(body["mu_s"]), float(body["incline_angle"]), SHAPE_C[body["shape"]]
+    tan_c = mu_s * (1 + c) / c
+    at = f"{math.degrees(slope):.1f}\u00b0"
+    want = (f"critical angle {math.degrees(math.atan(tan_c)):.1f}\u00b0 for \u03bcs {mu_s:g}: "
+            + (f"can roll without slipping (slope {at})" if math.tan(slope) <= tan_c
+               else f"slips (slope {at} above it)"))
+    findings.check(f"{name} ({body['shape']}): {shown}", shown == want)
+    if shown != want:
+        findings.check(f"  the closed form says: {want}", False)
+
+
+def check_energy(shown: str, want: float, zero: str, name: str, findings: Findings) -> None:
+    """The energy a section shows is the documented formula (whose zero it names) at the same state."""
+    found = re.search(r"E = (-?[0-9.]+) J ", shown)
+    ok = found is not None and abs(float(found.group(1)) - want) <= 0.0005 + 1e-9 and shown.endswith(zero)
+    findings.check(f"{name}: {shown}; the formula with that zero gives {want:.4f} J", ok)
+
+
+def rod_energy(state: Any, config: Dict[str, Any], k: float) -> float:
+    """1/2 M v^2 + 1/2 (M L^2 / 12) omega^2 + M g y + 1/2 k y_end^2 for each end below the floor (y = 0)."""
+    rod, g = config["bodies"]["rod"], float(config["gravity"])
+    mass, length = float(rod["mass"]), float(rod["length"])
+    energy = (0.5 * mass * (state.vx ** 2 + state.vy ** 2) + 0.5 * mass * length ** 2 / 12 * state.omega ** 2
+              + mass * g * state.y)
+    for end in (1, -1):
+        y_end = state.y + end * 0.5 * length * math.sin(state.theta)
+        energy += 0.5 * k * y_end ** 2 if y_end < 0 else 0.0
+    return energy
+
+
+def roller_energy(state: Any, body: Dict[str, Any], g: float) -> float:
+    """1/2 M V^2 + 1/2 c M R^2 omega^2 - M g X sin(phi), X from the top of the slope."""
+    mass, radius, c = float(body["mass"]), float(body["radius"]), SHAPE_C[body["shape"]]
+    return (0.5 * mass * state.v ** 2 + 0.5 * c * mass * radius ** 2 * state.omega ** 2
+            - mass * g * state.x * math.sin(float(body["incline_angle"])))
+
+
+def field_in_sight(widgets: Dict[str, Widget], config: Dict[str, Any], focused: str) -> Tuple[str, str]:
+    """A number's field wholly in sight, other than the focused one: a ring's first if one is."""
+    names = sorted(config["bodies"], key=lambda name: config["bodies"][name].get("shape") != "ring")
+    for name in names:
+        for key in KEY_UNITS[body_type(config, name)]:
+            field = widgets.get(f"{name}.{key}")
+            if f"{name}.{key}" != focused and field is not None and field[2] >= 20 and field[3] >= 15:
+                return name, key
+    raise RuntimeError("no number's field in sight for the wheel")
 
 
 def refusal_in_picture(path: str, message: Widget) -> bool:

@@ -25,6 +25,11 @@ const std::array<Shape, 4>& namedShapes();
 // else.
 std::optional<Shape> shapeFromString(const std::string& name);
 
+// The steepest slope on which static friction holds a rolling body with inertia factor c: tan(phi_c) =
+// mu_s (1 + c) / c (DESIGN.md). criticalTangent is the right-hand side, criticalAngle its arctangent (rad).
+double criticalTangent(double mu_s, double inertia_factor);
+double criticalAngle(double mu_s, double inertia_factor);
+
 enum class RollMode { Rolling, Slipping };
 std::string toString(RollMode mode);
 

@@ -33,6 +33,7 @@ inline constexpr const char* kDelete = "delete";
 inline constexpr const char* kSetState = "set_state";
 inline constexpr const char* kGetConfig = "get_config";
 inline constexpr const char* kCommands = "commands";        // every accepted change of the world, latched
+inline constexpr const char* kPaused = "paused";            // whether stepping is paused, latched
 inline constexpr const char* kInteractive = "interactive";  // the interactive marker server's namespace
 
 // A body's state topic, relative to the node's private namespace.
@@ -56,7 +57,7 @@ inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
     all.insert(all.end(), {kMarkers, kScene, kReset, kPause, kUnpause, kStep, kSpawn, kDelete, kSetState,
-                           kGetConfig, kCommands, kInteractive});
+                           kGetConfig, kCommands, kPaused, kInteractive});
     return all;
   }();
   return names;

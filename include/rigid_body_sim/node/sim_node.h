@@ -116,6 +116,7 @@ class SimNode {
   bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
+  void publishPaused(bool paused);  // on ~paused
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onStep(Step::Request& request, Step::Response& response);
 
@@ -176,6 +177,7 @@ class SimNode {
   bool use_sim_time_ = false;
 
   ros::Publisher command_publisher_;
+  ros::Publisher paused_publisher_;  // ~paused: true from ~pause (or start_paused) until ~unpause
   CountedPublisher marker_publisher_;
   ros::Publisher scene_publisher_;
   ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined

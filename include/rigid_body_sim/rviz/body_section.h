@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <QGroupBox>
@@ -41,6 +42,9 @@ class BodySection : public QGroupBox {
   // A line the node logged about this body (its refusal of a request): shown under the keys, and kept when
   // the server's answer to that request comes after it.
   void showNodeLine(const QString& text);
+  // Whether the node is paused (as the panel knows it): a change accepted then says that the mode and
+  // energy follow it at the next Step or Run (a paused node publishes no state until then).
+  void setPaused(bool paused);
 
  private:
   struct Field {
@@ -50,6 +54,17 @@ class BodySection : public QGroupBox {
 
   void build(const dynamic_reconfigure::ConfigDescription& description);
   void addField(const dynamic_reconfigure::ParamDescription& param, double min, double max);
+  QWidget* enumField(const std::string& key, const std::string& type,
+                     const std::vector<std::pair<std::string, std::string>>& constants, Field& field);
+  QWidget* numberField(const dynamic_reconfigure::ParamDescription& param, double min, double max,
+                       Field& field);
+  void addUnit(QWidget* row, const QString& object, const QString& unit, const std::string& key,
+               Field& field);
+  QWidget* intField(const std::string& key, double min, double max, Field& field);
+  QWidget* boolField(const std::string& key, Field& field);
+  QWidget* textField(const std::string& key, Field& field);
+  void showCritical(const dynamic_reconfigure::Config& values);
+  void clearPendingNote();
   void showValues(const dynamic_reconfigure::Config& values);
   void request(dynamic_reconfigure::Config asked, const std::string& key, const QString& asked_text);
   void onRodState(const RodState& state);
@@ -61,13 +76,16 @@ class BodySection : public QGroupBox {
   std::function<void(double)> on_time_;
   QString read_only_;
   QFormLayout* form_;
-  QLabel* motion_;   // mode and energy
-  QLabel* message_;  // the last refusal (or acceptance) of a request
+  QLabel* motion_;    // mode and energy
+  QLabel* critical_;  // a roller's critical angle
+  QLabel* message_;   // the last refusal (or acceptance) of a request
   std::map<std::string, Field> fields_;
   std::vector<std::string> order_;  // the keys in the .cfg's order
   void showMessage(const QString& text, bool refusal);
   dynamic_reconfigure::Config values_;  // what the server shows
   bool node_line_shown_ = false;        // the node's own line came since the last request was sent
+  bool paused_ = false;                 // the node is paused (setPaused)
+  bool pending_note_ = false;           // the paused note is shown, until the next state
   std::vector<ros::Subscriber> subscribers_;
 };
 
@@ -77,5 +95,7 @@ inline constexpr const char* kRefusalStyle = "color: rgb(230, 90, 60);";
 
 // Text of a value as the panel shows it: the shortest form that reads back the same number.
 QString numberText(double value);
+// An angle in degrees with `decimals` decimals and the degree sign.
+QString degreesText(double radians, int decimals);
 
 }  // namespace rigid_body_sim

@@ -63,6 +63,8 @@ class SimPanel : public rviz::Panel {
   // Calls a service of the node that changes the world; its answer (or refusal) goes to the status line.
   template <class Service>
   void callChange(const std::string& service, Service srv, const std::string& done);
+  void followPaused();  // subscribes to the node's ~paused
+  void setPaused(bool paused);
   void onTime(double t);
   void showClock();
   QString clockState(double now) const;  // after t: the real-time factor, stopped, paused, ended
@@ -91,6 +93,8 @@ class SimPanel : public rviz::Panel {
   std::string player_, pause_service_;  // a replay's player and its pause_playback
   double replay_paused_at_ = -1;        // wall s of the panel's Pause of a replay; < 0: not paused by it
   ros::Subscriber log_subscriber_;
+  ros::Subscriber paused_subscriber_;
+  bool node_paused_ = false;  // the node's ~paused
   std::string layout_file_, layout_written_;
 };
 
