@@ -163,7 +163,7 @@ def quadrants_with(image: np.ndarray, region: np.ndarray, centre: Any, colour: s
 
 def white_mask(image: np.ndarray) -> np.ndarray:
     """rviz's label text (white, unlit): every channel at 235 or more; the floor's lit grey stays below."""
-    return (image[..., :3] >= 235).all(axis=-1)
+    return np.asarray((image[..., :3] >= 235).all(axis=-1))  # an array, as numpy 2's stubs cannot tell
 
 
 def ink_box(mask: np.ndarray, region: np.ndarray) -> Optional[Tuple[int, int, int, int]]:
