@@ -28,7 +28,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from typing import Any, Dict, List, Tuple
+from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 import yaml
@@ -138,6 +138,30 @@ def simulated_rod(simulate: str, config_path: str, k: float, duration: float) ->
     return {key: float(value) for key, value in rows[-1].items()}
 
 
+def run_launched(launch_args: List[str], out: str, run_it: Callable[[Any, Findings], None]) -> Findings:
+    """roslaunch of this package's `launch_args` on a master of its own (its log beside the picture `out`),
+    then run_it(launch, findings); whatever happened, the screenshot `out` and the launch stopped."""
+    port = free_port()
+    os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
+    findings = Findings()
+    with open(os.path.splitext(out)[0] + "_roslaunch.log", "w") as log:
+        launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim"] + launch_args, stdout=log,
+                                  stderr=subprocess.STDOUT)
+        try:
+            run_it(launch, findings)
+        except (TimeoutError, RuntimeError) as error:
+            findings.check(f"no time-out: {error}", False)
+        finally:
+            if os.environ.get("DISPLAY"):
+                subprocess.run(["import", "-window", "root", out], check=False)
+            launch.send_signal(2)
+            try:
+                launch.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                launch.kill()
+    return findings
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--config", default=os.path.join(PACKAGE, "config", "demo.yaml"))
@@ -150,25 +174,10 @@ def main() -> int:
     layout = tempfile.NamedTemporaryFile(prefix="panel_layout_", suffix=".txt", delete=False).name
     os.remove(layout)  # the panel writes it
     os.environ["RBS_PANEL_LAYOUT"] = layout
-    port = free_port()
-    os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-    log = open(stem + "_roslaunch.log", "w")
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", "sim.launch",
-                               f"config:={args.config}", "rviz:=true"], stdout=log, stderr=subprocess.STDOUT)
-    findings = Findings()
     try:
-        run(args, Panel(layout), launch, findings)
-    except (TimeoutError, RuntimeError) as error:
-        findings.check(f"no time-out: {error}", False)
+        findings = run_launched(["sim.launch", f"config:={args.config}", "rviz:=true"], args.out,
+                                lambda launch, findings: run(args, Panel(layout), launch, findings))
     finally:
-        if os.environ.get("DISPLAY"):
-            subprocess.run(["import", "-window", "root", args.out], check=False)
-        launch.send_signal(2)
-        try:
-            launch.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            launch.kill()
-        log.close()
         if os.path.exists(layout):
             os.remove(layout)
     with open(stem + ".txt", "w") as f:

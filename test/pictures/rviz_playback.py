@@ -22,12 +22,12 @@ import time
 from typing import Any, Optional
 
 import rviz_screenshot as shot
-from rviz_panel import Findings, Panel
+from rviz_panel import Findings, Panel, run_launched
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import free_port, load_config  # noqa: E402
+from sim_tools import load_config  # noqa: E402
 
 DURATION = 6.0  # simulated seconds recorded
 STALLED_CLOCKS = 100  # /clock messages at one time in a row: the player stands (paused, it sends 100 a second)
@@ -70,25 +70,10 @@ def main() -> int:
                     "--out-dir", folder], check=True, stdout=subprocess.DEVNULL)
     layout = os.path.join(folder, "panel_layout.txt")
     os.environ["RBS_PANEL_LAYOUT"] = layout
-    port = free_port()
-    os.environ["ROS_MASTER_URI"] = f"http://127.0.0.1:{port}"
-    log = open(stem + "_roslaunch.log", "w")
-    launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", "playback.launch", f"bag:={bag}",
-                               "start_paused:=true", "delay:=1"], stdout=log, stderr=subprocess.STDOUT)
-    findings = Findings()
     try:
-        run(args, stem, Panel(layout), launch, findings)
-    except (TimeoutError, RuntimeError) as error:
-        findings.check(f"no time-out: {error}", False)
+        findings = run_launched(["playback.launch", f"bag:={bag}", "start_paused:=true", "delay:=1"], args.out,
+                                lambda launch, findings: run(args, stem, Panel(layout), launch, findings))
     finally:
-        if os.environ.get("DISPLAY"):
-            subprocess.run(["import", "-window", "root", args.out], check=False)
-        launch.send_signal(2)
-        try:
-            launch.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            launch.kill()
-        log.close()
         subprocess.run(["rm", "-rf", folder], check=False)
     with open(stem + ".txt", "w") as f:
         f.write("\n".join(findings.lines) + "\n")
