@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <ostream>
 #include <sstream>
 
 #include <QComboBox>
@@ -11,6 +12,7 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QScrollBar>
+#include <QTabBar>
 
 #include <std_msgs/Bool.h>
 #include <std_srvs/Empty.h>
@@ -21,6 +23,7 @@
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/core/roller.h"
+#include "rigid_body_sim/rviz/body_plots.h"
 #include "rigid_body_sim/rviz/body_section.h"
 #include "rigid_body_sim/rviz/focus_wheel.h"
 
@@ -139,7 +142,12 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   sections_layout_->setContentsMargins(0, 0, 0, 0);
   sections_layout_->addStretch(1);
   scroll->setWidget(sections);
-  layout->addWidget(scroll, 1);
+  tabs_ = new QTabWidget(this);
+  tabs_->setObjectName("tabs");
+  tabs_->addTab(scroll, "Bodies");
+  plots_ = new BodyPlots(tabs_);
+  tabs_->addTab(plots_, "Plots");
+  layout->addWidget(tabs_, 1);
 
   connect(&discover_timer_, &QTimer::timeout, this, [this] { discover(); });
   connect(&clock_timer_, &QTimer::timeout, this, [this] {
@@ -153,6 +161,7 @@ SimPanel::~SimPanel() = default;
 
 void SimPanel::onInitialize() {
   ns_ = ros::names::resolve(node_);
+  plots_->setNode(ns_);
   log_subscriber_ = ros::NodeHandle().subscribe("/rosout", 100, &SimPanel::onLog, this);
   followPaused();
   discover_timer_.start(kDiscoverMs);
@@ -180,7 +189,10 @@ void SimPanel::setNode(const std::string& node) {
   ns_ = ros::names::resolve(node_);
   node_edit_->setText(QString::fromStdString(node_));
   follow({});
-  if (log_subscriber_) followPaused();  // initialized
+  if (log_subscriber_) {  // initialized
+    plots_->setNode(ns_);
+    followPaused();
+  }
   Q_EMIT configChanged();
 }
 
@@ -291,6 +303,7 @@ void SimPanel::follow(const std::map<std::string, std::string>& bodies) {
     }
     ++index;
   }
+  plots_->setBodies(bodies);
 }
 
 void SimPanel::callEmpty(const std::string& service, const QString& done) {
@@ -475,11 +488,25 @@ void SimPanel::writeLayout() {
         << shown.height() << ' ' << (w->isEnabled() ? 1 : 0) << ' ' << text.simplified().toStdString()
         << '\n';
   }
+  writeTabs(out);
+  out << plots_->layoutLines();
   if (out.str() == layout_written_) return;
   layout_written_ = out.str();
   const std::string partial = layout_file_ + ".part";
   std::ofstream(partial) << layout_written_;
   std::rename(partial.c_str(), layout_file_.c_str());
+}
+
+// Each tab's place on the screen as "tab.<its text> x y width height 1 <its text>", for a click.
+void SimPanel::writeTabs(std::ostream& out) const {
+  const QTabBar* bar = tabs_->tabBar();
+  for (int i = 0; i < bar->count(); ++i) {
+    const QRect tab = bar->tabRect(i);
+    const QPoint at = bar->mapToGlobal(tab.topLeft());
+    const std::string text = bar->tabText(i).toStdString();
+    out << "tab." << text << ' ' << at.x() << ' ' << at.y() << ' ' << tab.width() << ' ' << tab.height()
+        << " 1 " << text << '\n';
+  }
 }
 
 }  // namespace rigid_body_sim

@@ -4,10 +4,11 @@
 // serves. The node's name (sim: relative to rviz's namespace, as sim.launch's ns:= puts both in one) is a
 // setting saved in the .rviz file. During a replay of a recording (rosbag play of the node's topics, no node)
 // the panel follows the played states read-only, Pause / Run drive the player, and the end of the
-// recording is shown.
+// recording is shown. A second tab, Plots (BodyPlots), charts one chosen body's states.
 #pragma once
 
 #include <deque>
+#include <iosfwd>
 #include <map>
 #include <memory>
 #include <string>
@@ -19,6 +20,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSpinBox>
+#include <QTabWidget>
 #include <QTimer>
 #include <QVBoxLayout>
 
@@ -31,6 +33,7 @@
 
 namespace rigid_body_sim {
 
+class BodyPlots;
 class BodySection;
 
 class SimPanel : public rviz::Panel {
@@ -71,6 +74,7 @@ class SimPanel : public rviz::Panel {
   void onLog(const rosgraph_msgs::Log::ConstPtr& line);
   void showStatus(const QString& text, bool refusal = false);
   void writeLayout();  // the widgets' places, for the GUI test (RBS_PANEL_LAYOUT)
+  void writeTabs(std::ostream& out) const;
 
   std::string node_ = "sim";  // as set (saved in the .rviz file)
   std::string ns_;            // resolved: the prefix of the node's services and topics
@@ -85,6 +89,8 @@ class SimPanel : public rviz::Panel {
   QLabel* clock_;
   QLabel* status_;
   QVBoxLayout* sections_layout_;
+  QTabWidget* tabs_;  // Bodies (the sections), Plots
+  BodyPlots* plots_;
   std::map<std::string, BodySection*> sections_;
   bool discovering_ = false;
   QTimer discover_timer_, clock_timer_;
