@@ -376,6 +376,89 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     wait("the wheel's section to go", lambda: not any(name.startswith("wheel.") for name in panel.widgets()))
     findings.check("  and its section out of the panel", True)
 
+    # --- the Plots tab: the rod's ends after a Step, then the bowler from a Reset to past its slip-to-roll
+    check_plots(Plots(panel, wait, paused, probe, rods, bowlers), config, world_bodies()["bowler"], findings)
+
+
+class Plots:
+    """The Plots tab's series as the panel writes them ("plot.<series>": count, then the last t and value),
+    the test's own states, and the waits and clicks of run()."""
+
+    def __init__(self, panel: Panel, wait: Callable[..., None], paused: Callable[[], bool], probe: List[Any],
+                 rods: List[Any], bowlers: List[Any]) -> None:
+        self.panel, self.wait, self.paused, self.probe = panel, wait, paused, probe
+        self.rods, self.bowlers = rods, bowlers
+
+    def last(self, series: str) -> Tuple[int, float, float]:
+        parts = self.panel.text(f"plot.{series}").split()
+        return (int(parts[0]), float(parts[1]), float(parts[2])) if len(parts) == 3 else (0, math.nan, math.nan)
+
+    def choose(self, body: str) -> None:
+        self.panel.click("plot_body")
+        xdotool("type", "--delay", "40", body)  # the list's keyboard search
+        xdotool("key", "Return")
+        self.wait(f"{body} chosen for the plots", lambda: self.panel.text("plot_body") == body)
+
+    def pause(self) -> float:
+        """Pause; the t where the node stands (~step 1 succeeds once paused, and publishes where it ends)."""
+        self.panel.click("pause")
+        self.wait("~step to succeed after Pause", self.paused)
+        t = float(self.probe[-1].t)
+        self.wait(f"the bowler's state at t = {t:.3f} s", lambda: any(m.t == t for m in self.bowlers))
+        return t
+
+
+def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], findings: Findings) -> None:
+    """The last point of each series is the test's own state at that t, with the same values; the
+    slip-to-roll mark is the bowler's mode change in its states after a Reset, at the closed form's time."""
+    panel = plots.panel
+    panel.click("tab.Plots")
+    plots.wait("the Plots tab", lambda: panel.in_sight("plot_body"))
+    plots.choose("rod")
+    panel.click("step")  # pauses, then the step count of before (STEPS)
+    plots.wait("the rod's ends on the plot", lambda: plots.last("y_end_minus")[0] > 0
+               and plots.last("y_end_minus")[1] == max(m.t for m in plots.rods))
+    rod = next(m for m in plots.rods if m.t == plots.last("energy")[1])
+    half = 0.5 * float(config["bodies"]["rod"]["length"])
+    want = {"energy": rod.energy, "y_end_plus": rod.y + half * math.sin(rod.theta),
+            "y_end_minus": rod.y - half * math.sin(rod.theta)}
+    got = {series: plots.last(series) for series in want}
+    findings.check(f"Plots, rod at t = {rod.t:.3f} s: the last points are its state's {got}",
+                   all(got[s][1] == rod.t and got[s][2] == want[s] for s in want))
+
+    plots.choose("bowler")
+    t_reset = plots.pause()
+    panel.click("reset")
+    plots.wait("Reset done", lambda: panel.text("status") == "reset")
+    panel.click("run")
+    plots.wait("the slip-to-roll mark", lambda: plots.last("slip_to_roll")[0] > 0)
+    t_end = plots.pause()
+    plots.wait("the plot at the paused t", lambda: plots.last("friction")[1] == t_end)
+    states = [m for m in plots.bowlers if t_reset < m.t <= t_end]
+    end = states[-1]
+    radius = float(bowler["radius"])
+    want = {"energy": end.energy, "v": end.v, "minus_omega_r": -end.omega * radius, "friction": end.friction}
+    got = {series: plots.last(series) for series in want}
+    findings.check(f"Plots, bowler: {len(states)} states since the Reset at t = {t_reset:.3f} s; each series "
+                   f"has them all, and its last point is the state's at t = {t_end:.3f} s: {got}",
+                   all(got[s][0] == len(states) and got[s][1] == t_end and got[s][2] == want[s] for s in want))
+    rolls = [b.t for a, b in zip(states, states[1:]) if a.mode == "slipping" and b.mode == "rolling"]
+    mark = plots.last("slip_to_roll")
+    closed = closed_form_slip_to_roll(bowler, float(config["gravity"]))
+    period = 1 / float(config["publish_rate"]) + 1 / float(config["rate"])
+    findings.check(f"  the slip-to-roll mark at t = {mark[1]:.3f} s is the states' mode change {rolls}",
+                   mark[0] == 1 and rolls == [mark[1]] and mark[2] == next(m.v for m in states if m.t == mark[1]))
+    findings.check(f"  {mark[1] - t_reset:.3f} s after the Reset: the closed form's {closed:.4f} s, to the next "
+                   f"state ({period:.3f} s)", closed <= mark[1] - t_reset <= closed + period)
+
+
+def closed_form_slip_to_roll(body: Dict[str, Any], g: float) -> float:
+    """Launched sliding with backspin: u = v + omega R falls at g sin(phi) - mu_d g cos(phi) (1 + c)/c
+    (test_plot_run.py's)."""
+    c, phi = SHAPE_C[body["shape"]], float(body["incline_angle"])
+    u0 = float(body["v0"]) + float(body["omega0"]) * float(body["radius"])
+    return u0 / -(g * math.sin(phi) - float(body["mu_d"]) * g * math.cos(phi) * (1 + c) / c)
+
 
 def scrolled(widgets: Dict[str, Widget]) -> int:
     """The sections' vertical scroll position, from their layout line ("vertical sideways-range")."""
