@@ -57,12 +57,16 @@ struct LeaksIgnored {
 // rosbag::Bag's destructor closes the bag, writing its index; after a failed write that write fails too,
 // and a throw from a destructor ends the process. A failed bag is never destroyed: it is kept here
 // (reachable, so no leak to report) until the process ends, which closes its file.
-void keepUnclosed(std::unique_ptr<rosbag::Bag> bag) {
+std::vector<std::unique_ptr<rosbag::Bag>>& keptUnclosed() {
   static auto* const kept = new std::vector<std::unique_ptr<rosbag::Bag>>();
-  kept->push_back(std::move(bag));
+  return *kept;
 }
 
+void keepUnclosed(std::unique_ptr<rosbag::Bag> bag) { keptUnclosed().push_back(std::move(bag)); }
+
 }  // namespace
+
+bool anyBagKeptUnclosed() { return !keptUnclosed().empty(); }
 
 std::unique_ptr<rosbag::Bag> newBag() {
   [[maybe_unused]] const LeaksIgnored ignored;

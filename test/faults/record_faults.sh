@@ -5,7 +5,7 @@
 #   record_faults.sh kill9 DEVEL    kill -9 of the recorder: a .bag.active is left; `rosbag reindex`
 #                                   recovers it, with every sample up to the last flushed chunk
 # To know exactly what was published, the node is paused, then stepped once (its last sample is then at
-# that step's t, which ~step returns), and the recorder is given time to drain before the fault.
+# that step's t, which ~step returns), and the fault comes once the recorder received all it was sent.
 set -euo pipefail
 mode=$1 devel=$2
 here=$(cd "$(dirname "$0")" && pwd)
@@ -46,7 +46,8 @@ wait_until 90 chunk_written || fail "the recorder wrote no chunk in 90 s"
 rosservice call /sim/pause >/dev/null || fail "~pause"
 t=$(rosservice call /sim/step "steps: 1" | sed -n 's/^t: //p')
 [ -n "$t" ] || fail "~step"
-sleep 3  # the recorder drains its queue: nothing is published any more
+# Nothing is published any more: the recorder has every message once its transport received what the node sent.
+python3 "$here/wait_delivered.py" /sim /record 30 || fail "the recorder did not receive every message"
 
 case $mode in
   sigint)

@@ -237,8 +237,10 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check(f"rviz loads the panel: no ERROR line in its log ({len(errors)})", not errors)
     for line in errors:
         findings.check(f"  {line[:100]}", False)
-    wait("every number's field", lambda: all(f"{name}.{key}" in panel.widgets() for name in config["bodies"]
-                                             for key in KEY_UNITS[body_type(config, name)]))
+    # A field is made when the server's descriptions come and filled when its config comes: check once filled.
+    node_bodies = world_bodies()
+    wait("every number's field showing the node's value",
+         lambda: shows_world(panel.widgets(), config, node_bodies))
     check_units(panel.widgets(), config, findings)
     sideways = panel.text("sections").split()[-1]
     findings.check(f"  the sections fit the panel's width, units in sight (sideways scroll: {sideways})",
@@ -463,6 +465,20 @@ def closed_form_slip_to_roll(body: Dict[str, Any], g: float) -> float:
 def scrolled(widgets: Dict[str, Widget]) -> int:
     """The sections' vertical scroll position, from their layout line ("vertical sideways-range")."""
     return int(widgets["sections"][4].split()[0])
+
+
+def shows_world(widgets: Dict[str, Widget], config: Dict[str, Any], in_world: Dict[str, Any]) -> bool:
+    """Whether every number's field is there and shows the node's value of it (the panel writes numbers
+    shortest round-trip: the same double)."""
+    for name in config["bodies"]:
+        for key in KEY_UNITS[body_type(config, name)]:
+            field = widgets.get(f"{name}.{key}")
+            try:
+                if field is None or float(field[4]) != float(in_world[name][key]):
+                    return False
+            except ValueError:
+                return False
+    return True
 
 
 def check_units(widgets: Dict[str, Widget], config: Dict[str, Any], findings: Findings) -> None:

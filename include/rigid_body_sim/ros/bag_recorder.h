@@ -57,6 +57,10 @@ class BagRecorder : public SampleSink {
 // sanitizer that allocation is not counted, every other one is. Every Bag of the package is made here.
 std::unique_ptr<rosbag::Bag> newBag();
 
+// Whether a bag failed to write and was kept unclosed (BagRecorder): such a bag still holds its encryptor
+// plugin, and class_loader (Debian 13) warns on stderr when the process' static destructors unload it.
+bool anyBagKeptUnclosed();
+
 // The SinkOpener of `simulate --bag`.
 std::unique_ptr<SampleSink> openBag(const std::string& path, const WorldConfig& config,
                                     const std::vector<Body>& bodies);
