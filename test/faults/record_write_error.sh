@@ -50,6 +50,7 @@ export ROS_MASTER_URI=http://127.0.0.1:$port
 roscore -p "$port" >"$work/roscore.txt" 2>&1 &
 core=$!
 trap 'kill -INT $core 2>/dev/null; wait $core 2>/dev/null; rm -rf "$work" "$ROS_HOME"' EXIT
+# The master is up when it answers: looked for every 0.1 s, at most 30 s (then the load below fails).
 for _ in $(seq 300); do rosparam list >/dev/null 2>&1 && break; sleep 0.1; done
 rosparam load "$config" /sim || fail "no master in 30 s"
 limited node timeout 120 rosrun rigid_body_sim sim_node __name:=sim _bag:="$work/node.bag" _real_time_factor:=0 \
