@@ -466,8 +466,8 @@ void SimPanel::showStatus(const QString& text, bool refusal) {
 // With RBS_PANEL_LAYOUT set: each named widget's visible part on the screen and its text, one per line
 // ("name x y width height enabled text"; width and height 0 when scrolled out of sight, enabled 1 or 0; the
 // text of a scroll area, the sections, is its vertical scroll position and how far it scrolls sideways),
-// rewritten when something changed. The GUI tests (test/pictures/rviz_panel.py, rviz_playback.py) click and
-// read by it.
+// rewritten at every clock tick with the count of writes. The GUI tests (test/pictures/rviz_panel.py,
+// rviz_playback.py) click and read by it.
 void SimPanel::writeLayout() {
   if (layout_file_.empty()) return;
   std::ostringstream out;
@@ -490,10 +490,11 @@ void SimPanel::writeLayout() {
   }
   writeTabs(out);
   out << plots_->layoutLines();
-  if (out.str() == layout_written_) return;
-  layout_written_ = out.str();
+  // Rewritten at every tick, so that a reader who waits for a later count knows the places above are
+  // those of a layout made after its wait began (a click then lands where the widget is).
+  out << "layout.written 0 0 0 0 1 " << ++layout_writes_ << '\n';
   const std::string partial = layout_file_ + ".part";
-  std::ofstream(partial) << layout_written_;
+  std::ofstream(partial) << out.str();
   std::rename(partial.c_str(), layout_file_.c_str());
 }
 

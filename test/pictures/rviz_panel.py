@@ -82,8 +82,22 @@ class Panel:
         w = self.widgets().get(name)
         return w is not None and w[2] >= 10 and w[3] >= 10
 
+    def writes(self) -> int:
+        """How many times the panel has written its layout (it does at every clock tick)."""
+        text = self.text("layout.written")
+        return int(text) if text else 0
+
+    def fresh(self, timeout: float = 20.0) -> Dict[str, Widget]:
+        """The widgets as laid out after this call began: the panel wrote its layout twice since, so a change
+        made before (a longer status line pushing the sections down) is in the places read."""
+        after = self.writes() + 2
+        wait_for("the panel to write its layout anew", lambda: self.writes() >= after, timeout)
+        return self.widgets()
+
     def click(self, name: str) -> None:
-        x, y, w, h, _ = self.widgets()[name]
+        x, y, w, h, _ = self.fresh()[name]
+        if w < 10 or h < 10:
+            raise RuntimeError(f"{name} is not in sight to be clicked ({w} x {h} px)")
         xdotool("mousemove", str(x + w // 2), str(y + h // 2), "click", "1")
 
     def type_into(self, name: str, text: str) -> None:
@@ -95,13 +109,14 @@ class Panel:
 
     def scroll_to(self, name: str, timeout: float) -> None:
         """Turns the mouse wheel over the sections' left margin (no field there) until `name` is in sight."""
-        x, y, _, h, _ = self.widgets()["sections"]
+        x, y, _, h, _ = self.fresh()["sections"]
         end = time.monotonic() + timeout
         while not self.in_sight(name):
-            before = self.widgets()
+            before = self.text("sections")  # the scroll position
             xdotool("mousemove", str(x + 3), str(y + h // 2), "click", "5")
             try:
-                wait_for("the sections to move", lambda: self.widgets() != before, max(0.1, end - time.monotonic()))
+                wait_for("the sections to move", lambda: self.text("sections") != before,
+                         max(0.1, end - time.monotonic()))
             except TimeoutError:
                 raise TimeoutError(f"{name} not in sight at the end of the panel's scrolling") from None
 

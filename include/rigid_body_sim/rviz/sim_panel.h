@@ -7,6 +7,7 @@
 // recording is shown. A second tab, Plots (BodyPlots), charts one chosen body's states.
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <iosfwd>
 #include <map>
@@ -101,7 +102,8 @@ class SimPanel : public rviz::Panel {
   ros::Subscriber log_subscriber_;
   ros::Subscriber paused_subscriber_;
   bool node_paused_ = false;  // the node's ~paused
-  std::string layout_file_, layout_written_;
+  std::string layout_file_;
+  std::uint64_t layout_writes_ = 0;
 };
 
 }  // namespace rigid_body_sim
