@@ -77,10 +77,14 @@ double Rod::momentOfInertia() const {
   return (1.0 / 12.0) * params_.mass * (params_.length * params_.length);
 }
 
+double Rod::kineticEnergy() const {
+  const RodMotion& s = state_;
+  return 0.5 * params_.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * momentOfInertia() * s.omega * s.omega;
+}
+
 double Rod::energy() const {
   const RodMotion& s = state_;
-  const double kinetic =
-      0.5 * params_.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * momentOfInertia() * s.omega * s.omega;
+  const double kinetic = kineticEnergy();
   const double gravitational = params_.mass * params_.gravity * s.y;
   double elastic = 0.0;
   // In flight the elastic term is 0 without the sines: the same bits.

@@ -150,12 +150,15 @@ double Roller::acceleration() const { return current().a; }
 
 double Roller::angularAcceleration() const { return current().alpha; }
 
-double Roller::energy() const {
+double Roller::kineticEnergy() const {
   const double m = params_.mass;
   const double inertia = params_.inertia_factor * m * params_.radius * params_.radius;
+  return 0.5 * m * state_.v * state_.v + 0.5 * inertia * state_.omega * state_.omega;
+}
+
+double Roller::energy() const {
   const double height_drop = state_.x * sin_angle_;
-  return 0.5 * m * state_.v * state_.v + 0.5 * inertia * state_.omega * state_.omega -
-         m * params_.gravity * height_drop;
+  return kineticEnergy() - params_.mass * params_.gravity * height_drop;
 }
 
 void Roller::advance(double h, double a, double alpha) {

@@ -85,6 +85,14 @@ void BodyPlots::setBodies(const std::map<std::string, std::string>& bodies) {
   select(choice_->currentText().toStdString());
 }
 
+void BodyPlots::prefer(const std::string& body) {
+  if (bodies_.count(body)) {
+    choice_->setCurrentText(QString::fromStdString(body));
+  } else {
+    body_ = body;  // setBodies keeps it chosen when it comes
+  }
+}
+
 void BodyPlots::select(const std::string& body) {
   const auto found = bodies_.find(body);
   const std::string type = found == bodies_.end() ? std::string() : found->second;
@@ -92,16 +100,14 @@ void BodyPlots::select(const std::string& body) {
   body_ = body;
   state_.shutdown();
   parameters_.shutdown();
-  length_ = radius_ = 0;
+  parameters_known_ = false;
   build(type);
   if (type.empty()) return;
   ros::NodeHandle nh;
   const std::string server = ns_ + "/" + body;
   parameters_ = nh.subscribe<dynamic_reconfigure::Config>(
-      server + "/parameter_updates", 1, [this](const dynamic_reconfigure::Config::ConstPtr& c) {
-        length_ = parameter(*c, "length");
-        radius_ = parameter(*c, "radius");
-      });
+      server + "/parameter_updates", 1,
+      [this](const dynamic_reconfigure::Config::ConstPtr& c) { setParameters(*c); });
   // A queue long enough for every state between two of rviz's spins: no point, no mode change missed.
   if (type == "rigid_body_sim/RodState") {
     state_ =
@@ -132,8 +138,12 @@ void BodyPlots::build(const std::string& type) {
     addTrack(charts_.back(), "y_end_plus", "y + (L/2) sin \u03b8", new QLineSeries());
     addTrack(charts_.back(), "y_end_minus", "y \u2212 (L/2) sin \u03b8", new QLineSeries());
   }
-  charts_.push_back(makeChart("energy", "E (J)"));
-  addTrack(charts_.back(), "energy", "E, total", new QLineSeries());
+  charts_.push_back(makeChart(type == "rigid_body_sim/RollerState" ? "energy (potential 0 at the slope's top)"
+                                                                   : "energy (potential 0 at floor level)",
+                              "E (J)"));
+  addTrack(charts_.back(), "energy", "total", new QLineSeries());
+  addTrack(charts_.back(), "kinetic", "kinetic", new QLineSeries());
+  addTrack(charts_.back(), "potential", "potential", new QLineSeries());
   for (auto& chart : charts_) charts_box_->layout()->addWidget(chart.view);
   dirty_ = true;
 }
@@ -177,14 +187,31 @@ void BodyPlots::addTrack(Chart& chart, const std::string& key, const QString& na
   chart.tracks.push_back({key, series, {}});
 }
 
+void BodyPlots::setParameters(const dynamic_reconfigure::Config& config) {
+  rod_.mass = roller_.mass = parameter(config, "mass");
+  rod_.length = parameter(config, "length");
+  roller_.radius = parameter(config, "radius");
+  roller_.inertia_factor = parameter(config, "inertia_factor");  // the shape's c, or a custom one
+  parameters_known_ = true;
+}
+
+// The total as the state has it; the kinetic the core's; the potential what remains of the total.
+void BodyPlots::appendEnergies(Chart& chart, double t, double total, double kinetic) {
+  append(chart, 0, t, total);
+  if (!parameters_known_) return;
+  append(chart, 1, t, kinetic);
+  append(chart, 2, t, total - kinetic);
+}
+
 void BodyPlots::onRod(const RodState& state) {
   if (!isVisible() || charts_.size() != 2) return;
   trim(state.t);
-  if (length_ > 0) {
-    append(charts_[0], 0, state.t, state.y + 0.5 * length_ * std::sin(state.theta));
-    append(charts_[0], 1, state.t, state.y - 0.5 * length_ * std::sin(state.theta));
+  if (parameters_known_) {
+    append(charts_[0], 0, state.t, state.y + 0.5 * rod_.length * std::sin(state.theta));
+    append(charts_[0], 1, state.t, state.y - 0.5 * rod_.length * std::sin(state.theta));
   }
-  append(charts_[1], 0, state.t, state.energy);
+  const Rod rod(rod_, RodMotion{state.x, state.y, state.theta, state.vx, state.vy, state.omega});
+  appendEnergies(charts_[1], state.t, state.energy, rod.kineticEnergy());
 }
 
 // rolling means v = -omega R (RollerState.msg): v and -omega R coincide then.
@@ -192,12 +219,13 @@ void BodyPlots::onRoller(const RollerState& state) {
   if (!isVisible() || charts_.size() != 3) return;
   trim(state.t);
   append(charts_[0], 0, state.t, state.v);
-  if (radius_ > 0) append(charts_[0], 1, state.t, -state.omega * radius_);
+  if (parameters_known_) append(charts_[0], 1, state.t, -state.omega * roller_.radius);
   if (last_mode_ == RollerState::MODE_SLIPPING && state.mode == RollerState::MODE_ROLLING)
     append(charts_[0], 2, state.t, state.v);
   last_mode_ = state.mode;
   append(charts_[1], 0, state.t, state.friction);
-  append(charts_[2], 0, state.t, state.energy);
+  const Roller roller(roller_, RollerInitial{state.x, state.v, state.theta, state.omega});
+  appendEnergies(charts_[2], state.t, state.energy, roller.kineticEnergy());
 }
 
 // A reset (anyone's) puts the body back at its start: what came up to it goes (a paused node's last state
@@ -262,7 +290,7 @@ void BodyPlots::redraw() {
       }
     }
     if (!std::isfinite(t_last) || !std::isfinite(low)) continue;
-    chart.x->setRange(t_last - kPlotWindow, t_last);
+    chart.x->setRange(std::max(0.0, t_last - kPlotWindow), std::max(kPlotWindow, t_last));  // from 0 at first
     const double margin = std::max(0.05 * (high - low), 1e-3 * std::max(1.0, std::abs(high)));
     chart.y->setRange(low - margin, high + margin);
     chart.y->applyNiceNumbers();  // round ticks

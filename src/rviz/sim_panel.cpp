@@ -175,12 +175,19 @@ void SimPanel::load(const rviz::Config& config) {
   if (config.mapGetString("Node", &ns)) setNode(ns.toStdString());
   int steps = 0;
   if (config.mapGetInt("Step Count", &steps)) step_count_->setValue(steps);
+  QString tab, body;
+  for (int i = 0; config.mapGetString("Tab", &tab) && i < tabs_->count(); ++i) {
+    if (tabs_->tabText(i) == tab) tabs_->setCurrentIndex(i);
+  }
+  if (config.mapGetString("Plot Body", &body)) plots_->prefer(body.toStdString());
 }
 
 void SimPanel::save(rviz::Config config) const {
   rviz::Panel::save(config);
   config.mapSetValue("Node", QString::fromStdString(node_));
   config.mapSetValue("Step Count", step_count_->value());
+  config.mapSetValue("Tab", tabs_->tabText(tabs_->currentIndex()));
+  config.mapSetValue("Plot Body", QString::fromStdString(plots_->chosen()));
 }
 
 void SimPanel::setNode(const std::string& node) {

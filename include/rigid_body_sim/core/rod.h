@@ -73,6 +73,7 @@ class Rod {
   const RodMotion& state() const { return state_; }
 
   double momentOfInertia() const;   // M L^2 / 12
+  double kineticEnergy() const;     // 1/2 M (vx^2 + vy^2) + 1/2 I omega^2 (J)
   double energy() const;            // kinetic + gravitational + elastic (J)
   double endHeightA() const;        // y of end A
   double endHeightB() const;        // y of end B

@@ -107,7 +107,8 @@ class Roller {
   double slipSpeed() const;      // u = v + omega R
   double frictionForce() const;  // on the body, along slope +x (N)
   double normalForce() const;    // on the body, along slope +y (N)
-  double energy() const;         // 1/2 M v^2 + 1/2 I omega^2 - M g x sin(phi)  (J)
+  double kineticEnergy() const;  // 1/2 M v^2 + 1/2 I omega^2 (J)
+  double energy() const;         // kinetic - M g x sin(phi)  (J)
   double acceleration() const;   // dv/dt in the current mode
   double angularAcceleration() const;
 
