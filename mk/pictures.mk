@@ -1,5 +1,6 @@
 # Pictures, into docs/images (README and docs/physics.md):
-#   make screenshot   rviz under Xvfb on config/demo.yaml, checked as the ctest pictures_rviz_screenshot checks it
+#   make screenshot   rviz under Xvfb: each launch's view (sim, rod, incline, lesson) checked as the ctests
+#                     pictures_rviz_*_view check them, and the panel's Plots tab at the end of pictures_rviz_panel
 #   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy),
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
@@ -13,7 +14,13 @@ THETA0_RODS = 1001
 screenshot: build
 	mkdir -p docs/images
 	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz.png
-	cp $(PICTURES_OUT)/rviz.png docs/images/rviz.png
+	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_rod.png --launch rod.launch --settle 8
+	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_incline.png --launch incline.launch
+	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_lesson.png --launch lesson.launch
+	RVIZ_SCRIPT=rviz_panel.py test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_panel.png \
+	  --simulate $(SIMULATE)
+	cd $(PICTURES_OUT) && cp rviz.png rviz_rod.png rviz_incline.png rviz_lesson.png rviz_panel.png \
+	  $(CURDIR)/docs/images/
 
 pictures: screenshot
 	$(SIMULATE) config/demo.yaml --duration 10 --sample-rate 1000 --out-dir $(PICTURES_OUT)/demo >/dev/null

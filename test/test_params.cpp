@@ -41,7 +41,10 @@ TEST(NodeOptions, EveryOptionIsReadAndAMissingOneKeepsItsDefault) {
   params["start_paused"] = true;
   params["start_on_subscribers"] = true;
   params["end_launch"] = true;
+  params["label_critical_angles"] = true;
   const NodeOptions options = parseNodeOptions(params);
+  EXPECT_FALSE(defaults.label_critical_angles);
+  EXPECT_TRUE(options.label_critical_angles);
   EXPECT_FALSE(defaults.start_paused);
   EXPECT_TRUE(options.start_paused);
   EXPECT_FALSE(defaults.end_launch);

@@ -116,7 +116,7 @@ TEST(Scene, IsRebuiltOnlyWhenTheBodiesOrTheirLookChange) {
 
 TEST(Scene, TrailPiecesCarryOnlyNewPointsAndJoinIntoTheTrajectory) {
   World world(demoConfig());
-  const TrailOptions options{8.0, 10.0};
+  const MarkerOptions options{8.0, 10.0};
   Scene scene("world", "", world.bodies(), options);
   std::vector<std::vector<Eigen::Vector3d>> truth(world.bodies().size());
   std::map<int, std::vector<const Marker*>> pieces_of;  // by id / ring: the body's slot
@@ -162,7 +162,7 @@ TEST(Scene, TrailPiecesCarryOnlyNewPointsAndJoinIntoTheTrajectory) {
 
 TEST(Scene, ARemovedBodyLosesItsTrailAndLabelAndAResetStartsTrailsAfresh) {
   World world(demoConfig());
-  const TrailOptions options{2.0, 10.0};
+  const MarkerOptions options{2.0, 10.0};
   Scene scene("world", "", world.bodies(), options);
   for (int publication = 0; publication < 3; ++publication) {
     world.step();
@@ -193,7 +193,7 @@ TEST(Scene, ARemovedBodyLosesItsTrailAndLabelAndAResetStartsTrailsAfresh) {
 
 TEST(Scene, NoTrailsWhenTheirLengthIsZero) {
   World world(demoConfig());
-  Scene scene("world", "", world.bodies(), TrailOptions{0.0, 10.0});
+  Scene scene("world", "", world.bodies(), MarkerOptions{0.0, 10.0});
   for (int publication = 0; publication < 10; ++publication) {
     world.step();
     scene.sample(world.bodies());
@@ -201,4 +201,29 @@ TEST(Scene, NoTrailsWhenTheirLengthIsZero) {
   const MarkerArray changes = scene.changes(ros::Time(1.0), world.bodies());
   EXPECT_TRUE(inNamespace(changes, "trail").empty());
   EXPECT_EQ(inNamespace(changes, "label").size(), world.bodies().size());
+}
+
+// A lesson's labels: a roller's gives its critical angle (the core's, in degrees to 0.1) in place of its
+// energy; a rod's is as always.
+TEST(Scene, LabelsGiveTheCriticalAngleWhenAsked) {
+  const World world(demoConfig());
+  MarkerOptions options;
+  options.critical_angles = true;
+  Scene lesson("world", "", world.bodies(), options);
+  Scene plain("world", "", world.bodies());
+  const auto byBody = [](const MarkerArray& changes) {
+    std::map<std::string, std::string> texts;
+    for (const Marker* m : inNamespace(changes, "label"))
+      texts[m->text.substr(0, m->text.find(':'))] = m->text;
+    return texts;
+  };
+  const auto asked = byBody(lesson.changes(ros::Time(1.0), world.bodies()));
+  const auto usual = byBody(plain.changes(ros::Time(1.0), world.bodies()));
+  ASSERT_EQ(asked.size(), 3u);
+  EXPECT_EQ(asked.at("rod"), usual.at("rod"));
+  EXPECT_EQ(usual.at("rod").rfind("rod: E = ", 0), 0u) << usual.at("rod");
+  // ball: a sphere with mu_s 0.3, tan(phi_c) = 3.5 * 0.3; hoop: a ring, tan(phi_c) = 2 * 0.3
+  EXPECT_EQ(asked.at("ball"), "ball: slipping, critical angle 46.4 deg");
+  EXPECT_EQ(asked.at("hoop"), "hoop: rolling, critical angle 31.0 deg");
+  EXPECT_EQ(usual.at("hoop").rfind("hoop: rolling, E = ", 0), 0u) << usual.at("hoop");
 }

@@ -90,7 +90,8 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
   paused_ = options_.start_paused;
-  const TrailOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate)};
+  const MarkerOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate),
+                            options_.label_critical_angles};
   snapshots_ = std::make_unique<SnapshotBuilder>(world().config().world_frame, options_.frame_prefix,
                                                  world().bodies(), trail);
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);

@@ -92,7 +92,7 @@ BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, con
     : path_(path),
       node_namespace_(std::move(node_namespace)),
       snapshots_(config.world_frame, std::move(frame_prefix), bodies),
-      marker_rate_(TrailOptions().pieces_rate),
+      marker_rate_(MarkerOptions().pieces_rate),
       bag_(newBag()) {
   bag_->open(path_ + ".active", rosbag::bagmode::Write);  // a failure here leaves no file
   const ros::Time start = simStamp(0.0);

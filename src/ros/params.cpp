@@ -115,6 +115,8 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
     options.marker_rate = numberOption(yaml, names::kMarkerRate, 0.0, {0.0, 1e6, true});
   }
   options.trail_length = numberOption(yaml, names::kTrailLength, options.trail_length, {0.0, 3600.0});
+  options.label_critical_angles =
+      boolOption(yaml, names::kLabelCriticalAngles, options.label_critical_angles);
   if (yaml[names::kBag]) {
     if (!yaml[names::kBag].IsScalar()) throw ConfigError(kNode, names::kBag, "(not a text)", "a file path");
     options.bag = yaml[names::kBag].Scalar();
@@ -124,7 +126,7 @@ NodeOptions parseNodeOptions(XmlRpc::XmlRpcValue& private_namespace) {
 }
 
 double markerRate(const NodeOptions& options, double publish_rate) {
-  if (!options.marker_rate) return std::min(TrailOptions().pieces_rate, publish_rate);
+  if (!options.marker_rate) return std::min(MarkerOptions().pieces_rate, publish_rate);
   const Range range{0.0, publish_rate, true};
   if (!range.contains(*options.marker_rate)) {
     throw ConfigError(kNode, node_interface::kMarkerRate, formatNumber(*options.marker_rate),

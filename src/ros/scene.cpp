@@ -38,8 +38,8 @@ constexpr double kLabelAbove = 0.25;  // between the body's top and its label
 constexpr double kLabelHeight = 0.15;
 // Each further roller lane lifts its label by this much: rollers released side by side (the race) move
 // together, and a view from the side would otherwise draw their labels on top of one another.
-constexpr double kLabelStagger = kLabelHeight;
-constexpr double kGlyphWidth = 0.55;  // rviz's text: a glyph's width over the text's height
+constexpr double kLabelStagger = 1.5 * kLabelHeight;  // a line and a half: clear also in perspective
+constexpr double kGlyphWidth = 0.55;                  // rviz's text: a glyph's width over the text's height
 
 // Marker namespaces: fixed, so that a user can toggle them in rviz.
 const char* const kNsFloor = "floor";
@@ -181,11 +181,19 @@ visualization_msgs::Marker spokeMarker(const Body& body, const std::string& fram
   return spoke;
 }
 
-std::string labelText(const Body& body) {
+std::string labelText(const Body& body, bool critical_angle) {
   char energy[48];
   std::snprintf(energy, sizeof energy, "E = %.3f J", energyOf(body));
   if (const auto* roller = std::get_if<Roller>(&body.model)) {
-    return body.name + ": " + toString(roller->mode()) + ", " + energy;
+    const std::string head = body.name + ": " + toString(roller->mode()) + ", ";
+    if (!critical_angle) return head + energy;
+    // Section 16.3.2's, for its mu_s and shape, in place of the energy (the panel plots it): a class sees
+    // why one body slips, and the labels of a race stay short.
+    const RollerParams& params = roller->params();
+    char critical[48];
+    std::snprintf(critical, sizeof critical, "critical angle %.1f deg",
+                  criticalAngle(params.mu_s, params.inertia_factor) * 180 / kPi);
+    return head + critical;
   }
   return body.name + ": " + energy;
 }
@@ -283,14 +291,14 @@ Eigen::Isometry3d frameFromBody(const Body& body) {
   return pose;
 }
 
-int TrailOptions::ring() const {
+int MarkerOptions::ring() const {
   if (seconds <= 0.0) return 0;
   return std::max(1, static_cast<int>(std::ceil(seconds * pieces_rate - 1e-9)));
 }
 
 Scene::Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-             TrailOptions trail)
-    : world_frame_(std::move(world_frame)), frame_prefix_(std::move(frame_prefix)), trail_options_(trail) {
+             MarkerOptions trail)
+    : world_frame_(std::move(world_frame)), frame_prefix_(std::move(frame_prefix)), marker_options_(trail) {
   rebuild(bodies);
 }
 
@@ -330,7 +338,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
 }
 
 void Scene::sample(const std::vector<Body>& bodies) {
-  if (trail_options_.ring() == 0) return;
+  if (marker_options_.ring() == 0) return;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     trailOf(bodies[i].name).pending.push_back(worldPosition(placements_[i], bodies[i]));
   }
@@ -338,7 +346,7 @@ void Scene::sample(const std::vector<Body>& bodies) {
 
 visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std::vector<Body>& bodies) {
   visualization_msgs::MarkerArray array;
-  const int ring = trail_options_.ring();
+  const int ring = marker_options_.ring();
   for (const int slot : removed_slots_) {
     for (int k = 0; k < ring; ++k) {
       auto gone =
@@ -372,7 +380,7 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     }
     auto label =
         marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-    label.text = labelText(body);
+    label.text = labelText(body, marker_options_.critical_angles);
     // A roller's label starts above it and runs downhill (world +x): centred, its uphill half would cut
     // into the slope that rises behind the body.
     const double downhill = std::holds_alternative<Roller>(body.model)

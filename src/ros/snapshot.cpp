@@ -3,7 +3,7 @@
 namespace rigid_body_sim {
 
 SnapshotBuilder::SnapshotBuilder(std::string world_frame, std::string frame_prefix,
-                                 const std::vector<Body>& bodies, TrailOptions trail)
+                                 const std::vector<Body>& bodies, MarkerOptions trail)
     : scene_(std::move(world_frame), std::move(frame_prefix), bodies, trail) {}
 
 std::vector<geometry_msgs::TransformStamped> SnapshotBuilder::staticTransforms(const ros::Time& stamp) const {

@@ -120,7 +120,7 @@ TEST(Markers, SceneLatchedAndResentOnlyOnChangeTrailsIncrementalAtTheMarkerRate)
   for (const auto& array : arrays) {
     for (const auto& m : array.markers) {
       EXPECT_TRUE(finite(m)) << m.ns << " " << m.id;
-      if (m.ns != "trail" || m.id / TrailOptions().ring() != rod_slot) continue;
+      if (m.ns != "trail" || m.id / MarkerOptions().ring() != rod_slot) continue;
       EXPECT_LE(m.points.size(), static_cast<std::size_t>(config.publish_rate / kMarkerRate) + 1);
       if (!joined.empty()) {
         EXPECT_EQ(Eigen::Vector3d(m.points[0].x, m.points[0].y, m.points[0].z), joined.back()) << "a gap";

@@ -36,8 +36,10 @@ STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's Statu
 MIN_BODY_PX = 20
 MIN_ROD_PX = 150
 MIN_LABEL_PX = 14
-# The config each launch file runs (the wrappers take no config argument).
-LAUNCH_CONFIGS = {"sim.launch": "demo.yaml", "rod.launch": "rod.yaml", "incline.launch": "incline.yaml"}
+# The config and rviz view each launch file runs with its defaults (the wrappers take no config argument).
+LAUNCH_CONFIGS = {"sim.launch": ("demo.yaml", "sim.rviz"), "rod.launch": ("rod.yaml", "rod.rviz"),
+                  "incline.launch": ("incline.yaml", "incline.rviz"),
+                  "lesson.launch": ("race_below.yaml", "lesson_race.rviz")}
 Outline = Tuple[str, Any]
 Disc = Tuple[np.ndarray, Any, float]  # mask, centre pixel, radius in pixels
 
@@ -183,7 +185,8 @@ class Checker:
 
     def label_boxes(self) -> Dict[str, Optional[Tuple[int, int, int, int]]]:
         """{label text: ink box (top, left, bottom, right)} of each label's white pixels, searched in a box
-        around its projected centre a little larger than its text."""
+        around its projected centre a little larger than its text: 1.6 text heights high, so that the ink of a
+        label stacked a line and a half above or below (the next lane's) is not taken for its own."""
         white = pc.white_mask(self.image) & self.view
         found: Dict[str, Optional[Tuple[int, int, int, int]]] = {}
         for (ns, _), m in sorted(self.scene.markers.items()):
@@ -192,7 +195,7 @@ class Checker:
             _, centre = self.scene.world_pose(m.header.frame_id, m.pose)
             (pixel,), (depth,) = self.camera.project(centre)
             height = m.scale.z * self.camera.pixels_per_metre_at(depth) if depth > 0 else 0.0
-            half_w, half_h = 0.5 * (0.9 * len(m.text) + 1) * height, 1.2 * height
+            half_w, half_h = 0.5 * (0.9 * len(m.text) + 1) * height, 0.8 * height
             col, row = pixel
             region = pc.polygon_mask(self.shape, [(col - half_w, row - half_h), (col + half_w, row - half_h),
                                                   (col + half_w, row + half_h), (col - half_w, row + half_h)])
@@ -417,7 +420,7 @@ def main() -> int:
     if args.config and args.launch != "sim.launch":
         parser.error("--config is sim.launch's: the other launch files run their own")
     config_arg = [f"config:={args.config}"] if args.config else []
-    args.config = args.config or os.path.join(PACKAGE, "config", LAUNCH_CONFIGS[args.launch])
+    args.config = args.config or os.path.join(PACKAGE, "config", LAUNCH_CONFIGS[args.launch][0])
     launch = subprocess.Popen(["roslaunch", "-p", str(port), "rigid_body_sim", args.launch, "rviz:=true"] + config_arg,
                               stdout=log, stderr=subprocess.STDOUT)
     try:
@@ -487,7 +490,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
             break
         steps = round(0.05 * rate)
 
-    view_file = os.path.join(PACKAGE, "rviz", args.launch.replace(".launch", ".rviz"))  # the launch's view
+    view_file = os.path.join(PACKAGE, "rviz", LAUNCH_CONFIGS[args.launch][1])  # the launch's view
     with open(view_file) as f:
         manager = yaml.safe_load(f)["Visualization Manager"]
     view = manager["Views"]["Current"]

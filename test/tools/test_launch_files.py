@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rod.launch and incline.launch take every argument of sim.launch but config, with the same defaults and docs
-(rviz_config: the same doc, its default the wrapper's own rviz/<wrapper>.rviz),
+(rviz_config: the same doc, its default the wrapper's own rviz/<wrapper>.rviz); lesson.launch too, but with its
+part (below, above or rod) choosing the config and the view, rviz and critical_angles on by default;
 and every argument of sim.launch and playback.launch has a doc (roslaunch --ros-args shows it). playback.launch's
 player is required (the launch ends with the bag) without rviz or with close_at_end, and only then; start_paused
 passes --pause.
@@ -14,6 +15,10 @@ import xml.etree.ElementTree as ElementTree
 from typing import Dict, List, Tuple
 
 Args = Dict[str, Tuple[str, str]]  # name: (default, doc)
+LESSON_VIEW = ("$(eval find('rigid_body_sim') + '/rviz/lesson_' + ('rod' if arg('part') == 'rod' else 'race') + "
+               "'.rviz')")
+LESSON_PART = ("below", "below, above: the three shapes racing below, above their critical angles (section 16.3.2); "
+               "rod: the bouncing rod (section 16.3.3)")
 
 
 def launch_args(path: str) -> Args:
@@ -59,10 +64,12 @@ def main() -> None:
     sim = launch_args(os.path.join(launch_dir, "sim.launch"))
     failures = [f"sim.launch: {name} has no doc" for name, (_, doc) in sim.items() if not doc]
     del sim["config"]
-    for wrapper in ("rod.launch", "incline.launch"):
+    lesson = dict(sim, rviz=("true", sim["rviz"][1]), critical_angles=("true", sim["critical_angles"][1]),
+                  rviz_config=(LESSON_VIEW, sim["rviz_config"][1]), part=LESSON_PART)
+    for wrapper in ("rod.launch", "incline.launch", "lesson.launch"):
         args = launch_args(os.path.join(launch_dir, wrapper))
         own_view = "$(find rigid_body_sim)/rviz/" + wrapper.replace(".launch", ".rviz")
-        expected = dict(sim, rviz_config=(own_view, sim["rviz_config"][1]))
+        expected = lesson if wrapper == "lesson.launch" else dict(sim, rviz_config=(own_view, sim["rviz_config"][1]))
         for name in sorted(set(expected) | set(args)):
             if args.get(name) != expected.get(name):
                 failures.append(f"{wrapper}: {name} is {args.get(name)}, expected {expected.get(name)}")

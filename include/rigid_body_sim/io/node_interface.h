@@ -19,6 +19,7 @@ inline constexpr const char* kStartOnSubscribers = "start_on_subscribers";
 inline constexpr const char* kFramePrefix = "frame_prefix";
 inline constexpr const char* kMarkerRate = "marker_rate";
 inline constexpr const char* kTrailLength = "trail_length";
+inline constexpr const char* kLabelCriticalAngles = "label_critical_angles";
 inline constexpr const char* kBag = "bag";
 inline constexpr const char* kEndLaunch = "end_launch";
 // Topics and services (each body adds ~<body>/state and its reconfigure server ~<body>)
@@ -47,8 +48,9 @@ inline constexpr const char* kNamespaceTfStatic = "tf_static";
 
 inline const std::vector<std::string>& optionNames() {
   static const std::vector<std::string> names = {
-      kRealTimeFactor, kPublishClock, kDuration,    kStartDelay, kStartOnSubscribers, kStartPaused,
-      kFramePrefix,    kMarkerRate,   kTrailLength, kBag,        kEndLaunch};
+      kRealTimeFactor,     kPublishClock,        kDuration,    kStartDelay,
+      kStartOnSubscribers, kStartPaused,         kFramePrefix, kMarkerRate,
+      kTrailLength,        kLabelCriticalAngles, kBag,         kEndLaunch};
   return names;
 }
 

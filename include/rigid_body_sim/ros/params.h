@@ -24,7 +24,8 @@ struct NodeOptions {
   bool start_paused = false;          // publish the first state, then wait for ~unpause or ~step
   std::string frame_prefix;           // in front of every frame published but world_frame ("left/": left/rod)
   std::optional<double> marker_rate;  // Hz of ~markers (trail pieces, labels); unset: markerRate()'s default
-  double trail_length = TrailOptions().seconds;  // simulated seconds of trail; 0 = no trails
+  double trail_length = MarkerOptions().seconds;  // simulated seconds of trail; 0 = no trails
+  bool label_critical_angles = false;             // a roller's label: its critical angle, not its energy
   std::string bag;  // if set, the node writes every publication into this bag itself (as simulate --bag)
   // When the duration ends, end the roslaunch that started this node too (SIGINT, as Ctrl-C does): its
   // recorder and rviz with it. Never a rostest: its tests decide when it ends.
@@ -32,7 +33,7 @@ struct NodeOptions {
 };
 
 // ~markers' rate: the option, at most publish_rate (refused above it in one line, as any bad option);
-// unset: TrailOptions' pieces_rate (10 Hz), or publish_rate if that is lower.
+// unset: MarkerOptions' pieces_rate (10 Hz), or publish_rate if that is lower.
 double markerRate(const NodeOptions& options, double publish_rate);
 
 // The node's private namespace from the parameter server; throws ConfigError when it holds nothing.

@@ -18,7 +18,7 @@
 //   again only when it differs;
 // - the changes (at the marker rate): for every body the piece of its trail added since the last
 //   changes() (a short LINE_STRIP whose id comes from a ring, so that the oldest piece is overwritten once
-//   the trail is `trail_seconds` long) and its label (mode, energy).
+//   the trail is `trail_seconds` long) and its label (mode, and energy or critical angle).
 #pragma once
 
 #include <cstddef>
@@ -48,10 +48,11 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
 
-// How long the trails are and how often their pieces are sent.
-struct TrailOptions {
-  double seconds = 8.0;       // simulated seconds of trail; 0 = no trails
-  double pieces_rate = 10.0;  // Hz: how often changes() is called (the marker rate)
+// How long the trails are, how often their pieces are sent, what the labels say.
+struct MarkerOptions {
+  double seconds = 8.0;          // simulated seconds of trail; 0 = no trails
+  double pieces_rate = 10.0;     // Hz: how often changes() is called (the marker rate)
+  bool critical_angles = false;  // a roller's label gives its critical angle, not its energy (a lesson)
   // Pieces a trail is made of: the ring of ids each body's pieces cycle through.
   int ring() const;
 };
@@ -59,7 +60,7 @@ struct TrailOptions {
 class Scene {
  public:
   Scene(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-        TrailOptions trail = {});
+        MarkerOptions trail = {});
 
   const std::string& worldFrame() const { return world_frame_; }
   std::string bodyFrame(const Body& body) const { return frame_prefix_ + body.name; }
@@ -95,7 +96,7 @@ class Scene {
 
   std::string world_frame_;
   std::string frame_prefix_;
-  TrailOptions trail_options_;
+  MarkerOptions marker_options_;
   std::vector<BodyPlacement> placements_;
   visualization_msgs::MarkerArray scene_;
   std::map<std::string, Trail> trails_;

@@ -26,7 +26,7 @@ class SnapshotBuilder {
   // frame_prefix goes in front of every frame but world_frame (the node's option; empty in a bag of
   // simulate).
   SnapshotBuilder(std::string world_frame, std::string frame_prefix, const std::vector<Body>& bodies,
-                  TrailOptions trail = {});
+                  MarkerOptions trail = {});
 
   std::vector<geometry_msgs::TransformStamped> staticTransforms(const ros::Time& stamp) const;
   Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const;
