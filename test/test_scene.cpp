@@ -56,6 +56,15 @@ std::vector<const Marker*> inNamespace(const MarkerArray& array, const std::stri
   return found;
 }
 
+// Publications of the world with their trail points, then the changes sent (all taken up to now).
+void stepAndSend(World& world, Scene& scene, int publications) {
+  for (int publication = 0; publication < publications; ++publication) {
+    world.step();
+    scene.sample(world.bodies());
+  }
+  scene.changes(ros::Time(1.0), world.bodies());
+}
+
 Eigen::Vector3d worldPositionOf(const World& world, std::size_t i) {
   return (placeBodies(world.bodies())[i].world_from_frame * frameFromBody(world.bodies()[i])).translation();
 }
@@ -164,11 +173,7 @@ TEST(Scene, ARemovedBodyLosesItsTrailAndLabelAndAResetStartsTrailsAfresh) {
   World world(demoConfig());
   const MarkerOptions options{2.0, 10.0};
   Scene scene("world", "", world.bodies(), options);
-  for (int publication = 0; publication < 3; ++publication) {
-    world.step();
-    scene.sample(world.bodies());
-  }
-  scene.changes(ros::Time(1.0), world.bodies());
+  stepAndSend(world, scene, 3);
 
   WorldConfig fewer = demoConfig();
   fewer.bodies.erase(fewer.bodies.begin());  // the rod goes
@@ -226,4 +231,32 @@ TEST(Scene, LabelsGiveTheCriticalAngleWhenAsked) {
   EXPECT_EQ(asked.at("ball"), "ball: slipping, critical angle 46.4 deg");
   EXPECT_EQ(asked.at("hoop"), "hoop: rolling, critical angle 31.0 deg");
   EXPECT_EQ(usual.at("hoop").rfind("hoop: rolling, E = ", 0), 0u) << usual.at("hoop");
+}
+
+// A body whose fixed frame moved (a steeper slope) loses its trail: its path so far would float where the
+// old slope was. The others keep theirs.
+TEST(Scene, ABodyWhoseSlopeMovedStartsItsTrailAfresh) {
+  World world(demoConfig());
+  const MarkerOptions options{2.0, 10.0};
+  Scene scene("world", "", world.bodies(), options);
+  stepAndSend(world, scene, 3);
+
+  WorldConfig steeper = demoConfig();
+  std::get<RollerConfig>(steeper.bodies[1].config).params.incline_angle = 0.5;  // the ball's
+  const World moved(steeper);
+  scene.rebuild(moved.bodies());
+  scene.sample(moved.bodies());
+  const MarkerArray after = scene.changes(ros::Time(2.0), moved.bodies());
+  std::map<int, int> deleted;  // by the slot of the trail (id / ring)
+  for (const Marker* m : inNamespace(after, "trail")) {
+    if (m->action == Marker::DELETE) ++deleted[m->id / options.ring()];
+  }
+  ASSERT_EQ(deleted.size(), 1u) << "only the ball's trail goes";
+  EXPECT_EQ(deleted.begin()->second, options.ring());
+  const int ball_slot = deleted.begin()->first;
+  for (const Marker* m : inNamespace(after, "trail")) {
+    if (m->action == Marker::ADD) EXPECT_NE(m->id / options.ring(), ball_slot) << "one point is no strip yet";
+  }
+  EXPECT_EQ(inNamespace(after, "trail").size(), static_cast<std::size_t>(options.ring()) + 2)
+      << "the ball's ring of deletions and a piece for each of the other two";
 }

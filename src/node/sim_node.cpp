@@ -29,22 +29,6 @@ constexpr auto kWatchPeriod = std::chrono::seconds(1);  // how often the master 
 constexpr auto kClockWait = std::chrono::seconds(2);    // for a /clock when /use_sim_time is true
 
 // Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
-bool placementChanged(const RodConfig& a, const RodConfig& b) {
-  return a.params.floor_length != b.params.floor_length;
-}
-bool placementChanged(const RollerConfig& a, const RollerConfig& b) {
-  return a.params.incline_angle != b.params.incline_angle ||
-         a.params.incline_length != b.params.incline_length || a.params.shape != b.params.shape ||
-         a.params.radius != b.params.radius;
-}
-bool placementChanged(const BodyConfig& a, const BodyConfig& b) {
-  return std::visit(
-      [&](const auto& config) {
-        return placementChanged(config, std::get<std::decay_t<decltype(config)>>(b.config));
-      },
-      a.config);
-}
-
 std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   std::size_t index = 0;
   while (index < config.bodies.size() && config.bodies[index].name != name) ++index;
@@ -318,10 +302,9 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
     case WorldCommand::Kind::SetState:
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
       guard_.release(index, world().bodies()[index]);
-      if (command.kind == WorldCommand::Kind::Reconfigure &&
-          placementChanged(before.bodies[index], world().config().bodies[index])) {
-        rebuildSceneLocked();
-      }
+      // Any key may change the look (a rod's length, a slope, a radius): the scene knows which do, and
+      // sends only what changed, as the recorder of simulate --bag does.
+      if (command.kind == WorldCommand::Kind::Reconfigure) rebuildSceneLocked();
       return;
     case WorldCommand::Kind::Reset:
       session_.takeEvents();
@@ -572,10 +555,9 @@ void SimNode::publishSceneLocked() {
 // The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
 // when it changed; trails are kept by body name.
 void SimNode::rebuildSceneLocked() {
-  if (snapshots_->scene().rebuild(world().bodies())) {
-    scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-  }
-  publishStaticTransformsLocked();
+  const bool changed = snapshots_->scene().rebuild(world().bodies());
+  publishStaticTransformsLocked();  // the new placements' frames first, then the markers drawn in them
+  if (changed) scene_publisher_.publish(snapshots_->scene().sceneMarkers());
   recordLocked([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
 }
 

@@ -108,8 +108,13 @@ visualization_msgs::Marker marker(const char* ns, int id, int type, const std::s
 }
 
 // A marker of the latched scene: stamped 0 (the latest transform), so that a late viewer draws it at once.
+// Frame-locked: rviz places it by the latest transform of its frame at every frame it draws, not once on
+// arrival, so that a slope whose fixed frame moved (a new angle or length) is drawn where its new frame is
+// even when the scene reaches rviz before the new static transform.
 visualization_msgs::Marker sceneMarker(const char* ns, int id, int type, const std::string& frame) {
-  return marker(ns, id, type, frame, ros::Time());
+  auto m = marker(ns, id, type, frame, ros::Time());
+  m.frame_locked = true;
+  return m;
 }
 
 // A plane frame whose y axis is the world's z, tilted down by `tilt` about its own z.
@@ -311,9 +316,19 @@ Scene::Trail& Scene::trailOf(const std::string& body) {
 }
 
 bool Scene::rebuild(const std::vector<Body>& bodies) {
+  std::map<std::string, Eigen::Matrix4d> before;
+  for (const auto& placement : placements_) before[placement.frame] = placement.world_from_frame.matrix();
   placements_ = placeBodies(bodies, frame_prefix_);
   std::map<std::string, Trail> kept;
-  for (const auto& body : bodies) kept[body.name] = trailOf(body.name);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Trail& trail = trailOf(bodies[i].name);
+    const auto was = before.find(placements_[i].frame);
+    if (was != before.end() && was->second != placements_[i].world_from_frame.matrix()) {
+      moved_slots_.push_back(trail.slot);
+      trail = Trail{trail.slot, {}, {}, 0};
+    }
+    kept[bodies[i].name] = trail;
+  }
   for (const auto& [name, trail] : trails_) {
     if (!kept.count(name)) removed_slots_.push_back(trail.slot);
   }
@@ -347,18 +362,23 @@ void Scene::sample(const std::vector<Body>& bodies) {
 visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std::vector<Body>& bodies) {
   visualization_msgs::MarkerArray array;
   const int ring = marker_options_.ring();
-  for (const int slot : removed_slots_) {
+  const auto deleteTrail = [&](int slot) {
     for (int k = 0; k < ring; ++k) {
       auto gone =
           marker(kNsTrail, slot * ring + k, visualization_msgs::Marker::LINE_STRIP, world_frame_, stamp);
       gone.action = visualization_msgs::Marker::DELETE;
       array.markers.push_back(gone);
     }
+  };
+  for (const int slot : removed_slots_) {
+    deleteTrail(slot);
     auto label = marker(kNsLabel, slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
     label.action = visualization_msgs::Marker::DELETE;
     array.markers.push_back(label);
   }
   removed_slots_.clear();
+  for (const int slot : moved_slots_) deleteTrail(slot);  // before the new pieces, which take ids from 0
+  moved_slots_.clear();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const Body& body = bodies[i];
     Trail& trail = trailOf(body.name);

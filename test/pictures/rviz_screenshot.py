@@ -4,7 +4,9 @@ incline.launch with their own views) on this X display, steps the simulation a f
 screenshot (ImageMagick's import) and checks the picture against what the node published: the floor, every
 slope, every roller and the rod must show their colours where rviz's camera puts them, each body must measure
 at least MIN_BODY_PX across (a rod MIN_ROD_PX along), each label's text MIN_LABEL_PX high and clear of the
-others, and rviz must report no error.
+others, and rviz must report no error. With --change BODY.KEY=VALUE (a look: a slope's angle or length, a
+radius, a rod's length), set through the body's reconfigure server while paused before the picture, the
+picture must show the new look and nothing of a changed slope where it was.
 
 Run under Xvfb (test/pictures/rviz_screenshot.sh does). Exit 0 when every check passes, 1 otherwise.
 Writes OUT (the screenshot), OUT's stem + "_regions.png" (the regions checked, outlined) and
@@ -66,6 +68,8 @@ class Scene:
         self.frames: Dict[str, Tuple[np.ndarray, np.ndarray]] = {}
         # Markers by topic: a DELETEALL clears those of its own topic only, as in rviz's displays.
         self.by_topic: Dict[str, Dict[Tuple[str, int], Any]] = {"/sim/scene": {}, "/sim/markers": {}}
+        self.scene_messages = 0  # how many ~scene and /tf_static messages came
+        self.static_messages = 0
         self.t: Optional[float] = None  # of the latest state of the first body
         self.state_stamp: Any = None  # of that state, and of the latest transform on /tf
         self.tf_stamp: Any = None
@@ -74,7 +78,7 @@ class Scene:
         self.first = self.names[0]
         self.subscribers = [
             rospy.Subscriber("/tf", TFMessage, self.on_moving_tf, queue_size=100),
-            rospy.Subscriber("/tf_static", TFMessage, self.on_tf, queue_size=100),
+            rospy.Subscriber("/tf_static", TFMessage, self.on_static_tf, queue_size=100),
             rospy.Subscriber("/sim/scene", MarkerArray, self.on_markers, "/sim/scene", queue_size=10),
             rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, "/sim/markers", queue_size=100)]
         for name, body in config["bodies"].items():
@@ -102,6 +106,10 @@ class Scene:
         return all(name in self.states and self.states[name].x <= 0.8 * slope
                    for name, slope in ((r.name, r.slope) for r in rollers))
 
+    def on_static_tf(self, msg: Any) -> None:
+        self.on_tf(msg)
+        self.static_messages += 1
+
     def on_tf(self, msg: Any) -> None:
         for t in msg.transforms:
             r, q = t.transform.translation, t.transform.rotation
@@ -109,6 +117,7 @@ class Scene:
 
     def on_markers(self, msg: Any, topic: str) -> None:
         markers = self.by_topic[topic]
+        self.scene_messages += topic == "/sim/scene"
         for m in msg.markers:
             if m.action == m.DELETEALL:
                 markers.clear()
@@ -409,6 +418,8 @@ def main() -> int:
     parser.add_argument("--out", required=True, help="the screenshot (PNG)")
     parser.add_argument("--settle", type=float, default=1.0, help="simulated seconds before the picture")
     parser.add_argument("--timeout", type=float, default=150.0, help="wall seconds for everything")
+    parser.add_argument("--change", action="append", default=[], metavar="BODY.KEY=VALUE",
+                        help="set before the picture, while paused (repeat for more)")
     args = parser.parse_args()
     start = time.monotonic()
     os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
@@ -489,6 +500,11 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
         if scene.rollers_high(rollers):
             break
         steps = round(0.05 * rate)
+    old_slopes = change_looks(args.change, config, scene, left, launch) if args.change else {}
+    if args.change:  # a step shows the bodies where the new look puts them
+        t_last = step(1).t
+        wait_while_running("the states and transforms after the change", lambda: scene.all_at(t_last), left(),
+                           launch)
 
     view_file = os.path.join(PACKAGE, "rviz", LAUNCH_CONFIGS[args.launch][1])  # the launch's view
     with open(view_file) as f:
@@ -504,6 +520,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
         subprocess.run(["import", "-window", "root", args.out], check=True)
         image = read_png(args.out)
         findings, outlines = check_picture(image, scene, camera, config)
+        findings += old_slopes_gone(image, scene, camera, old_slopes)
         status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height))
         findings += [flag(f"rviz display tree free of {k} colour ({v} px)", v == 0) for k, v in status.items()]
         if all(f.ok for f in findings) or time.monotonic() > look_until:
@@ -523,6 +540,69 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     print("\n".join(report))
     save_outlined(image, outlines, stem + "_regions.png")
     return 0 if all(f.ok for f in findings) else 1
+
+
+def change_looks(changes: List[str], config: Config, scene: Scene, left: Callable[[], float],
+                 launch: Any) -> Dict[str, Tuple[Any, Tuple[np.ndarray, np.ndarray]]]:
+    """Sets each BODY.KEY=VALUE through the body's reconfigure server and waits until the scene and the
+    static transforms the node sends say so; `config` takes the new values (the checks use them). Returns
+    the slopes that changed as they were: {body: (slope marker, its frame's rotation and origin)}."""
+    import dynamic_reconfigure.client
+    old: Dict[str, Tuple[Any, Tuple[np.ndarray, np.ndarray]]] = {}
+    for change in changes:
+        target, value = change.split("=", 1)
+        body, key = target.split(".", 1)
+        if key in ("incline_angle", "incline_length"):
+            old[body] = (scene.markers[("slope", slope_id(scene, body))], scene.frames[body + "_slope"])
+        scene_messages, static_messages = scene.scene_messages, scene.static_messages
+        client = dynamic_reconfigure.client.Client(f"/sim/{body}", timeout=left())
+        applied = client.update_configuration({key: float(value)})
+        if float(applied[key]) != float(value):
+            raise RuntimeError(f"the node refused {change}: it runs {key} = {applied[key]}")
+        config["bodies"][body][key] = float(value)
+        # The node sends the fixed frames again, then the scene if a marker changed: all but a new angle
+        # (a slope is drawn in its own frame) change one.
+        wait_while_running(f"the fixed frames after {change}", lambda: scene.static_messages > static_messages,
+                           left(), launch)
+        if key != "incline_angle":
+            wait_while_running(f"the scene after {change}", lambda: scene.scene_messages > scene_messages,
+                               left(), launch)
+    return old
+
+
+def slope_id(scene: Scene, body: str) -> int:
+    """The id of the slope marker drawn in the body's slope frame."""
+    return next(key[1] for key, m in scene.markers.items()
+                if key[0] == "slope" and m.header.frame_id == body + "_slope")
+
+
+def old_slopes_gone(image: np.ndarray, scene: Scene, camera: pc.Camera,
+                    old: Dict[str, Tuple[Any, Tuple[np.ndarray, np.ndarray]]]) -> List[Finding]:
+    """Where a changed slope's top was, and nothing of the scene now is (no slope, body or label), no more
+    than 5 % brown: rviz draws the slope where its new frame puts it, not the new slope in the old frame or
+    the old one left behind."""
+    checker = Checker(image, scene, camera)
+    now = checker.slopes()
+    covered = checker.labels()
+    for box, _ in now.values():
+        covered |= box
+    for name in scene.frames:
+        if name in scene.states:  # a body: a disc of its largest reach around its centre
+            (pixel,), (depth,) = camera.project(scene.frames[name][1])
+            covered |= pc.disc_mask(checker.shape, pixel, 0.6 * camera.pixels_per_metre_at(depth))
+    findings = []
+    for body, (marker, (rotation, origin)) in old.items():
+        q, p = marker.pose.orientation, marker.pose.position
+        centre = origin + rotation @ [p.x, p.y, p.z]
+        rot = rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w])
+        size = np.array([marker.scale.x, marker.scale.y, marker.scale.z])
+        top = checker.hull_of(pc.box_corners(rot, centre + 0.5 * size[1] * rot[:, 1], size * [1, 0, 1]))
+        region = pc.polygon_mask(checker.shape, top) & checker.view & ~covered
+        brown = int((pc.colour_mask(image, "brown") & region).sum())
+        total = int(region.sum())
+        findings.append(pc.Finding(f"{body}'s old slope gone: not brown", "-", total, total - brown,
+                                   int(np.ceil(0.95 * total))))
+    return findings
 
 
 def control(image: np.ndarray, scene: Scene, camera: pc.Camera, config: Config, background: List[int]) -> Finding:

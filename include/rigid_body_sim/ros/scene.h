@@ -68,7 +68,9 @@ class Scene {
 
   // For a new set of bodies or a new look (a spawn, a delete, a reconfigured slope or shape): new
   // placements and scene. Trails are kept by body name; a removed body's trail and label are deleted by
-  // the next changes(). Returns whether the scene's markers changed (then send sceneMarkers() again).
+  // the next changes(), and so is the trail of a body whose fixed frame moved (a new slope: its path so far
+  // would float where the old slope was). Returns whether the scene's markers changed (then send
+  // sceneMarkers() again).
   bool rebuild(const std::vector<Body>& bodies);
 
   // The latched scene: DELETEALL first, then the floor, the slopes and every body's shape and spoke.
@@ -101,6 +103,7 @@ class Scene {
   visualization_msgs::MarkerArray scene_;
   std::map<std::string, Trail> trails_;
   std::vector<int> removed_slots_;  // of bodies gone since the last changes()
+  std::vector<int> moved_slots_;    // of bodies whose fixed frame moved: their trails go
   int next_slot_ = 0;
 };
 
