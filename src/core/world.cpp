@@ -1,6 +1,5 @@
 #include "rigid_body_sim/core/world.h"
 
-#include <algorithm>
 #include <type_traits>
 
 #include "rigid_body_sim/core/state_fields.h"
