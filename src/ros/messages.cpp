@@ -1,55 +1,35 @@
 #include "rigid_body_sim/ros/messages.h"
 
-#include <cstdint>
-#include <vector>
-
-#include <ros/serialization.h>
-#include <std_msgs/Header.h>
-
-#include "rigid_body_sim/core/state_fields.h"
-
 namespace rigid_body_sim {
 
 ros::Time simStamp(double t) { return ros::Time(0, 1) + ros::Duration(t); }
 
-namespace {
-
-// Fills a state message through its serialized form, header, t, then the body's fields in the order of its
-// table (core/state_fields.h), which is the message's (test_messages checks names, order and types): so
-// that no field is named here. The caller sets the header.
-template <class Msg, class Model>
-Msg stateMsgOf(double t, const Model& model) {
-  namespace ser = ros::serialization;
-  const auto& table = stateFieldTable(model);
-  const auto fields = stateFields(model);
-  const std_msgs::Header header;
-  std::uint32_t size = ser::serializationLength(header) + ser::serializationLength(t);
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    size +=
-        table[i].text ? ser::serializationLength(fields[i].text) : ser::serializationLength(fields[i].number);
-  }
-  std::vector<std::uint8_t> buffer(size);
-  ser::OStream out(buffer.data(), size);
-  ser::serialize(out, header);
-  ser::serialize(out, t);
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (table[i].text) {
-      ser::serialize(out, fields[i].text);
-    } else {
-      ser::serialize(out, fields[i].number);
-    }
-  }
-  Msg msg;
-  ser::IStream in(buffer.data(), size);
-  ser::deserialize(in, msg);
+RodState toRodStateMsg(double t, const Rod& rod) {
+  RodState msg;
+  msg.t = t;
+  msg.x = rod.state().x;
+  msg.y = rod.state().y;
+  msg.theta = rod.state().theta;
+  msg.vx = rod.state().vx;
+  msg.vy = rod.state().vy;
+  msg.omega = rod.state().omega;
+  msg.energy = rod.energy();
   return msg;
 }
 
-}  // namespace
-
-RodState toRodStateMsg(double t, const Rod& rod) { return stateMsgOf<RodState>(t, rod); }
-
-RollerState toRollerStateMsg(double t, const Roller& roller) { return stateMsgOf<RollerState>(t, roller); }
+RollerState toRollerStateMsg(double t, const Roller& roller) {
+  RollerState msg;
+  msg.t = t;
+  msg.x = roller.state().x;
+  msg.v = roller.state().v;
+  msg.theta = roller.state().theta;
+  msg.omega = roller.state().omega;
+  msg.mode = toString(roller.mode());
+  msg.friction = roller.frictionForce();
+  msg.normal = roller.normalForce();
+  msg.energy = roller.energy();
+  return msg;
+}
 
 StateMsg toStateMsg(double t, const Body& body) {
   if (const auto* rod = std::get_if<Rod>(&body.model)) return toRodStateMsg(t, *rod);

@@ -19,8 +19,8 @@ namespace rigid_body_sim {
 // Simulated time as a ROS stamp: t plus 1 ns, so that the t = 0 sample is a valid, non-zero time.
 ros::Time simStamp(double t);
 
-// The state messages carry the fields of core/state_fields.h, filled from its tables (test_messages checks
-// the definitions against them); the header is left to the caller.
+// The state messages carry the fields of core/state_fields.h (test_messages checks the definitions); the
+// header is left to the caller.
 RodState toRodStateMsg(double t, const Rod& rod);
 RollerState toRollerStateMsg(double t, const Roller& roller);
 using StateMsg = std::variant<RodState, RollerState>;
