@@ -126,6 +126,11 @@ def state_fields(msg: Any) -> List[str]:
     return [field for field in msg.__slots__ if field != "header"]
 
 
+def state_numbers(msg: Any) -> List[float]:
+    """The numbers of a state message, in its order: t and every float64 field (a roller's mode is text)."""
+    return [getattr(msg, field) for field, kind in zip(msg.__slots__, msg._slot_types) if kind == "float64"]
+
+
 def body_of_state_topic(topic: str) -> Union[str, None]:
     """`rod` for /sim/rod/state (and for /left/sim/rod/state, in a namespace); None for any other topic."""
     parts = topic.strip("/").split("/")

@@ -17,7 +17,8 @@ from rigid_body_sim.msg import RodState, RollerState
 from rigid_body_sim.srv import Step
 from std_srvs.srv import Empty
 
-from sim_tools import BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, wait_for, world_value
+from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, wait_for,
+                       world_value)
 
 
 class Body:
@@ -51,8 +52,7 @@ class Body:
     def on_state(self, msg: Any) -> None:
         self.count += 1
         self.last_t = msg.t
-        values = [msg.x, msg.theta, msg.omega, msg.energy] + ([msg.y, msg.vx, msg.vy] if self.rod else [msg.v])
-        if not all(math.isfinite(v) for v in values):
+        if not all(math.isfinite(v) for v in state_numbers(msg)):
             self.nonfinite += 1
             return
         if self.restarted(msg):

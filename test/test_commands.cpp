@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/core/world.h"
@@ -146,6 +149,96 @@ TEST(Commands, SetStateGivesARollerTheModeOfItsNewSpeeds) {
   world.apply(set);
   EXPECT_EQ(std::get<Roller>(world.bodies()[1].model).mode(), RollMode::Slipping);
   EXPECT_EQ(std::get<Roller>(world.bodies()[1].model).initial().v0, 3.0);
+}
+
+TEST(Commands, SetStateRefusesAnyOtherFieldAndChangesNothing) {
+  World world(rodAndBall());
+  steps(world, 10);
+  const RodMotion before = std::get<Rod>(world.bodies()[0].model).state();
+  const std::string rod_fields = "x, y, theta, vx, vy, omega)";
+  const std::pair<std::vector<StateValue>, std::string> refused[] = {
+      {{{"vz", 1.0}},
+       "body 'rod', key 'vz': value 1 is not allowed (allowed: no such state field of a rod; "},
+      {{{"x", 1.0}, {"v", 2.0}},
+       "body 'rod', key 'v': value 2 is not allowed (allowed: no such state field of "},
+      {{{"energy", 3.0}},
+       "body 'rod', key 'energy': value 3 is not allowed (allowed: no such state field of "},
+  };
+  for (const auto& [state, message] : refused) {
+    WorldCommand set = command(WorldCommand::Kind::SetState, world, "rod");
+    set.state = state;
+    try {
+      world.apply(set);
+      ADD_FAILURE() << state.back().field << " was accepted";
+    } catch (const ConfigError& error) {
+      const std::string what = error.what();
+      EXPECT_EQ(what.substr(0, message.size()), message);
+      EXPECT_EQ(what.substr(what.size() - rod_fields.size()), rod_fields) << what;
+    }
+    EXPECT_EQ(std::memcmp(&std::get<Rod>(world.bodies()[0].model).state(), &before, sizeof(RodMotion)), 0);
+  }
+  WorldCommand set = command(WorldCommand::Kind::SetState, world, "ball");
+  set.state = {{"y", 1.0}};
+  EXPECT_THROW(
+      {
+        try {
+          world.apply(set);
+        } catch (const ConfigError& error) {
+          EXPECT_EQ(
+              std::string(error.what()),
+              "body 'ball', key 'y': value 1 is not allowed (allowed: no such state field of a roller; its "
+              "fields: x, v, theta, omega)");
+          throw;
+        }
+      },
+      ConfigError);
+}
+
+// A set field takes the range of its initial condition, the key named after it with a 0.
+TEST(Commands, EverySettableFieldHasAnInitialCondition) {
+  for (const auto& name : settableStateFields(BodyKind::Rod)) {
+    EXPECT_NE(findKey(rodNumericKeys(), name + "0"), nullptr) << name;
+  }
+  for (const auto& name : settableStateFields(BodyKind::Roller)) {
+    EXPECT_NE(findKey(rollerNumericKeys(), name + "0"), nullptr) << name;
+  }
+}
+
+// The fields' names and numbers, in order.
+template <class Fields>
+void expectFields(const Fields& fields, const std::vector<std::pair<std::string, double>>& expected) {
+  ASSERT_EQ(fields.size(), expected.size());
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    EXPECT_EQ(fields[i].name, expected[i].first);
+    EXPECT_EQ(fields[i].number, expected[i].second) << fields[i].name;
+  }
+}
+
+// The tables read each field from the body's own member.
+TEST(StateFields, AreTheBodysOwnValues) {
+  const Rod rod(RodParams{}, RodMotion{1.0, 2.0, 3.0, 4.0, 5.0, 6.0});
+  const RodMotion& r = rod.state();
+  expectFields(stateFields(rod), {{"x", r.x},
+                                  {"y", r.y},
+                                  {"theta", r.theta},
+                                  {"vx", r.vx},
+                                  {"vy", r.vy},
+                                  {"omega", r.omega},
+                                  {"energy", rod.energy()}});
+  EXPECT_EQ(r.vy, 5.0);
+
+  const Roller ball(RollerParams{}, RollerInitial{1.0, 2.0, 3.0, 4.0});
+  const RollerMotion& b = ball.state();
+  expectFields(stateFields(ball), {{"x", b.x},
+                                   {"v", b.v},
+                                   {"theta", b.theta},
+                                   {"omega", b.omega},
+                                   {"mode", 0.0},
+                                   {"friction", ball.frictionForce()},
+                                   {"normal", ball.normalForce()},
+                                   {"energy", ball.energy()}});
+  EXPECT_EQ(stateFields(ball)[4].text, "slipping");  // u = v + omega R = 2.4 > 0
+  EXPECT_EQ(b.v, 2.0);
 }
 
 TEST(Commands, ResetIsTheWorldsReset) {

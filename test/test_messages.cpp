@@ -1,7 +1,9 @@
-// The state messages against the core's list of fields (core/state_fields.h): after header and t, the
-// fields of RodState and RollerState are the CSV's columns in the CSV's order, with the same values.
+// The state messages against the core's table of fields (core/state_fields.h): after header and t, the
+// fields of RodState and RollerState are the CSV's columns in the CSV's order, of the table's types (a text
+// is a string) and units (the unit closing a field's comment), with the same values.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,24 +15,51 @@ using namespace rigid_body_sim;
 
 namespace {
 
-// The field names of a message definition: its own lines (before the definitions of nested types), without
+// A field of a message definition: its type, its name and the unit its comment gives (" (m)"), or "".
+struct MsgField {
+  std::string type;
+  std::string name;
+  std::string unit;
+  bool operator==(const MsgField& other) const {
+    return type == other.type && name == other.name && unit == other.unit;
+  }
+};
+
+std::ostream& operator<<(std::ostream& out, const MsgField& field) {
+  return out << field.type << ' ' << field.name << " (" << field.unit << ')';
+}
+
+// The fields of a message definition: its own lines (before the definitions of nested types), without
 // comments and constants (NAME=value).
-std::vector<std::string> fieldsOf(const std::string& definition) {
-  std::vector<std::string> names;
+std::vector<MsgField> fieldsOf(const std::string& definition) {
+  std::vector<MsgField> fields;
   std::istringstream lines(definition);
   for (std::string line; std::getline(lines, line) && line.rfind("===", 0) != 0;) {
     std::istringstream words(line);
-    std::string type;
-    std::string name;
-    if (words >> type >> name && type[0] != '#' && name.find('=') == std::string::npos) names.push_back(name);
+    MsgField field;
+    if (!(words >> field.type >> field.name) || field.type[0] == '#' ||
+        field.name.find('=') != std::string::npos) {
+      continue;
+    }
+    // The unit: " (unit)" closing the comment or its first clause (before a ';').
+    const std::size_t comment = line.find('#');
+    const std::size_t end =
+        line.find(';', comment) == std::string::npos ? line.size() : line.find(';', comment);
+    const std::size_t open = line.rfind(" (", end);
+    if (comment != std::string::npos && open != std::string::npos && open > comment && line[end - 1] == ')') {
+      field.unit = line.substr(open + 2, end - open - 3);
+    }
+    fields.push_back(field);
   }
-  return names;
+  return fields;
 }
 
-std::vector<std::string> expectedFields(BodyKind kind) {
-  std::vector<std::string> names = {"header", "t"};
-  for (const auto& name : stateFieldNames(kind)) names.push_back(name);
-  return names;
+template <class Table>
+std::vector<MsgField> expectedFields(const Table& table) {
+  std::vector<MsgField> fields = {{"Header", "header", ""}, {"float64", "t", "s"}};
+  for (const auto& field : table)
+    fields.push_back({field.text ? "string" : "float64", field.name, field.unit});
+  return fields;
 }
 
 World demoWorld() {
@@ -45,9 +74,9 @@ World demoWorld() {
 
 }  // namespace
 
-TEST(StateMessages, FieldsAreTheCoreListInItsOrder) {
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RodState>()), expectedFields(BodyKind::Rod));
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RollerState>()), expectedFields(BodyKind::Roller));
+TEST(StateMessages, FieldsAreTheCoreTableInItsOrderWithItsTypesAndUnits) {
+  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RodState>()), expectedFields(kRodStateFields));
+  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RollerState>()), expectedFields(kRollerStateFields));
 }
 
 TEST(StateMessages, CarryTheValuesOfTheCoreFields) {

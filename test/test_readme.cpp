@@ -1,15 +1,20 @@
 // The README's tables of configuration keys against the core: every numeric key of a body, and the
 // world's numbers, stand in their table with the core's default and the core's range, so that the one
-// place where a user reads them cannot drift from the code.
+// place where a user reads them cannot drift from the code. Likewise the docs' lists of state fields (CSV
+// columns, what ~set_state sets) against core/state_fields.h, and DESIGN.md's example config against the
+// core's defaults.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/core/state_fields.h"
 #include "test_util.h"
 
 using namespace rigid_body_sim;
@@ -107,4 +112,89 @@ TEST(Readme, WorldNumbersAreTheCores) {
   }
   EXPECT_EQ(rows.at("world_frame").default_value, "`" + defaults.world_frame + "`");
   for (const auto& key : worldKeys()) EXPECT_EQ(rows.count(key), 1u) << key;
+}
+
+namespace {
+
+fs::path packageFile(const std::string& path) { return fs::path(RBS_README).parent_path() / path; }
+
+std::string joined(const std::vector<std::string>& names, const std::string& separator) {
+  std::string out;
+  for (const auto& name : names) out += (out.empty() ? "" : separator) + name;
+  return out;
+}
+
+}  // namespace
+
+// "  - rod: `t,x,...`": the CSV header simulate writes, t and the table's fields.
+TEST(Docs, CsvColumnsAreTheCoreFields) {
+  for (const char* file : {"README.md", "docs/DESIGN.md"}) {
+    for (const auto& [kind, name] :
+         {std::pair{BodyKind::Rod, "rod"}, std::pair{BodyKind::Roller, "roller"}}) {
+      const std::string start = std::string("  - ") + name + ": `";
+      const std::string expected = start + "t," + joined(stateFieldNames(kind), ",") + "`";
+      int found = 0;
+      for (const auto& line : lines(slurp(packageFile(file)))) {
+        if (line.rfind(start, 0) != 0) continue;
+        ++found;
+        EXPECT_EQ(line.substr(0, expected.size()), expected) << file;
+      }
+      EXPECT_EQ(found, 1) << file << ": " << expected;
+    }
+  }
+}
+
+TEST(Docs, SetStateFieldsAreTheSettableOnes) {
+  const std::string rod = joined(settableStateFields(BodyKind::Rod), ", ");
+  const std::string roller = joined(settableStateFields(BodyKind::Roller), ", ");
+  const std::string commands = slurp(packageFile("docs/commands.md"));
+  EXPECT_NE(commands.find("(rod `" + rod + "`; roller `" + roller + "`)"), std::string::npos);
+  const std::string srv = slurp(packageFile("srv/SetState.srv"));
+  EXPECT_NE(srv.find("rod " + rod + "; roller " + roller + "\n"), std::string::npos);
+}
+
+// DESIGN.md's example config gives every key it lists the core's default.
+TEST(Docs, DesignsExampleConfigIsTheDefaults) {
+  const WorldConfig world;
+  RodConfig rod;  // not const: a NumericKey reads a mutable config
+  RollerConfig roller;
+  const std::map<std::string, double> world_numbers = {
+      {"rate", world.rate}, {"publish_rate", world.publish_rate}, {"gravity", world.gravity}};
+  std::string type;  // of the body whose keys follow
+  int checked = 0;
+  const auto design = lines(slurp(packageFile("docs/DESIGN.md")));
+  auto line = std::find(design.begin(), design.end(),
+                        "### Configuration (YAML file = the node's private parameters, "
+                        "loadable with `rosparam load`)");
+  ASSERT_NE(line, design.end());
+  for (line += 2; line != design.end() && *line != "```"; ++line) {
+    const std::string text = trimmed(line->substr(0, line->find('#')));
+    const std::size_t colon = text.find(':');
+    const std::string key = text.substr(0, colon);
+    const std::string value = trimmed(text.substr(colon + 1));
+    if (value.empty() || key == "shape" || key == "integrator") {
+      if (key == "shape") EXPECT_EQ(value, toString(roller.params.shape));
+      if (key == "integrator") EXPECT_EQ(value, toString(rod.params.integrator));
+      continue;
+    }
+    SCOPED_TRACE(*line);
+    ++checked;
+    if (key == "type") {
+      type = value;
+    } else if (key == "world_frame") {
+      EXPECT_EQ(value, world.world_frame);
+    } else if (line->rfind("  ", 0) != 0) {
+      ASSERT_EQ(world_numbers.count(key), 1u);
+      EXPECT_EQ(std::stod(value), world_numbers.at(key));
+    } else if (type == "rod") {
+      const auto* numeric = findKey(rodNumericKeys(), key);
+      ASSERT_NE(numeric, nullptr);
+      EXPECT_EQ(std::stod(value), numeric->field(rod));
+    } else {
+      const auto* numeric = findKey(rollerNumericKeys(), key);
+      ASSERT_NE(numeric, nullptr);
+      EXPECT_EQ(std::stod(value), numeric->field(roller));
+    }
+  }
+  EXPECT_GT(checked, 20);
 }

@@ -4,52 +4,64 @@ namespace rigid_body_sim {
 
 namespace {
 
-template <std::size_t N>
-std::vector<std::string> namesOf(const std::array<StateField, N>& fields) {
+template <class Model, std::size_t N>
+std::array<StateField, N> read(const Model& model, const std::array<StateFieldDef<Model>, N>& table) {
+  std::array<StateField, N> fields;
+  for (std::size_t i = 0; i < N; ++i) {
+    const StateFieldDef<Model>& def = table[i];
+    fields[i].name = def.name;
+    if (def.settable()) {
+      fields[i].number = model.state().*def.motion;
+    } else if (def.number != nullptr) {
+      fields[i].number = (model.*def.number)();
+    } else {
+      fields[i].text = def.text(model);
+    }
+  }
+  return fields;
+}
+
+template <class Table>
+std::vector<std::string> namesOf(const Table& table, bool settable_only) {
   std::vector<std::string> names;
-  for (const auto& field : fields) names.emplace_back(field.name);
+  for (const auto& field : table) {
+    if (!settable_only || field.settable()) names.emplace_back(field.name);
+  }
   return names;
 }
 
-}  // namespace
-
-std::array<StateField, 7> stateFields(const Rod& rod) {
-  const RodMotion& s = rod.state();
-  return {{{"x", s.x},
-           {"y", s.y},
-           {"theta", s.theta},
-           {"vx", s.vx},
-           {"vy", s.vy},
-           {"omega", s.omega},
-           {"energy", rod.energy()}}};
+template <class Table>
+constexpr std::size_t settableCount(const Table& table) {
+  std::size_t count = 0;
+  for (const auto& field : table) count += field.settable() ? 1 : 0;
+  return count;
 }
 
-std::array<StateField, 8> stateFields(const Roller& roller) {
-  const RollerMotion& s = roller.state();
-  return {{{"x", s.x},
-           {"v", s.v},
-           {"theta", s.theta},
-           {"omega", s.omega},
-           {"mode", 0.0, toString(roller.mode())},
-           {"friction", roller.frictionForce()},
-           {"normal", roller.normalForce()},
-           {"energy", roller.energy()}}};
+// The settable fields are the whole motion (a set_state can set any of it, the NaN guard checks all of it).
+static_assert(settableCount(kRodStateFields) * sizeof(double) == sizeof(RodMotion));
+static_assert(settableCount(kRollerStateFields) * sizeof(double) == sizeof(RollerMotion));
+
+}  // namespace
+
+std::string modeText(const Roller& roller) { return toString(roller.mode()); }
+
+std::array<StateField, kRodStateFields.size()> stateFields(const Rod& rod) {
+  return read(rod, kRodStateFields);
+}
+
+std::array<StateField, kRollerStateFields.size()> stateFields(const Roller& roller) {
+  return read(roller, kRollerStateFields);
 }
 
 const std::vector<std::string>& stateFieldNames(BodyKind kind) {
-  // The names are those of the fields of any body of the kind.
-  static const std::vector<std::string> rod = namesOf(stateFields(Rod(RodParams{}, RodMotion{})));
-  static const std::vector<std::string> roller =
-      namesOf(stateFields(Roller(RollerParams{}, RollerInitial{})));
+  static const std::vector<std::string> rod = namesOf(kRodStateFields, false);
+  static const std::vector<std::string> roller = namesOf(kRollerStateFields, false);
   return kind == BodyKind::Rod ? rod : roller;
 }
 
 const std::vector<std::string>& settableStateFields(BodyKind kind) {
-  // The motion's own fields; the rest are derived from them and the parameters.
-  static const std::vector<std::string> rod(stateFieldNames(BodyKind::Rod).begin(),
-                                            stateFieldNames(BodyKind::Rod).begin() + 6);
-  static const std::vector<std::string> roller(stateFieldNames(BodyKind::Roller).begin(),
-                                               stateFieldNames(BodyKind::Roller).begin() + 4);
+  static const std::vector<std::string> rod = namesOf(kRodStateFields, true);
+  static const std::vector<std::string> roller = namesOf(kRollerStateFields, true);
   return kind == BodyKind::Rod ? rod : roller;
 }
 

@@ -1,6 +1,5 @@
 #include "rigid_body_sim/core/world.h"
 
-#include <algorithm>
 #include <type_traits>
 
 #include "rigid_body_sim/core/state_fields.h"
@@ -35,20 +34,18 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-// Where SetState puts each state field (settableStateFields' names).
-double& fieldOf(RodMotion& motion, const std::string& name) {
-  if (name == "x") return motion.x;
-  if (name == "y") return motion.y;
-  if (name == "theta") return motion.theta;
-  if (name == "vx") return motion.vx;
-  if (name == "vy") return motion.vy;
-  return motion.omega;
-}
-double& fieldOf(RollerMotion& motion, const std::string& name) {
-  if (name == "x") return motion.x;
-  if (name == "v") return motion.v;
-  if (name == "theta") return motion.theta;
-  return motion.omega;
+// Where SetState puts a state field: the settable field of that name in the body's table. Any other name
+// throws ConfigError naming the body, the field, the value and the settable fields.
+template <class Model>
+auto fieldOf(const Model& model, const std::string& body, const StateValue& value) {
+  const auto member = settableMember(model, value.field);
+  if (member == nullptr) {
+    const BodyKind kind = std::is_same_v<Model, Rod> ? BodyKind::Rod : BodyKind::Roller;
+    throw ConfigError(
+        body, value.field, formatNumber(value.value),
+        "no such state field of a " + kindName(kind) + "; its fields: " + joined(settableStateFields(kind)));
+  }
+  return member;
 }
 
 // A state field takes the range of its initial condition (x: x0, omega: omega0, ...); a roller's x must also
@@ -200,33 +197,30 @@ void World::validateWouldBe(const WorldConfig& config) const { validate(config, 
 
 void World::setState(std::size_t index, const std::vector<StateValue>& state) {
   const std::string& name = bodies_[index].name;
-  const BodyKind kind = kindOf(bodies_[index]);
-  const std::vector<std::string>& fields = settableStateFields(kind);
   if (state.empty()) {
-    throw ConfigError(name, "(state)", "(no field)", "at least one of " + joined(fields));
+    throw ConfigError(name, "(state)", "(no field)",
+                      "at least one of " + joined(settableStateFields(kindOf(bodies_[index]))));
   }
-  for (std::size_t i = 0; i < state.size(); ++i) {
-    const StateValue& value = state[i];
-    if (std::find(fields.begin(), fields.end(), value.field) == fields.end()) {
-      throw ConfigError(name, value.field, formatNumber(value.value),
-                        "no such state field of a " + kindName(kind) + "; its fields: " + joined(fields));
-    }
-    for (std::size_t j = 0; j < i; ++j) {
-      if (state[j].field == value.field) {
-        throw ConfigError(name, value.field, formatNumber(value.value), "each field once");
-      }
-    }
-    if (const auto* rod = std::get_if<RodConfig>(&config_.bodies[index].config)) {
-      checkStateValue(name, value, *rod, rodNumericKeys());
-    } else {
-      checkStateValue(name, value, std::get<RollerConfig>(config_.bodies[index].config), rollerNumericKeys());
-    }
-  }
+  const auto& config = config_.bodies[index].config;
   std::visit(
       [&](auto& model) {
         auto motion = model.state();
-        for (const auto& value : state) fieldOf(motion, value.field) = value.value;
-        model.setState(motion);
+        for (std::size_t i = 0; i < state.size(); ++i) {
+          const StateValue& value = state[i];
+          const auto field = fieldOf(model, name, value);
+          for (std::size_t j = 0; j < i; ++j) {
+            if (state[j].field == value.field) {
+              throw ConfigError(name, value.field, formatNumber(value.value), "each field once");
+            }
+          }
+          if constexpr (std::is_same_v<std::decay_t<decltype(model)>, Rod>) {
+            checkStateValue(name, value, std::get<RodConfig>(config), rodNumericKeys());
+          } else {
+            checkStateValue(name, value, std::get<RollerConfig>(config), rollerNumericKeys());
+          }
+          motion.*field = value.value;
+        }
+        model.setState(motion);  // only once every value passed: a refusal changes nothing
       },
       bodies_[index].model);
 }

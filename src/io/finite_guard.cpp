@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <initializer_list>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -48,19 +47,17 @@ std::optional<std::string> nonFiniteField(const Body& body) {
 }
 
 bool surelyFinite(const Body& body) {
-  // std::abs(NaN) <= bound is false: a NaN is never surely finite.
-  const auto within = [](std::initializer_list<double> values) {
-    for (double v : values) {
-      if (!(std::abs(v) <= kSurelyFiniteMotion)) return false;
-    }
-    return true;
-  };
-  if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    const RodMotion& s = rod->state();
-    return within({s.x, s.y, s.theta, s.vx, s.vy, s.omega});
-  }
-  const RollerMotion& s = std::get<Roller>(body.model).state();
-  return within({s.x, s.v, s.theta, s.omega});
+  // The settable fields are the motion; the rest follow from it. std::abs(NaN) <= bound is false: a NaN is
+  // never surely finite.
+  return std::visit(
+      [](const auto& model) {
+        for (const auto& field : stateFieldTable(model)) {
+          if (field.settable() && !(std::abs(model.state().*field.motion) <= kSurelyFiniteMotion))
+            return false;
+        }
+        return true;
+      },
+      body.model);
 }
 
 std::string describeBody(const Body& body) {

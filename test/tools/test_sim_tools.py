@@ -93,7 +93,7 @@ class Defaults(SimulateCase):
 
 
 class Runs(SimulateCase):
-    def test_the_csv_header_names_the_state_messages_fields(self) -> None:
+    def test_the_csv_names_the_state_messages_fields_and_their_numbers(self) -> None:
         folder, _ = self.run_simulate("bodies: {rod: {type: rod}, ball: {type: roller}}", "--duration", "0.1",
                                       "--bag", "run.bag")
         states = sim_tools.read_states(os.path.join(folder, "run.bag"))
@@ -101,6 +101,8 @@ class Runs(SimulateCase):
         for name, msgs in states.items():
             with open(os.path.join(folder, f"{name}.csv")) as f:
                 self.assertEqual(f.readline().strip().split(","), sim_tools.state_fields(msgs[0]), name)
+                numbers = [float(v) for v in f.readline().strip().split(",") if re.fullmatch(r"[-+.e\d]+|nan", v)]
+                self.assertEqual(sim_tools.state_numbers(msgs[0]), numbers, name)
 
     def test_a_rod_end_is_below_the_floor_when_its_height_is_negative(self) -> None:
         self.assertFalse(sim_tools.rod_end_below_floor(0.6, 1.0, 1.0))

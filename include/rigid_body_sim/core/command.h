@@ -12,8 +12,8 @@
 
 namespace rigid_body_sim {
 
-// One state field set by a SetState command, named as in the CSV (rod x, y, theta, vx, vy, omega; roller
-// x, v, theta, omega).
+// One state field set by a SetState command, named as in the CSV: one of the body's settableStateFields
+// (core/state_fields.h).
 struct StateValue {
   std::string field;
   double value = 0.0;

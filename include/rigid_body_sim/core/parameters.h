@@ -8,6 +8,7 @@
 #include <variant>
 #include <vector>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/roller.h"
 
@@ -94,9 +95,9 @@ bool initialChanged(const RollerConfig& a, const RollerConfig& b);
 constexpr std::size_t kMaxBodies = 1000;
 
 struct WorldConfig {
-  double rate = 1000.0;        // physics steps per simulated second
-  double publish_rate = 50.0;  // samples per simulated second
-  double gravity = 9.8;        // copied into every body
+  double rate = 1000.0;              // physics steps per simulated second
+  double publish_rate = 50.0;        // samples per simulated second
+  double gravity = kDefaultGravity;  // copied into every body
   std::string world_frame = "world";
   std::vector<BodyConfig> bodies;
 };

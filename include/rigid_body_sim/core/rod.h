@@ -10,6 +10,8 @@
 #include <optional>
 #include <string>
 
+#include "rigid_body_sim/core/constants.h"
+
 namespace rigid_body_sim {
 
 enum class Integrator { EulerCromer, VelocityVerlet, Rk4 };
@@ -26,10 +28,10 @@ std::string substepsToString(int substeps);  // "auto" or the count
 std::optional<int> substepsFromString(const std::string& text);
 
 struct RodParams {
-  double length = 1.0;   // m
-  double mass = 0.5;     // kg
-  double k = 1000.0;     // N/m, floor spring constant per end
-  double gravity = 9.8;  // m/s^2
+  double length = 1.0;               // m
+  double mass = 0.5;                 // kg
+  double k = 1000.0;                 // N/m, floor spring constant per end
+  double gravity = kDefaultGravity;  // m/s^2
   Integrator integrator = Integrator::EulerCromer;
   double floor_length = 0.0;     // m of floor from x = 0; 0 = unbounded (the text's floor)
   int substeps = kAutoSubsteps;  // sub-steps per step

@@ -12,6 +12,8 @@
 #include <optional>
 #include <string>
 
+#include "rigid_body_sim/core/constants.h"
+
 namespace rigid_body_sim {
 
 enum class Shape { Sphere, Cylinder, Ring, SphericalShell, Custom };
@@ -35,14 +37,14 @@ std::string toString(RollMode mode);
 
 struct RollerParams {
   Shape shape = Shape::Sphere;
-  double inertia_factor = 0.4;   // c; must equal inertiaFactorOf(shape) unless shape is Custom
-  double radius = 0.1;           // m
-  double mass = 1.0;             // kg
-  double incline_angle = 0.349;  // rad, 0 <= phi < pi/2
-  double incline_length = 5.0;   // m of slope; the centre runs over x in [0, incline_length]
-  double mu_s = 0.3;             // static friction coefficient
-  double mu_d = 0.2;             // kinetic friction coefficient, mu_d <= mu_s
-  double gravity = 9.8;          // m/s^2
+  double inertia_factor = 0.4;       // c; must equal inertiaFactorOf(shape) unless shape is Custom
+  double radius = 0.1;               // m
+  double mass = 1.0;                 // kg
+  double incline_angle = 0.349;      // rad, 0 <= phi < pi/2
+  double incline_length = 5.0;       // m of slope; the centre runs over x in [0, incline_length]
+  double mu_s = 0.3;                 // static friction coefficient
+  double mu_d = 0.2;                 // kinetic friction coefficient, mu_d <= mu_s
+  double gravity = kDefaultGravity;  // m/s^2
 };
 
 struct RollerInitial {
