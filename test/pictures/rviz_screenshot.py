@@ -38,6 +38,7 @@ STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's Statu
 MIN_BODY_PX = 20
 MIN_ROD_PX = 150
 MIN_LABEL_PX = 14
+SETTLED_S = 2.0  # the 3-D view unchanged this long: rviz has drawn everything it was sent
 # The config and rviz view each launch file runs with its defaults (the wrappers take no config argument).
 LAUNCH_CONFIGS = {"sim.launch": ("demo.yaml", "sim.rviz"), "rod.launch": ("rod.yaml", "rod.rviz"),
                   "incline.launch": ("incline.yaml", "incline.rviz"),
@@ -514,18 +515,15 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     camera = pc.Camera.from_rviz(view, render_window(),
                                  scene.frames[target][1] if target != "<Fixed Frame>" else (0.0, 0.0, 0.0))
     background = [int(v) for v in manager["Global Options"]["Background Color"].split(";")]
-    # rviz renders in its own time (software OpenGL on a loaded machine): look again until it is there.
-    look_until = time.monotonic() + min(30.0, left())
-    while True:
-        subprocess.run(["import", "-window", "root", args.out], check=True)
-        image = read_png(args.out)
-        findings, outlines = check_picture(image, scene, camera, config)
-        findings += old_slopes_gone(image, scene, camera, old_slopes)
-        status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height))
-        findings += [flag(f"rviz display tree free of {k} colour ({v} px)", v == 0) for k, v in status.items()]
-        if all(f.ok for f in findings) or time.monotonic() > look_until:
-            break
-        time.sleep(2.0)
+    # rviz renders in its own time (software OpenGL on a loaded machine). Everything it was sent is here
+    # (above) and the node is paused: once the 3-D view stays the same for SETTLED_S seconds, rviz (which
+    # takes its messages and redraws many times a second, at least once a second on a loaded machine) has
+    # drawn all of it. That picture is checked, once.
+    image = settled_picture(args.out, camera, left, launch)
+    findings, outlines = check_picture(image, scene, camera, config)
+    findings += old_slopes_gone(image, scene, camera, old_slopes)
+    status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height))
+    findings += [flag(f"rviz display tree free of {k} colour ({v} px)", v == 0) for k, v in status.items()]
     findings.append(control(image, scene, camera, config, background))
     rviz_log = rviz_error_lines()
     findings.append(flag(f"rviz: {len(rviz_errors)} ERROR messages on /rosout", not rviz_errors))
@@ -540,6 +538,25 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     print("\n".join(report))
     save_outlined(image, outlines, stem + "_regions.png")
     return 0 if all(f.ok for f in findings) else 1
+
+
+def settled_picture(out: str, camera: pc.Camera, left: Callable[[], float], launch: Any) -> np.ndarray:
+    """The screen once its 3-D view has been the same in every screenshot for SETTLED_S seconds (one every
+    half second; the last written to out)."""
+    view = (slice(camera.top, camera.top + camera.height), slice(camera.left, camera.left + camera.width))
+    same_since = time.monotonic()
+    pictures: List[np.ndarray] = []
+
+    def settled() -> bool:
+        nonlocal same_since
+        taken = time.monotonic()
+        subprocess.run(["import", "-window", "root", out], check=True)
+        pictures[:] = pictures[-1:] + [read_png(out)]
+        if len(pictures) < 2 or not np.array_equal(pictures[0][view], pictures[1][view]):
+            same_since = taken
+        return taken - same_since >= SETTLED_S
+    wait_while_running(f"rviz to draw the same 3-D view for {SETTLED_S:g} s", settled, left(), launch, 0.5)
+    return pictures[-1]
 
 
 def change_looks(changes: List[str], config: Config, scene: Scene, left: Callable[[], float],
