@@ -73,18 +73,42 @@ bool readMaster(MasterLists& lists) {
 
 SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_unique<CallQueue>()) {
   auto* layout = new QVBoxLayout(this);
+  layout->addLayout(nodeRow());
+  layout->addLayout(controlRow());
+  layout->addLayout(spawnRow());
+  clock_ = new QLabel("t = ?", this);
+  clock_->setObjectName("clock");
+  clock_->setToolTip("simulated time, and simulated seconds per wall second over the last second");
+  layout->addWidget(clock_);
+  status_ = new QLabel(this);
+  status_->setObjectName("status");
+  status_->setWordWrap(true);
+  layout->addWidget(status_);
+  layout->addWidget(makeTabs(), 1);
 
-  auto* node_row = new QHBoxLayout();
-  node_row->addWidget(new QLabel("node", this));
+  connect(&discover_timer_, &QTimer::timeout, this, [this] { discover(); });
+  connect(&clock_timer_, &QTimer::timeout, this, [this] {
+    showClock();
+    writeLayout();
+  });
+  if (const char* file = std::getenv("RBS_PANEL_LAYOUT")) layout_file_ = file;
+}
+
+QHBoxLayout* SimPanel::nodeRow() {
+  auto* row = new QHBoxLayout();
+  row->addWidget(new QLabel("node", this));
   node_edit_ = new QLineEdit(QString::fromStdString(node_), this);
   node_edit_->setObjectName("node");
   node_edit_->setToolTip("the namespace of sim_node (its ~pause, ~step, ~<body> ...)");
-  node_row->addWidget(node_edit_, 1);
-  layout->addLayout(node_row);
+  row->addWidget(node_edit_, 1);
   connect(node_edit_, &QLineEdit::editingFinished, this,
           [this] { setNode(node_edit_->text().toStdString()); });
+  return row;
+}
 
-  auto* controls = new QHBoxLayout();
+// Pause, Run, Step with its count, Reset.
+QHBoxLayout* SimPanel::controlRow() {
+  auto* row = new QHBoxLayout();
   pause_ = button("Pause", "pause", kPauseTip, this);
   run_ = button("Run", "run", kRunTip, this);
   auto* step_button = button("Step", "step", "pauses, then ~step: this many physics steps", this);
@@ -95,16 +119,21 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   step_count_->setToolTip("physics steps per Step");
   auto* reset = button("Reset", "reset", "~reset: every body back to its initial conditions", this);
   for (QWidget* w : std::initializer_list<QWidget*>{pause_, run_, step_button, step_count_, reset})
-    controls->addWidget(w);
-  layout->addLayout(controls);
+    row->addWidget(w);
   connect(pause_, &QPushButton::clicked, this,
           [this] { source_ == Source::Replay ? pauseReplay(true) : callEmpty("pause", "paused"); });
   connect(run_, &QPushButton::clicked, this,
           [this] { source_ == Source::Replay ? pauseReplay(false) : callEmpty("unpause", "running"); });
   connect(step_button, &QPushButton::clicked, this, [this] { step(); });
   connect(reset, &QPushButton::clicked, this, [this] { callEmpty("reset", "reset"); });
+  for (QWidget* w : std::initializer_list<QWidget*>{step_button, step_count_, reset})
+    changes_.emplace_back(w, w->toolTip());
+  return row;
+}
 
-  auto* spawn_row = new QHBoxLayout();
+// A new body's name, its kind and Spawn.
+QHBoxLayout* SimPanel::spawnRow() {
+  auto* row = new QHBoxLayout();
   spawn_name_ = new QLineEdit(this);
   spawn_name_->setObjectName("spawn_name");
   spawn_name_->setPlaceholderText("new body's name");
@@ -115,24 +144,17 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   for (const Shape shape : namedShapes()) spawn_kind_->addItem(QString::fromStdString(toString(shape)));
   spawn_kind_->setToolTip("a rod, or a roller of this shape; its other keys take their defaults");
   auto* spawn_button = button("Spawn", "spawn", "~spawn: a new body, starting now", this);
-  spawn_row->addWidget(spawn_name_, 1);
-  spawn_row->addWidget(spawn_kind_);
-  spawn_row->addWidget(spawn_button);
-  layout->addLayout(spawn_row);
+  row->addWidget(spawn_name_, 1);
+  row->addWidget(spawn_kind_);
+  row->addWidget(spawn_button);
   connect(spawn_button, &QPushButton::clicked, this, [this] { spawn(); });
-  for (QWidget* w : std::initializer_list<QWidget*>{step_button, step_count_, reset, spawn_name_, spawn_kind_,
-                                                    spawn_button})
+  for (QWidget* w : std::initializer_list<QWidget*>{spawn_name_, spawn_kind_, spawn_button})
     changes_.emplace_back(w, w->toolTip());
+  return row;
+}
 
-  clock_ = new QLabel("t = ?", this);
-  clock_->setObjectName("clock");
-  clock_->setToolTip("simulated time, and simulated seconds per wall second over the last second");
-  layout->addWidget(clock_);
-  status_ = new QLabel(this);
-  status_->setObjectName("status");
-  status_->setWordWrap(true);
-  layout->addWidget(status_);
-
+// Bodies (a section per body, scrolling) and Plots.
+QTabWidget* SimPanel::makeTabs() {
   auto* scroll = new QScrollArea(this);
   scroll->setObjectName("sections");
   scroll->setWidgetResizable(true);
@@ -147,14 +169,7 @@ SimPanel::SimPanel(QWidget* parent) : rviz::Panel(parent), calls_(std::make_uniq
   tabs_->addTab(scroll, "Bodies");
   plots_ = new BodyPlots(tabs_);
   tabs_->addTab(plots_, "Plots");
-  layout->addWidget(tabs_, 1);
-
-  connect(&discover_timer_, &QTimer::timeout, this, [this] { discover(); });
-  connect(&clock_timer_, &QTimer::timeout, this, [this] {
-    showClock();
-    writeLayout();
-  });
-  if (const char* file = std::getenv("RBS_PANEL_LAYOUT")) layout_file_ = file;
+  return tabs_;
 }
 
 SimPanel::~SimPanel() = default;

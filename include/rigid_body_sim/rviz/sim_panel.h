@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <QComboBox>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
@@ -48,6 +49,12 @@ class SimPanel : public rviz::Panel {
   void save(rviz::Config config) const override;
 
  private:
+  // The panel's rows, top to bottom (the constructor's parts).
+  QHBoxLayout* nodeRow();
+  QHBoxLayout* controlRow();
+  QHBoxLayout* spawnRow();
+  QTabWidget* makeTabs();
+
   void setNode(const std::string& node);
   // What the sections show: the node's bodies, a replay of a recording, or the end of that recording.
   enum class Source { Node, Replay, Ended };
