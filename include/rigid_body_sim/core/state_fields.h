@@ -19,9 +19,10 @@ namespace rigid_body_sim {
 template <class Model>
 struct StateFieldDef {
   using Motion = std::decay_t<decltype(std::declval<const Model&>().state())>;
+  using MotionMember = double Motion::*;  // named: clang-format 14 and 19 disagree on `T::* name`
   const char* name;
   const char* unit;                             // as the .msg comments give it; "" for a text
-  double Motion::*motion = nullptr;             // settable
+  MotionMember motion = nullptr;                // settable
   double (Model::*number)() const = nullptr;    // derived number
   std::string (*text)(const Model&) = nullptr;  // derived text
 
