@@ -101,6 +101,11 @@ class Scene:
         return (all(self.states.get(name) is not None and self.states[name].t == t for name in self.names)
                 and self.tf_stamp == self.state_stamp)
 
+    def held(self) -> str:
+        """What came last, for a wait that timed out: each body's t, the stamps of the state and of /tf."""
+        ts = ", ".join(f"{name} {self.states[name].t if name in self.states else None}" for name in self.names)
+        return f"states at t: {ts}; state stamp {self.state_stamp}, /tf stamp {self.tf_stamp}"
+
     def rollers_high(self, rollers: Sequence[RollerSpec]) -> bool:
         """No roller on the lowest fifth of its slope: there, in sim.rviz's view, the long slope passes in
         front of the short ones and may hide it."""
@@ -496,8 +501,11 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     steps = round(args.settle * rate)
     while True:
         t_last = step(steps).t
-        wait_while_running("the states and transforms of the last step", lambda: scene.all_at(t_last), left(),
-                           launch)
+        try:
+            wait_while_running(f"the states and transforms of the last step (t = {t_last})",
+                               lambda: scene.all_at(t_last), left(), launch)
+        except TimeoutError as e:
+            raise TimeoutError(f"{e}; {scene.held()}") from None
         if scene.rollers_high(rollers):
             break
         steps = round(0.05 * rate)
