@@ -237,6 +237,9 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
                      lambda c: server_k.extend(p.value for p in c.doubles if p.name == "k"), queue_size=10)
     rospy.Subscriber("/rosout", Log, lambda m: warnings.append(m.msg)
                      if m.name == "/sim" and m.level == Log.WARN else None, queue_size=100)
+    # What the paused node publishes once (a step's state, ~paused) reaches a subscription made before it.
+    wait("this test to subscribe to the states and ~paused", shot.subscribed(
+        master, "/rviz_panel_test", ["/sim/rod/state", "/sim/bowler/state", "/sim/paused"]), 90.0)
     step_service = rospy.ServiceProxy("/sim/step", Step)
     get_config = rospy.ServiceProxy("/sim/get_config", GetConfig)
 

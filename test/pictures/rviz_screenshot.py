@@ -47,6 +47,20 @@ Outline = Tuple[str, Any]
 Disc = Tuple[np.ndarray, Any, float]  # mask, centre pixel, radius in pixels
 
 
+def subscribed(master: Any, subscriber: str, topics: Sequence[str]) -> Callable[[], bool]:
+    """Whether the node /sim has `subscriber` connected on every one of `topics`, in the node's own view of
+    its connections: a subscription is made in the background, and what the node publishes before it is
+    connected never arrives there."""
+    def check() -> bool:
+        try:
+            reply: Any = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")
+            info = reply[2]
+        except Exception:
+            return False
+        return {(c[1], c[4]) for c in info if c[2] == "o"} >= {(subscriber, topic) for topic in topics}
+    return check
+
+
 def wait_while_running(what: str, predicate: Callable[[], bool], timeout: float, launch: Any,
                        period: float = 0.25) -> None:
     """Until predicate() holds; an error at the timeout, or at once if roslaunch has ended."""
@@ -471,16 +485,12 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
     rospy.Subscriber("/rosout_agg", Log, lambda m: rviz_errors.append(m.msg)
                      if m.name == "/rviz" and m.level >= Log.ERROR else None, queue_size=100)
 
-    def rviz_connected() -> bool:
-        # The node's own view of its connections: rviz has subscribed to the scene, the markers and TF.
-        try:
-            reply: Any = xmlrpc.client.ServerProxy(master.lookupNode("/sim")).getBusInfo("/rviz_screenshot")
-            info = reply[2]
-        except Exception:
-            return False
-        wanted = {("/rviz", "/sim/scene"), ("/rviz", "/sim/markers"), ("/rviz", "/tf")}
-        return {(c[1], c[4]) for c in info if c[2] == "o"} >= wanted
-    wait_while_running("rviz to subscribe to /sim/scene, /sim/markers and /tf", rviz_connected, left(), launch, 0.5)
+    wait_while_running("rviz to subscribe to /sim/scene, /sim/markers and /tf",
+                       subscribed(master, "/rviz", ["/sim/scene", "/sim/markers", "/tf"]), left(), launch, 0.5)
+    # This test's own subscriptions too: the paused node publishes the last step's states once, and a state
+    # topic this test is not yet connected to would never deliver it.
+    wait_while_running("this test to subscribe to every topic it reads", subscribed(
+        master, "/rviz_screenshot", [s.resolved_name for s in scene.subscribers]), left(), launch, 0.5)
     wait_while_running("the render window", lambda: try_render_window() is not None, left(), launch, 0.5)
 
     # rviz subscribed after the node started: the floor, slopes and bodies must come from the latched scene.
