@@ -3,6 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <future>
+#include <optional>
+#include <type_traits>
+
+#include <ros/callback_queue.h>
+#include <boost/make_shared.hpp>
 
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Bool.h>
@@ -25,14 +31,38 @@ constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 // ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
 constexpr std::uint32_t kCommandQueue = 100000;
-constexpr auto kWatchPeriod = std::chrono::seconds(1);  // how often the master is asked
-constexpr auto kClockWait = std::chrono::seconds(2);    // for a /clock when /use_sim_time is true
+constexpr auto kWatchPeriod = std::chrono::seconds(1);       // how often the master is asked
+constexpr auto kClockWait = std::chrono::seconds(2);         // for a /clock when /use_sim_time is true
+constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
+// After the last step of a `duration`: for subscribers (a recorder) to receive the last messages before the
+// launch ends. roscpp counts a message sent when it is queued and tells a publisher nothing of a
+// subscriber's backlog (docs/performance.md: what a slow subscriber loses).
+constexpr auto kEndWait = std::chrono::milliseconds(500);
 
-// Whether a change moves the body's fixed frame or changes its look (static TF and markers anew).
+// A callback on the spinner thread's queue, behind those waiting.
+class Deferred : public ros::CallbackInterface {
+ public:
+  explicit Deferred(std::function<void()> work) : work_(std::move(work)) {}
+  CallResult call() override {
+    work_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> work_;
+};
+
+// The place of body `name` in `config`, or the number of bodies if it has none.
 std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   std::size_t index = 0;
   while (index < config.bodies.size() && config.bodies[index].name != name) ++index;
   return index;
+}
+
+const BodyConfig& bodyOf(const WorldConfig& config, const std::string& name) {
+  const std::size_t index = indexIn(config, name);
+  if (index == config.bodies.size()) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
+  return config.bodies[index];
 }
 
 // A body's config with some numeric keys set as a reconfigure request would set them (the same parsing).
@@ -64,7 +94,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       start_params_(privateParams(private_node)),
       options_(parseNodeOptions(start_params_)),
       session_(sessionOf(parseNodeConfig(start_params_))),
-      after_step_([this](World& world) { afterStepLocked(world); }),
+      after_step_([this](World& world) { afterStep(world); }),
       guard_(world().bodies()),
       steps_per_markers_(
           session_.stepsPerSample() *
@@ -72,7 +102,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
                                                  markerRate(options_, world().config().publish_rate)))),
       pacer_(world().rate(), options_.real_time_factor) {
   use_sim_time_ = ros::param::param("/use_sim_time", false);
-  anchorLocked();  // for anything published before stepping starts (a ~reset during start_delay)
+  anchor();  // for anything published before stepping starts (a ~reset during start_delay)
   paused_ = options_.start_paused;
   const MarkerOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate),
                             options_.label_critical_angles};
@@ -92,7 +122,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   WorldCommand start;
   start.kind = WorldCommand::Kind::Config;
   start.world = world().config();
-  publishCommandLocked(start, 0);  // nothing runs yet: no lock to take
+  publishCommand(start, 0);  // nothing runs yet: no lock to take
   session_.addSink(publication_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
@@ -102,7 +132,10 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   interactive_->show(world().config());
 }
 
-SimNode::~SimNode() { stopThreads(); }
+SimNode::~SimNode() {
+  stopThreads();
+  ros::getGlobalCallbackQueue()->removeByID(reinterpret_cast<std::uint64_t>(this));
+}
 
 template <class Message>
 SimNode::CountedPublisher SimNode::advertiseCounted(ros::NodeHandle& node, const std::string& topic,
@@ -128,9 +161,7 @@ void SimNode::advertise() {
       private_node_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
         const bool due = scene_resend_due_.exchange(false);
         if (scene_viewer_joined_.exchange(false)) scene_resend_due_ = true;
-        if (!due) return;
-        std::lock_guard<std::mutex> lock(mutex_);
-        scene_publisher_.publish(snapshots_->scene().sceneMarkers());
+        if (due) post([this] { scene_publisher_.publish(snapshots_->scene().sceneMarkers()); });
       });
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   if (node_.getNamespace() != "/") {
@@ -159,26 +190,32 @@ void SimNode::advertiseState(const Body& body) {
                                   : advertiseCounted<RollerState>(private_node_, topic, kStateQueue));
 }
 
-// Called once stepping has started: each server takes some 40 calls to the master, and the first states
-// need not wait for a thousand bodies' servers. A body spawned meanwhile has its own already; one deleted
-// meanwhile gets none.
+void SimNode::defer(std::function<void()> work) {
+  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<Deferred>(std::move(work)),
+                                             reinterpret_cast<std::uint64_t>(this));
+}
+
 void SimNode::startReconfigureServers() {
-  std::vector<std::string> names;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& body : world().config().bodies) names.push_back(body.name);
+  for (const auto& body : onStepper([this] { return world().config().bodies; })) {
+    bodies_without_server_.push_back(body.name);
   }
-  for (const auto& name : names) {
-    if (!ros::ok() || stopping_) return;
-    std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);  // applyCommand's order
-    BodyConfig body;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
+  startNextReconfigureServer();
+}
+
+void SimNode::startNextReconfigureServer() {
+  while (!bodies_without_server_.empty() && ros::ok() && !stopping_) {
+    const std::string name = bodies_without_server_.front();
+    bodies_without_server_.pop_front();
+    if (servers_.count(name)) continue;
+    const auto body = onStepper([&]() -> std::optional<BodyConfig> {
       const std::size_t index = indexIn(world().config(), name);
-      if (index == world().config().bodies.size() || servers_.count(name)) continue;
-      body = world().config().bodies[index];
-    }
-    startReconfigureServer(body);
+      if (index == world().config().bodies.size()) return std::nullopt;
+      return world().config().bodies[index];
+    });
+    if (!body) continue;
+    startReconfigureServer(*body);
+    defer([this] { startNextReconfigureServer(); });
+    return;
   }
 }
 
@@ -189,12 +226,12 @@ void SimNode::startReconfigureServer(const BodyConfig& body) {
   BodyServer& server = servers_[body.name];
   const std::string name = body.name;
   if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    server.rod = std::make_unique<RodServer>(reconfigure_mutex_, body_node);
+    server.rod = std::make_unique<RodServer>(servers_mutex_, body_node);
     server.rod->updateConfig(toReconfigure(*rod));
     server.rod->setCallback(
         [this, name](RodReconfigureConfig& request, uint32_t) { onReconfigure<RodConfig>(name, request); });
   } else {
-    server.roller = std::make_unique<RollerServer>(reconfigure_mutex_, body_node);
+    server.roller = std::make_unique<RollerServer>(servers_mutex_, body_node);
     server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(body.config)));
     server.roller->setCallback([this, name](RollerReconfigureConfig& request, uint32_t) {
       onReconfigure<RollerConfig>(name, request);
@@ -206,97 +243,80 @@ void SimNode::startReconfigureServer(const BodyConfig& body) {
 // command. The request is rewritten to what runs, so that the server shows the truth.
 template <class Config, class Request>
 void SimNode::onReconfigure(const std::string& name, Request& request) {
-  const auto current = [&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return world().config().bodies[indexIn(world().config(), name)];
-  };
-  const BodyConfig before = current();
-  try {
+  const auto reconfigure = [&](const World& world) -> std::optional<WorldCommand> {
+    const BodyConfig& before = bodyOf(world.config(), name);
     WorldCommand command;
     command.kind = WorldCommand::Kind::Reconfigure;
     command.body = name;
     command.config = {name, fromReconfigure(name, request, std::get<Config>(before.config))};
-    if (toYaml(command.config) != toYaml(before)) applyCommand(command);
-  } catch (const ConfigError& error) {
-    refuse(toString(WorldCommand::Kind::Reconfigure), name, error.what(), nullptr);
-  }
-  request = toReconfigure(std::get<Config>(current().config));
+    if (toYaml(command.config) == toYaml(before)) return std::nullopt;
+    return command;
+  };
+  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), name, reconfigure);
+  const std::size_t index = indexIn(answer.config, name);
+  if (index < answer.config.bodies.size())
+    request = toReconfigure(std::get<Config>(answer.config.bodies[index].config));
 }
 
-template <class Build>
-bool SimNode::applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
-                         double* t) {
-  WorldCommand command;
+SimNode::Answer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
+  Answer answer = onStepper([&] { return applyHere(kind, body, build); });
+  if (!answer.accepted) ROS_WARN_STREAM(answer.why);
+  followWorldServers(answer);
+  return answer;
+}
+
+SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& body,
+                                   const BuildCommand& build) {
+  Answer answer;
+  std::size_t index = 0;  // the command's body's, before it
   try {
-    command = build();
+    answer.command = build(world());
+    if (answer.command) {
+      index = indexIn(world().config(), answer.command->body);
+      session_.apply(
+          *answer.command);  // the pending publishing instant, the command, then publication_.applied
+    }
   } catch (const ConfigError& error) {
-    if (t) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      *t = world().time();
-    }
-    return refuse(kind, body, error.what(), why);
+    answer.command.reset();
+    answer.why = "refused " + kind + (body.empty() ? "" : " of '" + body + "'") +
+                 ", simulation unchanged: " + error.what();
   }
-  return applyCommand(std::move(command), why, t);
+  answer.accepted = answer.why.empty();
+  if (answer.accepted) answer.why = "ok";
+  if (answer.command) followWorld(*answer.command, index);
+  answer.t = world().time();
+  answer.config = world().config();
+  return answer;
 }
 
-bool SimNode::refuse(const std::string& kind, const std::string& body, const std::string& reason,
-                     std::string* why) {
-  const std::string line =
-      "refused " + kind + (body.empty() ? "" : " of '" + body + "'") + ", simulation unchanged: " + reason;
-  ROS_WARN_STREAM(line);
-  if (why) *why = line;
-  return false;
-}
-
-bool SimNode::applyCommand(WorldCommand command, std::string* why, double* t) {
-  std::lock_guard<boost::recursive_mutex> servers(reconfigure_mutex_);
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const WorldConfig before = world().config();
-    try {
-      session_.apply(command);  // the pending publishing instant, the command, then publication_.applied
-    } catch (const ConfigError& error) {
-      if (t) *t = world().time();
-      return refuse(toString(command.kind), command.body, error.what(), why);
-    }
-    if (t) *t = world().time();  // the lock held since: the t on ~commands
-    followWorldLocked(command, before);
-    if (interactive_) interactive_->show(world().config());  // the handles where the bodies now start
-  }
-  followWorldServers(command);
-  if (why) *why = "ok";
-  return true;
-}
-
-void SimNode::Publication::write(const World&) { node_.publishLocked(); }
+void SimNode::Publication::write(const World&) { node_.publishStates(); }
 
 void SimNode::Publication::applied(const WorldCommand& command, std::size_t index, const World& world) {
   ROS_INFO_STREAM(toString(command.kind)
                   << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
                   << " (t = " << formatNumber(world.time()) << " s)");
-  node_.publishCommandLocked(command, index);
+  node_.publishCommand(command, index);
 }
 
-void SimNode::publishCommandLocked(const WorldCommand& command, std::size_t index) {
+void SimNode::publishCommand(const WorldCommand& command, std::size_t index) {
   const auto message = toMessage(command, static_cast<std::uint32_t>(index), world().time(),
                                  stampOf(world().time()), world().config().world_frame);
   command_publisher_.publish(message);
   // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
-  if (index > 0) recordLocked([&](BagRecorder& recorder) { recorder.writeCommand(message); });
+  if (index > 0) record([&](BagRecorder& recorder) { recorder.writeCommand(message); });
 }
 
-void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& before) {
-  const std::size_t index = indexIn(before, command.body);
+void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
   switch (command.kind) {
     case WorldCommand::Kind::Spawn:
       advertiseState(world().bodies().back());
       guard_.add(world().bodies().back());
-      rebuildSceneLocked();
+      rebuildScene();
       return;
     case WorldCommand::Kind::Delete:
       state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
       guard_.remove(index);
-      rebuildSceneLocked();
+      rebuildScene();
       return;
     case WorldCommand::Kind::Reconfigure:
     case WorldCommand::Kind::SetState:
@@ -304,7 +324,7 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
       guard_.release(index, world().bodies()[index]);
       // Any key may change the look (a rod's length, a slope, a radius): the scene knows which do, and
       // sends only what changed, as the recorder of simulate --bag does.
-      if (command.kind == WorldCommand::Kind::Reconfigure) rebuildSceneLocked();
+      if (command.kind == WorldCommand::Kind::Reconfigure) rebuildScene();
       return;
     case WorldCommand::Kind::Reset:
       session_.takeEvents();
@@ -318,96 +338,95 @@ void SimNode::followWorldLocked(const WorldCommand& command, const WorldConfig& 
   }
 }
 
-void SimNode::followWorldServers(const WorldCommand& command) {
+void SimNode::followWorldServers(const Answer& answer) {
+  if (!answer.command) return;
+  const WorldCommand& command = *answer.command;
   if (command.kind == WorldCommand::Kind::Spawn) startReconfigureServer(command.config);
   if (command.kind == WorldCommand::Kind::Delete) servers_.erase(command.body);
-  if (command.kind != WorldCommand::Kind::Reconfigure) return;
-  BodyServer& server = servers_.at(command.body);
-  if (server.rod) server.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
-  if (server.roller)
-    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
+  const auto server = servers_.find(command.body);  // none yet: it will start with the values that run then
+  if (command.kind == WorldCommand::Kind::Reconfigure && server != servers_.end()) {
+    if (server->second.rod)
+      server->second.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
+    if (server->second.roller)
+      server->second.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
+  }
+  if (interactive_) interactive_->show(answer.config);  // the handles where the bodies now start
 }
 
 // A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
 // refused, the same log, and the server then shows what runs (as dynparam and the panel see it).
 bool SimNode::onDrop(const std::string& body, const std::map<std::string, double>& initial,
                      std::string* why) {
-  return applyBuilt(
-      toString(WorldCommand::Kind::Reconfigure), body,
-      [&] {
-        BodyConfig current;
-        {
-          std::lock_guard<std::mutex> lock(mutex_);
-          const std::size_t index = indexIn(world().config(), body);
-          if (index == world().config().bodies.size())
-            throw ConfigError(body, "name", "'" + body + "'", "a body of the world");
-          current = world().config().bodies[index];
-        }
-        WorldCommand command;
-        command.kind = WorldCommand::Kind::Reconfigure;
-        command.body = body;
-        const auto reconfigured = [&](const auto& config) {
-          return BodyConfig{body, withReconfigured(body, config, initial)};
-        };
-        command.config = std::visit(reconfigured, current.config);
-        return command;
-      },
-      why);
+  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), body,
+                               [&](const World& world) -> std::optional<WorldCommand> {
+                                 WorldCommand command;
+                                 command.kind = WorldCommand::Kind::Reconfigure;
+                                 command.body = body;
+                                 const auto reconfigured = [&](const auto& config) {
+                                   return BodyConfig{body, withReconfigured(body, config, initial)};
+                                 };
+                                 command.config =
+                                     std::visit(reconfigured, bodyOf(world.config(), body).config);
+                                 return command;
+                               });
+  if (why) *why = answer.why;
+  return answer.accepted;
+}
+
+template <class Response>
+bool SimNode::answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
+                            Response& response) {
+  const Answer answer = change(toString(kind), body, [&](const World&) {
+    WorldCommand command;
+    command.kind = kind;
+    command.body = body;
+    fill(command);
+    return std::optional(command);
+  });
+  response.success = answer.accepted;
+  response.message = answer.why;
+  if constexpr (std::is_same_v<Response, Spawn::Response>) response.t = answer.t;
+  return true;
 }
 
 bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
-  response.success = applyBuilt(
-      toString(WorldCommand::Kind::Spawn), request.name,
-      [&] {
-        WorldCommand command;
-        command.kind = WorldCommand::Kind::Spawn;
-        command.body = request.name;
-        command.config = parseBodyText(request.name, request.body);
-        return command;
-      },
-      &response.message, &response.t);
-  return true;
+  const auto body = [&](WorldCommand& command) {
+    command.config = parseBodyText(request.name, request.body);
+  };
+  return answerService(WorldCommand::Kind::Spawn, request.name, body, response);
 }
 
 bool SimNode::onDelete(Delete::Request& request, Delete::Response& response) {
-  WorldCommand command;
-  command.kind = WorldCommand::Kind::Delete;
-  command.body = request.name;
-  response.success = applyCommand(command, &response.message);
-  return true;
+  const auto nothing_more = [](WorldCommand&) {};
+  return answerService(WorldCommand::Kind::Delete, request.name, nothing_more, response);
 }
 
 bool SimNode::onSetState(SetState::Request& request, SetState::Response& response) {
-  response.success = applyBuilt(
-      toString(WorldCommand::Kind::SetState), request.name,
-      [&] {
-        WorldCommand command;
-        command.kind = WorldCommand::Kind::SetState;
-        command.body = request.name;
-        command.state = parseStateText(request.name, request.state);
-        return command;
-      },
-      &response.message);
-  return true;
+  const auto state = [&](WorldCommand& command) {
+    command.state = parseStateText(request.name, request.state);
+  };
+  return answerService(WorldCommand::Kind::SetState, request.name, state, response);
 }
 
 bool SimNode::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  response.yaml = toYaml(world().config());
+  response.yaml = toYaml(onStepper([this] { return world().config(); }));
   return true;
 }
 
 bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  WorldCommand command;
-  command.kind = WorldCommand::Kind::Reset;
-  applyCommand(command);
+  change(toString(WorldCommand::Kind::Reset), "", [](const World&) {
+    WorldCommand command;
+    command.kind = WorldCommand::Kind::Reset;
+    return std::optional(command);
+  });
   return true;
 }
 
 bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  paused_ = true;
-  publishPaused(true);
+  onStepper([this] {
+    paused_ = true;
+    publishPaused(true);
+  });
   return true;
 }
 
@@ -418,34 +437,86 @@ void SimNode::publishPaused(bool paused) {
 }
 
 bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
+  onStepper([this] {
     paused_ = false;
     publishPaused(false);
-    anchorLocked();
-  }
-  wake_.notify_all();
+    anchor();
+  });
   return true;
 }
 
 bool SimNode::onStep(Step::Request& request, Step::Response& response) {
-  std::lock_guard<std::mutex> lock(mutex_);
+  onStepper([&] { stepPaused(request.steps, response); });
+  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
+  return true;
+}
+
+void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
   const auto max_steps = static_cast<std::uint64_t>(kMaxStepSeconds * world().rate());
   if (!paused_) {
     response.message = "refused: call ~pause first (the simulation is running)";
-  } else if (request.steps == 0 || request.steps > max_steps) {
-    response.message = "refused: steps " + std::to_string(request.steps) + " is not in [1, " +
+  } else if (steps == 0 || steps > max_steps) {
+    response.message = "refused: steps " + std::to_string(steps) + " is not in [1, " +
                        std::to_string(max_steps) + "] (at most " + formatNumber(kMaxStepSeconds) + " s)";
   } else {
-    session_.advance(request.steps, after_step_);
+    session_.advance(static_cast<std::int64_t>(steps), after_step_);
     session_.sampleNow();  // show where the steps ended
-    publishMarkersNowLocked();
+    publishMarkersNow();
     response.success = true;
     response.message = "ok";
   }
-  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
   response.t = world().time();
-  return true;
+}
+
+template <class Work>
+auto SimNode::onStepper(Work work) -> decltype(work()) {
+  if (std::this_thread::get_id() == stepper_id_.load()) return work();
+  std::unique_lock<std::mutex> lock(tasks_mutex_);
+  if (stepper_done_) return work();  // under the lock: one at a time
+  std::packaged_task<decltype(work())()> task(std::move(work));
+  auto answer = task.get_future();
+  tasks_.emplace_back([&task] { task(); });  // the task outlives its run: this thread waits for it below
+  lock.unlock();
+  tasks_wake_.notify_all();
+  return answer.get();
+}
+
+void SimNode::post(std::function<void()> work) {
+  std::unique_lock<std::mutex> lock(tasks_mutex_);
+  if (stepper_done_) return work();
+  tasks_.push_back(std::move(work));
+  lock.unlock();
+  tasks_wake_.notify_all();
+}
+
+void SimNode::runTasks() {
+  std::deque<std::function<void()>> now;
+  {
+    const std::lock_guard<std::mutex> lock(tasks_mutex_);
+    now.swap(tasks_);
+  }
+  for (auto& task : now) task();
+}
+
+void SimNode::waitForTasks(std::chrono::steady_clock::time_point until) {
+  std::unique_lock<std::mutex> lock(tasks_mutex_);
+  tasks_wake_.wait_until(lock, until, [this] { return !tasks_.empty() || stopping_; });
+}
+
+void SimNode::serveTasksFor(std::chrono::milliseconds wait) {
+  const auto until = std::chrono::steady_clock::now() + wait;
+  while (std::chrono::steady_clock::now() < until) {
+    runTasks();
+    waitForTasks(until);
+  }
+  runTasks();
+}
+
+void SimNode::finishTasks() {
+  const std::lock_guard<std::mutex> lock(tasks_mutex_);
+  stepper_done_ = true;
+  for (auto& task : tasks_) task();
+  tasks_.clear();
 }
 
 double SimNode::wallNow() const {
@@ -460,14 +531,14 @@ ros::Time SimNode::stampOf(double t) const {
 // start_delay) or resumes at wall-clock pace, and so the stamps of what follows are current. Never earlier
 // than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
 // the clock): stamps stay strictly increasing.
-void SimNode::anchorLocked() {
+void SimNode::anchor() {
   pacer_.restart(wallNow(), world().stepCount());
   const ros::WallTime wall = ros::WallTime::now();
   stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
   time_anchor_ = world().time();
 }
 
-void SimNode::afterStepLocked(World& world) {
+void SimNode::afterStep(World& world) {
   for (const NonFinite& fault : guard_.afterStep(world.bodies())) {
     const Body& held = world.bodies()[fault.index];  // already back at its last finite state
     ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field
@@ -482,7 +553,7 @@ void SimNode::afterStepLocked(World& world) {
 }
 
 // Only forward: /clock never repeats a time (a reset or a ~step publishes the current time once more).
-void SimNode::publishClockLocked() {
+void SimNode::publishClock() {
   const ros::Time now = simStamp(world().time());
   if (!options_.publish_clock || now <= last_clock_) return;
   rosgraph_msgs::Clock clock;
@@ -491,10 +562,10 @@ void SimNode::publishClockLocked() {
   last_clock_ = now;
 }
 
-void SimNode::publishLocked() {
+void SimNode::publishStates() {
   const double t = world().time();
   const ros::Time stamp = stampOf(t);
-  publishClockLocked();
+  publishClock();
   const auto& bodies = world().bodies();
   // Every body's transform in one message and a state message per body, built only for a topic with a
   // subscriber (a viewer that joins finds every frame at the next publication). A transform is never sent
@@ -509,8 +580,8 @@ void SimNode::publishLocked() {
     if (namespace_tf_.publisher) namespace_tf_.publisher.publish(tf);
     last_tf_stamp_ = stamp;
   }
-  publishMarkersLocked(stamp);
-  recordLocked([&](BagRecorder& recorder) { recorder.write(world()); });
+  publishMarkers(stamp);
+  record([&](BagRecorder& recorder) { recorder.write(world()); });
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!state_publishers_[i].watched()) continue;
     std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
@@ -518,7 +589,7 @@ void SimNode::publishLocked() {
   }
 }
 
-void SimNode::publishMarkersLocked(const ros::Time& stamp) {
+void SimNode::publishMarkers(const ros::Time& stamp) {
   Scene& scene = snapshots_->scene();
   const bool watched = marker_publisher_.watched();
   if (!watched) {
@@ -535,33 +606,33 @@ void SimNode::publishMarkersLocked(const ros::Time& stamp) {
 
 // A ~step ends anywhere between marker periods: its labels (and the trail up to there) go out at once, so
 // that a paused picture shows them where the bodies are, not where the last period left them.
-void SimNode::publishMarkersNowLocked() {
+void SimNode::publishMarkersNow() {
   if (!markers_watched_) return;
   marker_publisher_.publisher.publish(snapshots_->scene().changes(stampOf(world().time()), world().bodies()));
 }
 
-void SimNode::publishStaticTransformsLocked() {
+void SimNode::publishStaticTransforms() {
   tf2_msgs::TFMessage fixed;
   fixed.transforms = snapshots_->staticTransforms(stampOf(world().time()));
   static_broadcaster_.sendTransform(fixed.transforms);
   if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
 }
 
-void SimNode::publishSceneLocked() {
-  publishStaticTransformsLocked();
+void SimNode::publishScene() {
+  publishStaticTransforms();
   scene_publisher_.publish(snapshots_->scene().sceneMarkers());
 }
 
 // The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
 // when it changed; trails are kept by body name.
-void SimNode::rebuildSceneLocked() {
+void SimNode::rebuildScene() {
   const bool changed = snapshots_->scene().rebuild(world().bodies());
-  publishStaticTransformsLocked();  // the new placements' frames first, then the markers drawn in them
+  publishStaticTransforms();  // the new placements' frames first, then the markers drawn in them
   if (changed) scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-  recordLocked([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
+  record([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
 }
 
-void SimNode::recordLocked(const std::function<void(BagRecorder&)>& write) {
+void SimNode::record(const std::function<void(BagRecorder&)>& write) {
   if (!recorder_) return;
   try {
     write(*recorder_);
@@ -578,7 +649,8 @@ void SimNode::recordLocked(const std::function<void(BagRecorder&)>& write) {
 
 // start_delay wall seconds; with start_on_subscribers only until every state topic and the transforms (/tf,
 // or the namespace's tf) have a subscriber (a recorder that found them), start_delay the most it waits.
-void SimNode::waitForStartLocked(std::unique_lock<std::mutex>& lock) {
+// Changes handed over meanwhile apply at once.
+void SimNode::waitForStart() {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                              std::chrono::duration<double>(options_.start_delay));
@@ -588,10 +660,10 @@ void SimNode::waitForStartLocked(std::unique_lock<std::mutex>& lock) {
                        [](const CountedPublisher& p) { return p.watched(); });
   };
   while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
+    runTasks();
     if (options_.start_on_subscribers && subscribed()) return;
     // Subscriptions arrive on the spinner's thread, which does not wake this one: look again soon.
-    wake_.wait_until(lock,
-                     std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
+    waitForTasks(std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
   }
   if (options_.start_on_subscribers && !stopping_ && !subscribed()) {
     ROS_WARN(
@@ -602,21 +674,22 @@ void SimNode::waitForStartLocked(std::unique_lock<std::mutex>& lock) {
 }
 
 void SimNode::stepLoop() {
-  std::unique_lock<std::mutex> lock(mutex_);
+  stepper_id_ = std::this_thread::get_id();
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
-  publishClockLocked();
-  waitForStartLocked(lock);
-  anchorLocked();
-  publishSceneLocked();
+  publishClock();
+  waitForStart();
+  anchor();
+  publishScene();
   session_.sampleNow();  // unless a command published this count
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world().rate()));
   while (!stopping_ && ros::ok()) {
+    runTasks();
     if (paused_) {
-      wake_.wait_for(lock, std::chrono::milliseconds(50));
+      waitForTasks(std::chrono::steady_clock::now() + kPausedWait);
       continue;
     }
-    // Step up to what is due, one publishing interval at a time so that callbacks get the lock.
+    // Step up to what is due, one publishing interval at a time, the work handed over between them.
     const std::int64_t steps_per_publish = session_.stepsPerSample();
     const std::int64_t next_publish = (world().stepCount() / steps_per_publish + 1) * steps_per_publish;
     const std::int64_t target = std::min(pacer_.dueSteps(wallNow()), next_publish);
@@ -624,24 +697,18 @@ void SimNode::stepLoop() {
       session_.advance(1, after_step_);  // one at a time: the duration ends a run at its step
       if (duration_steps > 0 && world().stepCount() >= duration_steps) {
         ROS_INFO("simulated %.3f s: the requested duration; shutting down", world().time());
-        // A moment for subscribers (a recorder) to receive the last messages before the launch ends.
-        lock.unlock();
-        std::this_thread::sleep_for(std::chrono::milliseconds(500));
+        serveTasksFor(kEndWait);
         if (options_.end_launch) endParentRoslaunch();  // its recorder and rviz with it
         ros::requestShutdown();
         return;
       }
     }
-    if (pacer_.asFastAsPossible()) {
-      lock.unlock();
-      std::this_thread::yield();
-      lock.lock();
-      continue;
-    }
+    if (pacer_.asFastAsPossible()) continue;
     const double wake_at =
         pacer_.wallTimeOf((world().stepCount() / steps_per_publish + 1) * steps_per_publish);
-    const auto wait = std::chrono::duration<double>(wake_at - wallNow());
-    if (wait.count() > 0) wake_.wait_for(lock, wait);
+    waitForTasks(
+        std::chrono::steady_clock::time_point(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+            std::chrono::duration<double>(wake_at))));
   }
 }
 
@@ -683,10 +750,10 @@ void SimNode::watchMaster() {
 
 void SimNode::stopThreads() {
   {
-    std::lock_guard<std::mutex> lock(watch_mutex_);
+    const std::scoped_lock lock(tasks_mutex_, watch_mutex_);  // neither waiting thread misses it
     stopping_ = true;
   }
-  wake_.notify_all();
+  tasks_wake_.notify_all();
   watch_wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
   if (watcher_.joinable()) watcher_.join();
@@ -701,19 +768,19 @@ void SimNode::restoreParameters() {
 }
 
 int SimNode::run() {
-  ros::AsyncSpinner spinner(1);
+  ros::AsyncSpinner spinner(1);  // every callback on one thread: see sim_node.h
   spinner.start();
-  stepper_ = std::thread([this] { stepLoop(); });
+  stepper_ = std::thread([this] {
+    stepLoop();
+    finishTasks();
+  });
   watcher_ = std::thread([this] { watchMaster(); });
-  startReconfigureServers();
+  defer([this] { startReconfigureServers(); });  // once stepping has started: the first states need not wait
   // The stepper runs until roscpp shuts down (Ctrl-C, the duration done, a forgetful master): waiting for
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();
   stopThreads();
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    recordLocked([](BagRecorder& recorder) { recorder.commit(); });
-  }
+  onStepper([this] { record([](BagRecorder& recorder) { recorder.commit(); }); });
   return exit_status_;
 }
 

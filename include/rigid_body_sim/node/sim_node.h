@@ -1,10 +1,18 @@
-// sim_node: a thin ROS adapter around a Session (run/session.h) of the core World. It owns the stepping
-// thread, the publishers, the reconfigure servers and the services; physics and validation stay in the core
-// and the config loader, the order of steps, samples and commands in the Session.
+// sim_node: a ROS adapter around a Session (run/session.h) of the core World; physics and validation stay in
+// the core and the config loader, the order of steps, samples and commands in the Session.
+//
+// Threads. The stepping thread owns the session, the publishers of what it hands out and the recorder: it
+// steps at the pace, publishes, and between two publishing instants runs the work handed to it. Every
+// callback (services, reconfigure servers, interactive markers, timers) runs on the one spinner thread: it
+// hands its change of the world to the stepping thread (onStepper) and waits for the answer; then, on the
+// spinner thread, the reconfigure servers and the interactive markers follow (the stepping thread never
+// touches them). No lock guards the world, so no lock order exists: tasks_mutex_ guards only the queue.
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -52,15 +60,19 @@ class SimNode {
   // kMasterForgotStatus or kRecordingFailedStatus.
   int run();
 
-  // The one way to change the running world (the services, the reconfigure servers, the interactive tools):
-  // Session::apply, which publishes a publishing instant not yet published first, then applies `command` at
-  // the current step (command.step is set there), logs it (INFO) and publishes it on ~commands; then what
-  // depends on the world follows (state topics, reconfigure servers, static TF, markers). *t is the
-  // simulated time it applied at, its ~commands entry's t. A refusal returns false: one WARN line, the same
-  // line in *why; nothing changes and nothing is published on ~commands; *t is the time then.
-  bool applyCommand(WorldCommand command, std::string* why = nullptr, double* t = nullptr);
-
  private:
+  // A change of the world as the stepping thread answers it.
+  struct Answer {
+    bool accepted = false;
+    std::string why;  // "ok", or the one refusal line
+    double t = 0.0;   // the simulated time it applied at (its ~commands entry's t), or then
+    std::optional<WorldCommand> command;  // as applied; none for a request that changes nothing
+    WorldConfig config;                   // the world's after it
+  };
+  // Makes the command of a change from the running world: none if it changes nothing; a ConfigError is its
+  // refusal.
+  using BuildCommand = std::function<std::optional<WorldCommand>(const World& world)>;
+
   // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
   // deleted body's may still run). Publisher::getNumSubscribers looks the topic up among all of the node's
   // publications, and once per body per publication that was most of the node's work with 1000 bodies.
@@ -81,12 +93,10 @@ class SimNode {
 
   void advertise();
   void advertiseState(const Body& body);  // its publisher and subscriber count, at the end of the lists
-  void startReconfigureServers();         // every body's that has none yet, after the first publication
-  void startReconfigureServer(const BodyConfig& body);
   template <class Config, class Request>
   void onReconfigure(const std::string& name, Request& request);
-  // The node's side of the Session, called by it with mutex_ held: write publishes the states of a count
-  // (publishLocked), applied logs a command and publishes it on ~commands (publishCommandLocked).
+  // The node's side of the Session, called by it on the stepping thread: write publishes the states of a
+  // count (publishStates), applied logs a command and publishes it on ~commands (publishCommand).
   class Publication : public SampleSink {
    public:
     explicit Publication(SimNode& node) : node_(node) {}
@@ -97,71 +107,107 @@ class SimNode {
     SimNode& node_;
   };
 
-  // Builds a command with `build` (which may throw ConfigError: a refusal like any other) and applies it.
-  template <class Build>
-  bool applyBuilt(const std::string& kind, const std::string& body, Build build, std::string* why,
-                  double* t = nullptr);
-  bool refuse(const std::string& kind, const std::string& body, const std::string& reason, std::string* why);
+  // --- The one way to change the running world, from any callback: the services, the reconfigure servers,
+  // the interactive markers. On the stepping thread: `build` makes the command from the running world and
+  // Session::apply applies it (a publishing instant not yet published first, then the command at the current
+  // step, logged (INFO) and published on ~commands); what depends on the world follows (state topics, the
+  // guard, static TF, markers, the recorder). Then, on the caller's thread: the reconfigure servers and the
+  // interactive markers. A refusal: one WARN line, the same line in the answer; nothing changes and nothing
+  // is published on ~commands.
+  Answer change(const std::string& kind, const std::string& body, const BuildCommand& build);
+  Answer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
   // On ~commands as number `index` (header.seq; 0: the config at the start); recorded after the config.
-  void publishCommandLocked(const WorldCommand& command, std::size_t index);
-  // After an accepted command: publishers, the guard and the scene follow the world. Caller holds mutex_.
-  void followWorldLocked(const WorldCommand& command, const WorldConfig& before);
-  // After an accepted command, without mutex_ (a server's first callback takes it): reconfigure servers.
-  void followWorldServers(const WorldCommand& command);
+  void publishCommand(const WorldCommand& command, std::size_t index);
+  // After an accepted command, on the stepping thread: publishers, the guard and the scene follow the world.
+  // `index` is the command's body's place in the world before it.
+  void followWorld(const WorldCommand& command, std::size_t index);
+  // After an accepted command, on the spinner thread: the reconfigure servers and the interactive markers.
+  void followWorldServers(const Answer& answer);
+  // A service's change of one body: `fill` puts in what the request brings (a ConfigError refuses it); the
+  // response says whether it applied, the one line if not, and (~spawn) the time it applied at.
+  using FillCommand = std::function<void(WorldCommand& command)>;
+  template <class Response>
+  bool answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
+                     Response& response);
   bool onSpawn(Spawn::Request& request, Spawn::Response& response);
   bool onDelete(Delete::Request& request, Delete::Response& response);
   bool onSetState(SetState::Request& request, SetState::Response& response);
   bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
-  // Initial conditions dropped in rviz: a reconfigure of those keys, through applyCommand like any other.
+  // Initial conditions dropped in rviz: a reconfigure of those keys, a change like any other.
   bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   void publishPaused(bool paused);  // on ~paused
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onStep(Step::Request& request, Step::Response& response);
+  void stepPaused(std::uint64_t steps, Step::Response& response);  // on the stepping thread
 
+  // --- Work for the stepping thread. onStepper runs `work` there between two publishing instants and
+  // returns its result (or rethrows its exception); on the stepping thread itself, or once it has ended, it
+  // runs `work` at once (one at a time). post does not wait for it.
+  template <class Work>
+  auto onStepper(Work work) -> decltype(work());
+  void post(std::function<void()> work);
+  void runTasks();  // what was handed over until now
+  // Until `until`, work is handed over or stopping begins.
+  void waitForTasks(std::chrono::steady_clock::time_point until);
+  void serveTasksFor(std::chrono::milliseconds wait);  // runs what is handed over meanwhile
+  void finishTasks();  // the stepping thread has ended: what is left runs now, and later work at once
+
+  // --- On the spinner thread: one body's reconfigure server at a time, each a callback of its own behind
+  // those waiting (a server takes some 40 calls to the master: a thousand at once would hold the services
+  // for seconds), after stepping has started. A body spawned meanwhile has its own already; one deleted
+  // meanwhile gets none.
+  void startReconfigureServers();
+  void startNextReconfigureServer();
+  void startReconfigureServer(const BodyConfig& body);
+  void defer(std::function<void()> work);  // behind the callbacks waiting on the spinner thread
+
+  // --- The stepping thread
   void stepLoop();
+  // The step hook, after every step: holds a body that became non-finite at its last finite state (the
+  // one error about it), then the step's events (DEBUG).
+  void afterStep(World& world);
+  // The states, TF, markers and /clock of the current count; the same into the recorder.
+  void publishStates();
+  void publishClock();
+  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
+  void publishMarkers(const ros::Time& stamp);
+  void publishMarkersNow();
+  // The fixed frames on /tf_static (and <ns>/tf_static).
+  void publishStaticTransforms();
+  // The fixed frames and the latched ~scene.
+  void publishScene();
+  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
+  // the scene are sent again. Trails go on by body name.
+  void rebuildScene();
+  void waitForStart();
+  // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
+  // line (kRecordingFailedStatus), never the process.
+  void record(const std::function<void(BagRecorder&)>& write);
+  ros::Time stampOf(double t) const;
+  const World& world() const { return session_.world(); }  // on the stepping thread
+  void anchor();  // the pace and the wall-clock stamps start from now and the current step
+  double wallNow() const;
+
+  // --- Other threads
   // Every second: does the master still know this node? When a restarted master does not, puts the
   // parameters this node started from back on it (for the respawned node) and shuts down.
   void watchMaster();
   void warnIfNoClock();
   void stopThreads();  // stops and joins the stepper and the watcher
   void restoreParameters();
-  // The step hook, after every step: holds a body that became non-finite at its last finite state (the
-  // one error about it), then the step's events (DEBUG). Caller holds mutex_.
-  void afterStepLocked(World& world);
-  // The states, TF, markers and /clock of the current count; the same into the recorder.
-  void publishLocked();
-  void publishClockLocked();
-  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
-  void publishMarkersLocked(const ros::Time& stamp);
-  void publishMarkersNowLocked();
-  // The fixed frames on /tf_static (and <ns>/tf_static).
-  void publishStaticTransformsLocked();
-  // The fixed frames and the latched ~scene.
-  void publishSceneLocked();
-  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
-  // the scene are sent again. Trails go on by body name.
-  void rebuildSceneLocked();
-  void waitForStartLocked(std::unique_lock<std::mutex>& lock);
-  // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
-  // line (kRecordingFailedStatus), never the process.
-  void recordLocked(const std::function<void(BagRecorder&)>& write);
-  ros::Time stampOf(double t) const;
-  const World& world() const { return session_.world(); }  // caller holds mutex_
-  void anchorLocked();  // the pace and the wall-clock stamps start from now and the current step
-  double wallNow() const;
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
   XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
 
-  std::mutex mutex_;  // guards everything below that the stepping thread touches
+  // Owned by the stepping thread (set up before it starts):
   // The world (also the running config, what ~get_config returns), sampled at every publishing instant.
   Session session_;
   Publication publication_{*this};  // the session's one sink
-  StepHook after_step_;             // afterStepLocked
+  StepHook after_step_;             // afterStep
   FiniteGuard guard_;
   std::int64_t steps_per_markers_;  // a whole number of publishing intervals
   bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
@@ -169,13 +215,20 @@ class SimNode {
   ros::Time last_tf_stamp_;         // the stamp of the last transforms on /tf
   bool paused_ = false;
   StepPacer pacer_;
-  std::condition_variable wake_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
   std::unique_ptr<BagRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
   ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
 
+  // The work handed to the stepping thread.
+  std::mutex tasks_mutex_;
+  std::condition_variable tasks_wake_;
+  std::deque<std::function<void()>> tasks_;
+  bool stepper_done_ = false;                  // under tasks_mutex_
+  std::atomic<std::thread::id> stepper_id_{};  // the stepping thread's, once it runs
+
+  // Published on the stepping thread (the scene resend timer hands its publication over too).
   ros::Publisher command_publisher_;
   ros::Publisher paused_publisher_;  // ~paused: true from ~pause (or start_paused) until ~unpause
   CountedPublisher marker_publisher_;
@@ -190,10 +243,13 @@ class SimNode {
   std::vector<CountedPublisher> state_publishers_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
   std::vector<ros::ServiceServer> services_;
-  // The servers' own (held while they call back; updateConfig needs it to be ours). applyCommand takes it
-  // before mutex_, always in this order: a reconfigure callback arrives holding it.
-  boost::recursive_mutex reconfigure_mutex_;
+
+  // Owned by the spinner thread:
+  // The servers' mutex, held while they call back (dynamic_reconfigure warns of deadlocks when updateConfig
+  // is called on a server that has its own).
+  boost::recursive_mutex servers_mutex_;
   std::map<std::string, BodyServer> servers_;         // by body name
+  std::deque<std::string> bodies_without_server_;     // startReconfigureServers' list
   std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
