@@ -6,8 +6,8 @@
 #include <string>
 
 #include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/io/node_interface.h"
 #include "test_util.h"
 
 using namespace rigid_body_sim;

@@ -1,4 +1,4 @@
-// The node's NaN guard (io/finite_guard): which quantity is non-finite, holding a body at its last
+// The node's NaN guard (run/finite_guard): which quantity is non-finite, holding a body at its last
 // finite state while the others go on exactly as without it, reporting each fault once, releasing.
 #include <cmath>
 #include <limits>
@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/io/finite_guard.h"
+#include "rigid_body_sim/run/finite_guard.h"
 #include "test_util.h"
 
 namespace rigid_body_sim {

@@ -5,7 +5,7 @@
 #include <string>
 #include <tuple>
 
-#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/ros/params.h"
 #include "test_util.h"
 

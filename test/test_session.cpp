@@ -10,7 +10,7 @@
 
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/io/csv_writer.h"
-#include "rigid_body_sim/io/replay.h"
+#include "rigid_body_sim/run/replay.h"
 #include "rigid_body_sim/run/session.h"
 #include "test_util.h"
 

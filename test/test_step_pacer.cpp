@@ -3,7 +3,7 @@
 
 #include <limits>
 
-#include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/run/step_pacer.h"
 
 using namespace rigid_body_sim;
 

@@ -13,7 +13,7 @@
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/io/sweep.h"
+#include "rigid_body_sim/run/sweep.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;

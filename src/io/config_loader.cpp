@@ -9,7 +9,7 @@
 #include <set>
 
 #include "rigid_body_sim/core/constants.h"
-#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/core/node_interface.h"
 
 namespace rigid_body_sim {
 

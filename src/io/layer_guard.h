@@ -1,4 +1,4 @@
-// Forced into every source of the io library and of `simulate` (CMakeLists.txt): no ROS header there, so
-// that `simulate` loads no ROS library. Every ROS header uses the identifier `ros`, so an include of one
+// Forced into every source of the io library (CMakeLists.txt): no ROS header there, so that `simulate`,
+// which links it, loads no ROS library. Every ROS header uses the identifier `ros`, so an include of one
 // fails to compile ("attempt to use poisoned").
 #pragma GCC poison ros

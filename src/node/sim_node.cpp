@@ -13,9 +13,9 @@
 #include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Bool.h>
 
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/config_writer.h"
-#include "rigid_body_sim/io/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"

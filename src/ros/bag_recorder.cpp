@@ -17,7 +17,7 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
-#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
 
 namespace rigid_body_sim {

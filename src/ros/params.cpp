@@ -8,8 +8,8 @@
 
 #include <ros/param.h>
 
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/io/node_interface.h"
 
 namespace rigid_body_sim {
 

@@ -1,7 +1,7 @@
 // sim_node: steps the configured bodies at `rate` in simulated time and publishes TF, markers and states.
 #include <ros/ros.h>
 
-#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/node/sim_node.h"
 #include "rigid_body_sim/ros/launch_end.h"
 

@@ -17,7 +17,7 @@
 #include <boost/program_options.hpp>
 
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/io/sweep.h"
+#include "rigid_body_sim/run/sweep.h"
 
 namespace rigid_body_sim {
 

@@ -4,8 +4,8 @@
 // roscpp or rosbag.
 #pragma once
 
-#include "rigid_body_sim/io/offline_run.h"
-#include "rigid_body_sim/io/replay.h"
+#include "rigid_body_sim/run/offline_run.h"
+#include "rigid_body_sim/run/replay.h"
 
 namespace rigid_body_sim {
 

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
-#include "rigid_body_sim/io/node_interface.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

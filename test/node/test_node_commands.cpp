@@ -11,8 +11,8 @@
 #include "rigid_body_sim/GetConfig.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
+#include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_writer.h"
-#include "rigid_body_sim/io/node_interface.h"
 
 using namespace rigid_body_sim;
 using namespace rigid_body_sim::test;

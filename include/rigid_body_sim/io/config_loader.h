@@ -12,7 +12,7 @@
 namespace rigid_body_sim {
 
 // Parses and validates; throws ConfigError with one line naming the body, key, value and range. A body
-// may take neither a world key nor one of the node's own names (io/node_interface.h).
+// may take neither a world key nor one of the node's own names (core/node_interface.h).
 WorldConfig parseWorldConfig(const YAML::Node& root);
 
 // Parses YAML text (`source` names it in messages); a YAML syntax error is a ConfigError too.

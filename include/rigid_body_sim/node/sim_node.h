@@ -35,13 +35,13 @@
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/io/finite_guard.h"
-#include "rigid_body_sim/io/step_pacer.h"
 #include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
+#include "rigid_body_sim/run/finite_guard.h"
 #include "rigid_body_sim/run/session.h"
+#include "rigid_body_sim/run/step_pacer.h"
 
 namespace rigid_body_sim {
 

@@ -9,7 +9,7 @@
 
 #include "rigid_body_sim/Command.h"
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/io/replay.h"
+#include "rigid_body_sim/run/replay.h"
 
 namespace rigid_body_sim {
 

@@ -14,7 +14,7 @@
 
 namespace rigid_body_sim {
 
-// The node's own options (private parameters beside the config keys; names in io/node_interface.h).
+// The node's own options (private parameters beside the config keys; names in core/node_interface.h).
 struct NodeOptions {
   double real_time_factor = 1.0;      // 1 = wall-clock pace, 0 = as fast as possible
   bool publish_clock = false;         // publish /clock (simulated time) for use_sim_time users

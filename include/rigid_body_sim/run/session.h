@@ -5,7 +5,7 @@
 //   the state at a step count is handed out (sampled) at most once, and before the commands at that count
 //   apply; a command applied while the count is c applies before the step from c to c + 1.
 //
-// The offline run (io/offline_run.h) and the replay (io/replay.h) run through it, writing CSV files and
+// The offline run (run/offline_run.h) and the replay (run/replay.h) run through it, writing CSV files and
 // bags in their sinks. How a node uses it: its publisher is a sink (write publishes the states, TF and
 // markers; applied publishes the command on ~commands with the index as its seq); every change, whatever
 // its entry point, goes through Session::apply (which publishes a pending instant first; a ConfigError is

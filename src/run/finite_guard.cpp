@@ -1,4 +1,4 @@
-#include "rigid_body_sim/io/finite_guard.h"
+#include "rigid_body_sim/run/finite_guard.h"
 
 #include <array>
 #include <cmath>

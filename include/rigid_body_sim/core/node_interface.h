@@ -1,7 +1,7 @@
 // The names sim_node takes in its private namespace beside the config's keys: its options, topics and
-// services, listed once. The node reads its options (ros/params.h) and advertises under these names; a
-// body may take none of them (they share the namespace), whichever program reads the config file, so that
-// a file `simulate` runs is one the node runs too. Plain names: no ROS header.
+// services, listed once. The node reads its options (ros/params.h) and advertises under these names. A body
+// shares that namespace, so the World's validation of a config reserves them (ownNames()) for every program
+// that reads one: a file `simulate` runs is one the node runs too. Plain names: no ROS header.
 #pragma once
 
 #include <string>

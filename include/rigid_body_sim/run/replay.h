@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/io/offline_run.h"
+#include "rigid_body_sim/run/offline_run.h"
 
 namespace rigid_body_sim {
 

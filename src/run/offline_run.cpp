@@ -1,4 +1,4 @@
-#include "rigid_body_sim/io/offline_run.h"
+#include "rigid_body_sim/run/offline_run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "rigid_body_sim/core/rod_dynamics.h"
 #include "rigid_body_sim/io/csv_writer.h"
-#include "rigid_body_sim/io/progress.h"
+#include "rigid_body_sim/run/progress.h"
 
 namespace rigid_body_sim {
 

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/io/step_pacer.h"
+#include "rigid_body_sim/run/step_pacer.h"
 
 #include <cmath>
 #include <limits>

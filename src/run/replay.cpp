@@ -1,4 +1,4 @@
-#include "rigid_body_sim/io/replay.h"
+#include "rigid_body_sim/run/replay.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rigid_body_sim/io/node_interface.h"
+#include "rigid_body_sim/core/node_interface.h"
 
 namespace rigid_body_sim {
 

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/io/sweep.h"
+#include "rigid_body_sim/run/sweep.h"
 
 #include <algorithm>
 #include <atomic>
@@ -15,7 +15,7 @@
 #include <tuple>
 
 #include "rigid_body_sim/core/state_fields.h"
-#include "rigid_body_sim/io/progress.h"
+#include "rigid_body_sim/run/progress.h"
 
 namespace rigid_body_sim {
 
