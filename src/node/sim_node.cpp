@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <optional>
 #include <type_traits>
 
@@ -161,7 +160,8 @@ void SimNode::advertise() {
       private_node_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
         const bool due = scene_resend_due_.exchange(false);
         if (scene_viewer_joined_.exchange(false)) scene_resend_due_ = true;
-        if (due) post([this] { scene_publisher_.publish(snapshots_->scene().sceneMarkers()); });
+        if (due)
+          stepper_tasks_.post([this] { scene_publisher_.publish(snapshots_->scene().sceneMarkers()); });
       });
   if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
   if (node_.getNamespace() != "/") {
@@ -468,55 +468,13 @@ void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
   response.t = world().time();
 }
 
-template <class Work>
-auto SimNode::onStepper(Work work) -> decltype(work()) {
-  if (std::this_thread::get_id() == stepper_id_.load()) return work();
-  std::unique_lock<std::mutex> lock(tasks_mutex_);
-  if (stepper_done_) return work();  // under the lock: one at a time
-  std::packaged_task<decltype(work())()> task(std::move(work));
-  auto answer = task.get_future();
-  tasks_.emplace_back([&task] { task(); });  // the task outlives its run: this thread waits for it below
-  lock.unlock();
-  tasks_wake_.notify_all();
-  return answer.get();
-}
-
-void SimNode::post(std::function<void()> work) {
-  std::unique_lock<std::mutex> lock(tasks_mutex_);
-  if (stepper_done_) return work();
-  tasks_.push_back(std::move(work));
-  lock.unlock();
-  tasks_wake_.notify_all();
-}
-
-void SimNode::runTasks() {
-  std::deque<std::function<void()>> now;
-  {
-    const std::lock_guard<std::mutex> lock(tasks_mutex_);
-    now.swap(tasks_);
-  }
-  for (auto& task : now) task();
-}
-
-void SimNode::waitForTasks(std::chrono::steady_clock::time_point until) {
-  std::unique_lock<std::mutex> lock(tasks_mutex_);
-  tasks_wake_.wait_until(lock, until, [this] { return !tasks_.empty() || stopping_; });
-}
-
 void SimNode::serveTasksFor(std::chrono::milliseconds wait) {
   const auto until = std::chrono::steady_clock::now() + wait;
   while (std::chrono::steady_clock::now() < until) {
-    runTasks();
-    waitForTasks(until);
+    stepper_tasks_.runPending();
+    stepper_tasks_.waitFor(until);
   }
-  runTasks();
-}
-
-void SimNode::finishTasks() {
-  const std::lock_guard<std::mutex> lock(tasks_mutex_);
-  stepper_done_ = true;
-  for (auto& task : tasks_) task();
-  tasks_.clear();
+  stepper_tasks_.runPending();
 }
 
 double SimNode::wallNow() const {
@@ -660,10 +618,11 @@ void SimNode::waitForStart() {
                        [](const CountedPublisher& p) { return p.watched(); });
   };
   while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
-    runTasks();
+    stepper_tasks_.runPending();
     if (options_.start_on_subscribers && subscribed()) return;
     // Subscriptions arrive on the spinner's thread, which does not wake this one: look again soon.
-    waitForTasks(std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
+    stepper_tasks_.waitFor(
+        std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
   }
   if (options_.start_on_subscribers && !stopping_ && !subscribed()) {
     ROS_WARN(
@@ -674,7 +633,7 @@ void SimNode::waitForStart() {
 }
 
 void SimNode::stepLoop() {
-  stepper_id_ = std::this_thread::get_id();
+  stepper_tasks_.becomeOwner();
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
   publishClock();
@@ -684,9 +643,9 @@ void SimNode::stepLoop() {
   session_.sampleNow();  // unless a command published this count
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world().rate()));
   while (!stopping_ && ros::ok()) {
-    runTasks();
+    stepper_tasks_.runPending();
     if (paused_) {
-      waitForTasks(std::chrono::steady_clock::now() + kPausedWait);
+      stepper_tasks_.waitFor(std::chrono::steady_clock::now() + kPausedWait);
       continue;
     }
     // Step up to what is due, one publishing interval at a time, the work handed over between them.
@@ -706,7 +665,7 @@ void SimNode::stepLoop() {
     if (pacer_.asFastAsPossible()) continue;
     const double wake_at =
         pacer_.wallTimeOf((world().stepCount() / steps_per_publish + 1) * steps_per_publish);
-    waitForTasks(
+    stepper_tasks_.waitFor(
         std::chrono::steady_clock::time_point(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
             std::chrono::duration<double>(wake_at))));
   }
@@ -750,10 +709,10 @@ void SimNode::watchMaster() {
 
 void SimNode::stopThreads() {
   {
-    const std::scoped_lock lock(tasks_mutex_, watch_mutex_);  // neither waiting thread misses it
+    const std::lock_guard<std::mutex> lock(watch_mutex_);  // the watcher, between its check and its wait
     stopping_ = true;
   }
-  tasks_wake_.notify_all();
+  stepper_tasks_.stop();
   watch_wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
   if (watcher_.joinable()) watcher_.join();
@@ -772,7 +731,7 @@ int SimNode::run() {
   spinner.start();
   stepper_ = std::thread([this] {
     stepLoop();
-    finishTasks();
+    stepper_tasks_.finish();
   });
   watcher_ = std::thread([this] { watchMaster(); });
   defer([this] { startReconfigureServers(); });  // once stepping has started: the first states need not wait

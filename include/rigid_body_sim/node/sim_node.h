@@ -6,7 +6,7 @@
 // callback (services, reconfigure servers, interactive markers, timers) runs on the one spinner thread: it
 // hands its change of the world to the stepping thread (onStepper) and waits for the answer; then, on the
 // spinner thread, the reconfigure servers and the interactive markers follow (the stepping thread never
-// touches them). No lock guards the world, so no lock order exists: tasks_mutex_ guards only the queue.
+// touches them). No lock guards the world, so no lock order exists (run/task_queue.h).
 #pragma once
 
 #include <atomic>
@@ -42,6 +42,7 @@
 #include "rigid_body_sim/run/finite_guard.h"
 #include "rigid_body_sim/run/session.h"
 #include "rigid_body_sim/run/step_pacer.h"
+#include "rigid_body_sim/run/task_queue.h"
 
 namespace rigid_body_sim {
 
@@ -142,17 +143,12 @@ class SimNode {
   bool onStep(Step::Request& request, Step::Response& response);
   void stepPaused(std::uint64_t steps, Step::Response& response);  // on the stepping thread
 
-  // --- Work for the stepping thread. onStepper runs `work` there between two publishing instants and
-  // returns its result (or rethrows its exception); on the stepping thread itself, or once it has ended, it
-  // runs `work` at once (one at a time). post does not wait for it.
+  // Runs `work` on the stepping thread between two publishing instants and returns its result.
   template <class Work>
-  auto onStepper(Work work) -> decltype(work());
-  void post(std::function<void()> work);
-  void runTasks();  // what was handed over until now
-  // Until `until`, work is handed over or stopping begins.
-  void waitForTasks(std::chrono::steady_clock::time_point until);
-  void serveTasksFor(std::chrono::milliseconds wait);  // runs what is handed over meanwhile
-  void finishTasks();  // the stepping thread has ended: what is left runs now, and later work at once
+  auto onStepper(Work work) -> decltype(work()) {
+    return stepper_tasks_.call(std::move(work));
+  }
+  void serveTasksFor(std::chrono::milliseconds wait);  // on the stepping thread: runs what comes meanwhile
 
   // --- On the spinner thread: one body's reconfigure server at a time, each a callback of its own behind
   // those waiting (a server takes some 40 calls to the master: a thousand at once would hold the services
@@ -221,12 +217,7 @@ class SimNode {
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
 
-  // The work handed to the stepping thread.
-  std::mutex tasks_mutex_;
-  std::condition_variable tasks_wake_;
-  std::deque<std::function<void()>> tasks_;
-  bool stepper_done_ = false;                  // under tasks_mutex_
-  std::atomic<std::thread::id> stepper_id_{};  // the stepping thread's, once it runs
+  TaskQueue stepper_tasks_;  // the work handed to the stepping thread
 
   // Published on the stepping thread (the scene resend timer hands its publication over too).
   ros::Publisher command_publisher_;
