@@ -141,7 +141,12 @@ def run_rounds(runs: int, build: Path, labels: str, keep: Path, records: Dict[st
         failed = [o.name for o in outcomes if o.failed]
         print(f"flaky: round {index} of {runs}: {len(outcomes)} tests in {time.monotonic() - round_began:.0f} s, "
               + (f"FAILED: {', '.join(failed)} (log in {folder})" if failed else "all passed"), flush=True)
-        if not failed:
+        if failed:
+            # The picture tests' screenshots, findings and roslaunch logs of this round: the next overwrites them.
+            pictures = build / "test_results" / "pictures"
+            if pictures.is_dir():
+                shutil.copytree(pictures, folder / "pictures")
+        else:
             shutil.rmtree(folder)
 
 
