@@ -14,7 +14,6 @@ import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 import xml.etree.ElementTree as ElementTree
 from contextlib import contextmanager
@@ -55,18 +54,15 @@ def read_junit(path: Path) -> List[Outcome]:
 
 
 def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
-    """One ctest run of the labelled tests; its log and JUnit file go to `folder`."""
-    home = tempfile.mkdtemp(prefix="flaky_ros_home_")
+    """One ctest run of the labelled tests; its log, JUnit file and ROS_HOME (the nodes' logs) go to `folder`."""
+    home = str(folder / "ros_home")
     # Debian's python3 first (rostest's nodes import ROS's modules), as the Makefile does.
     env = dict(os.environ, ROS_HOME=home, ROS_IP="127.0.0.1", PATH="/usr/bin:" + os.environ.get("PATH", ""))
     env.pop("ROS_HOSTNAME", None)
     junit = folder / "ctest.xml"
-    try:
-        with open(folder / "ctest.log", "w") as log:
-            subprocess.run(["ctest", "-L", labels, "--output-on-failure", "--output-junit", str(junit.resolve())],
-                           cwd=build, env=env, stdout=log, stderr=subprocess.STDOUT)
-    finally:
-        shutil.rmtree(home, ignore_errors=True)
+    with open(folder / "ctest.log", "w") as log:
+        subprocess.run(["ctest", "-L", labels, "--output-on-failure", "--output-junit", str(junit.resolve())],
+                       cwd=build, env=env, stdout=log, stderr=subprocess.STDOUT)
     if not junit.exists():
         raise SystemExit(f"flaky: ctest wrote no {junit}; see {folder / 'ctest.log'}")
     return read_junit(junit)
