@@ -121,7 +121,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   WorldCommand start;
   start.kind = WorldCommand::Kind::Config;
   start.world = world().config();
-  publishCommand(start, 0);  // nothing runs yet: no lock to take
+  publishCommand(start, 0);  // before the stepping thread starts
   session_.addSink(publication_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
@@ -273,8 +273,8 @@ SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& b
     answer.command = build(world());
     if (answer.command) {
       index = indexIn(world().config(), answer.command->body);
-      session_.apply(
-          *answer.command);  // the pending publishing instant, the command, then publication_.applied
+      // The pending publishing instant, the command, then publication_.applied.
+      session_.apply(*answer.command);
     }
   } catch (const ConfigError& error) {
     answer.command.reset();
