@@ -194,13 +194,13 @@ TEST(Commands, SetStateRefusesAnyOtherFieldAndChangesNothing) {
       ConfigError);
 }
 
-// A set field takes the range of its initial condition, the key named after it with a 0.
+// A set field takes the range of its initial condition: the key whose state field it is.
 TEST(Commands, EverySettableFieldHasAnInitialCondition) {
   for (const auto& name : settableStateFields(BodyKind::Rod)) {
-    EXPECT_NE(findKey(rodNumericKeys(), name + "0"), nullptr) << name;
+    EXPECT_NE(keyOfStateField<RodConfig>(name), nullptr) << name;
   }
   for (const auto& name : settableStateFields(BodyKind::Roller)) {
-    EXPECT_NE(findKey(rollerNumericKeys(), name + "0"), nullptr) << name;
+    EXPECT_NE(keyOfStateField<RollerConfig>(name), nullptr) << name;
   }
 }
 

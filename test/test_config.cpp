@@ -320,6 +320,22 @@ TEST(ConfigDuplicates, AKeyGivenTwiceIsRefused) {
             "body 'rod', key 'x': value '2' (the key given twice) is not allowed (allowed: each key once)");
 }
 
+// A second YAML document ("---") would be dropped without a word by a reader that takes the first: refused
+// wherever YAML text is read (a config file, a spawned body, a set_state), with one line that says so.
+TEST(ConfigDocuments, ASecondDocumentIsRefused) {
+  EXPECT_EQ(test::refusalOf([] {
+              parseWorldConfigText("bodies: {rod: {type: rod}}\n---\nbodies: {ball: {type: roller}}", "test");
+            }),
+            "config file 'test' holds 2 YAML documents (allowed: one; '---' starts another)");
+  EXPECT_EQ(test::refusalOf([] { parseBodyText("hoop", "{type: roller}\n---\n{type: rod}"); }),
+            "body 'hoop' holds 2 YAML documents (allowed: one; '---' starts another)");
+  EXPECT_EQ(test::refusalOf([] { parseStateText("rod", "{x: 1}\n---\n{x: 2}"); }),
+            "state of body 'rod' holds 2 YAML documents (allowed: one; '---' starts another)");
+  // One document with its optional markers is one document.
+  EXPECT_EQ(test::refusalOf([] { parseWorldConfigText("---\nbodies: {rod: {type: rod}}\n...\n", "test"); }),
+            "");
+}
+
 // A quoted number is text: refused where a number is asked, in a config file and a spawned body alike.
 TEST(ConfigNumbers, AQuotedNumberIsRefused) {
   const std::string message = refusal("bodies: {rod: {type: rod, mass: \"1\"}}");

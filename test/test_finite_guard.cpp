@@ -127,6 +127,16 @@ TEST(DescribeBody, ListsEveryKeyAndTheState) {
        {"radius=0.1 ", "mu_s=0.3 ", "mu_d=0.2 ", "shape=sphere", "mode=rolling", "friction="}) {
     EXPECT_NE(std::string::npos, sphere.find(part)) << part << " in " << sphere;
   }
+  // Every key its type writes, as a config file writes it.
+  const auto expectEveryKey = [](const std::string& text, const auto& config) {
+    for (const auto& key : bodyType<std::decay_t<decltype(config)>>().keys) {
+      if (key.written())
+        EXPECT_NE(text.find(std::string(key.name) + "=" + key.text(config) + " "), std::string::npos)
+            << key.name << " in " << text;
+    }
+  };
+  expectEveryKey(rod, std::get<RodConfig>(world.config().bodies[0].config));
+  expectEveryKey(sphere, std::get<RollerConfig>(world.config().bodies[1].config));
 }
 
 // A fault injected into the rod after 100 steps: the rod is held at its state of step 100, the sphere

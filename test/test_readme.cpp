@@ -1,8 +1,8 @@
-// The README's tables of configuration keys against the core: every numeric key of a body, and the
-// world's numbers, stand in their table with the core's default and the core's range, so that the one
-// place where a user reads them cannot drift from the code. Likewise the docs' lists of state fields (CSV
-// columns, what ~set_state sets) against core/state_fields.h, and DESIGN.md's example config against the
-// core's defaults.
+// The docs' tables of configuration keys against the core: each body type's table is generated from its
+// description and must stand in docs/configuration.md as it is, and the world's numbers stand in their table
+// with the core's default and range, so that the one place where a user reads them cannot drift from the
+// code. Likewise the docs' lists of state fields (CSV columns, what ~set_state sets) against
+// core/state_fields.h, and DESIGN.md's example config against the core's defaults.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,26 +33,24 @@ std::string trimmed(const std::string& text) {
   return first == std::string::npos ? "" : text.substr(first, last - first + 1);
 }
 
-// The rows of the first table after the line that starts with `heading`: key -> (default, allowed). A
-// row may list several keys (`x0`, `y0`) with as many defaults.
-std::map<std::string, Cell> tableAfter(const std::string& heading) {
+fs::path packageFile(const std::string& path) { return fs::path(RBS_README).parent_path() / path; }
+
+const char* const kConfigurationDoc = "docs/configuration.md";
+
+// The rows of the first table after the line that starts with `heading` in `file`: key -> (default, allowed).
+std::map<std::string, Cell> tableAfter(const std::string& file, const std::string& heading) {
   std::map<std::string, Cell> rows;
-  std::istringstream readme(slurp(std::string(RBS_README)));
+  std::istringstream doc(slurp(packageFile(file)));
   std::string line;
-  while (std::getline(readme, line) && line.rfind(heading, 0) != 0) {
+  while (std::getline(doc, line) && line.rfind(heading, 0) != 0) {
   }
-  while (std::getline(readme, line) && line.rfind("|", 0) != 0) {
+  while (std::getline(doc, line) && line.rfind("|", 0) != 0) {
   }
-  for (; !line.empty() && line[0] == '|'; std::getline(readme, line)) {
-    const auto cells = split(line, '|');  // "", keys, default, allowed, ""
+  for (; !line.empty() && line[0] == '|'; std::getline(doc, line)) {
+    const auto cells = split(line, '|');  // "", key, default, allowed, ""
     if (cells.size() < 4 || cells[1].find('`') == std::string::npos) continue;
-    const auto keys = split(cells[1], ',');
-    const auto defaults = split(cells[2], ',');
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      const std::string key = trimmed(keys[i]);
-      const std::string value = i < defaults.size() ? trimmed(defaults[i]) : "";
-      rows[key.substr(1, key.size() - 2)] = {value, cells[3]};
-    }
+    const std::string key = trimmed(cells[1]);
+    rows[key.substr(1, key.size() - 2)] = {trimmed(cells[2]), cells[3]};
   }
   return rows;
 }
@@ -63,42 +61,37 @@ std::string interval(const Range& range) {
   return text.substr(text.find_first_of("[("));
 }
 
-// `texts`: the table's keys that are no numbers, with their default and a part of what they allow.
+// A body type's table of keys, as the docs must show it: every key of its description in order, with its
+// default, what it allows (a number's interval and unit) and what it is.
 template <class Config>
-void expectKeysDocumented(const std::string& heading, const std::vector<NumericKey<Config>>& keys,
-                          const std::map<std::string, Cell>& texts = {}) {
-  const auto rows = tableAfter(heading);
-  for (const auto& [name, cell] : texts) {
-    SCOPED_TRACE(heading + " " + name);
-    const auto row = rows.find(name);
-    ASSERT_NE(row, rows.end()) << "no row";
-    EXPECT_EQ(row->second.default_value, cell.default_value);
-    EXPECT_NE(row->second.allowed.find(cell.allowed), std::string::npos) << row->second.allowed;
+std::string keyTable() {
+  const Config defaults;
+  std::string table = "| key | default | allowed | what |\n|---|---|---|---|\n";
+  for (const auto& key : bodyType<Config>().keys) {
+    const std::string unit = *key.unit ? std::string(" ") + key.unit : "";
+    table += "| `" + std::string(key.name) + "` | " + (key.written() ? key.text(defaults) : "(none)") +
+             " | " + (key.isNumber() ? interval(key.range) + unit : key.allowed()) + " | " + key.meaning +
+             " |\n";
   }
-  Config defaults;
-  for (const auto& key : keys) {
-    SCOPED_TRACE(heading + " " + key.name);
-    const auto row = rows.find(key.name);
-    ASSERT_NE(row, rows.end()) << "no row";
-    EXPECT_EQ(row->second.default_value, formatNumber(key.field(defaults)));
-    EXPECT_NE(row->second.allowed.find(interval(key.range)), std::string::npos) << row->second.allowed;
-  }
-  EXPECT_EQ(rows.size(), keys.size() + texts.size()) << heading << ": a row for a key the core does not have";
+  return table;
+}
+
+template <class Config>
+void expectKeyTableDocumented() {
+  const std::string table = keyTable<Config>();
+  EXPECT_NE(slurp(packageFile(kConfigurationDoc)).find(table), std::string::npos)
+      << kConfigurationDoc << " lacks the table of " << bodyType<Config>().type << " keys; it is:\n"
+      << table;
 }
 
 }  // namespace
 
-TEST(Readme, RodKeysAreTheCores) {
-  const std::string allowed = substepsAllowed();  // "auto or a whole number in [1, 1e+09]"
-  expectKeysDocumented(
-      "Rod (`type: rod`", rodNumericKeys(),
-      {{"substeps", {substepsToString(RodParams{}.substeps), allowed.substr(allowed.find('['))}}});
-}
+TEST(Docs, RodKeysAreTheDescriptions) { expectKeyTableDocumented<RodConfig>(); }
 
-TEST(Readme, RollerKeysAreTheCores) { expectKeysDocumented("Roller (`type: roller`", rollerNumericKeys()); }
+TEST(Docs, RollerKeysAreTheDescriptions) { expectKeyTableDocumented<RollerConfig>(); }
 
-TEST(Readme, WorldNumbersAreTheCores) {
-  const auto rows = tableAfter("## Configuration");
+TEST(Docs, WorldNumbersAreTheCores) {
+  const auto rows = tableAfter(kConfigurationDoc, "## The world");
   const WorldConfig defaults;
   const std::map<std::string, std::pair<double, Range>> world = {
       {"rate", {defaults.rate, rateRange()}},
@@ -115,8 +108,6 @@ TEST(Readme, WorldNumbersAreTheCores) {
 }
 
 namespace {
-
-fs::path packageFile(const std::string& path) { return fs::path(RBS_README).parent_path() / path; }
 
 std::string joined(const std::vector<std::string>& names, const std::string& separator) {
   std::string out;
@@ -156,8 +147,8 @@ TEST(Docs, SetStateFieldsAreTheSettableOnes) {
 // DESIGN.md's example config gives every key it lists the core's default.
 TEST(Docs, DesignsExampleConfigIsTheDefaults) {
   const WorldConfig world;
-  RodConfig rod;  // not const: a NumericKey reads a mutable config
-  RollerConfig roller;
+  const RodConfig rod;
+  const RollerConfig roller;
   const std::map<std::string, double> world_numbers = {
       {"rate", world.rate}, {"publish_rate", world.publish_rate}, {"gravity", world.gravity}};
   std::string type;  // of the body whose keys follow
@@ -187,13 +178,13 @@ TEST(Docs, DesignsExampleConfigIsTheDefaults) {
       ASSERT_EQ(world_numbers.count(key), 1u);
       EXPECT_EQ(std::stod(value), world_numbers.at(key));
     } else if (type == "rod") {
-      const auto* numeric = findKey(rodNumericKeys(), key);
-      ASSERT_NE(numeric, nullptr);
-      EXPECT_EQ(std::stod(value), numeric->field(rod));
+      const auto* numeric = findKey(rodType().keys, key);
+      ASSERT_TRUE(numeric && numeric->isNumber());
+      EXPECT_EQ(std::stod(value), numeric->number(rod));
     } else {
-      const auto* numeric = findKey(rollerNumericKeys(), key);
-      ASSERT_NE(numeric, nullptr);
-      EXPECT_EQ(std::stod(value), numeric->field(roller));
+      const auto* numeric = findKey(rollerType().keys, key);
+      ASSERT_TRUE(numeric && numeric->isNumber());
+      EXPECT_EQ(std::stod(value), numeric->number(roller));
     }
   }
   EXPECT_GT(checked, 20);

@@ -1,10 +1,12 @@
-// The .cfg files against the core: every number of a reconfigure server is a numeric key of the core, with
-// the same default and no range of its own (minus to plus infinity: a server clamps a request into its
-// range before the node sees it, so that any bound would turn a refused value into another value, refused
-// for the wrong number or silently accepted; the core's ranges are the only ones), and a config goes to a
-// request and back unchanged.
+// The .cfg files against the body types' descriptions (core/parameters.h): each server holds exactly the
+// keys a description writes, a number as a double and a text as a string, with the description's default,
+// level (KeyChange) and meaning ("meaning (unit)": the panel shows the unit), and no range of its own (minus
+// to plus infinity: a server clamps a request into its range before the node sees it, so that any bound
+// would turn a refused value into another value, refused for the wrong number or silently accepted; the
+// core's ranges are the only ones). Every key through a request and back: test_key_round_trips.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <limits>
 #include <set>
 #include <string>
@@ -20,35 +22,45 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 template <class Request, class Config>
-void expectNumbersAreTheCoreKeys(const std::vector<NumericKey<Config>>& keys, Config defaults) {
+void expectCfgIsTheDescription() {
   using Number = typename Request::template ParamDescription<double>;
-  std::set<std::string> numbers;
+  using Text = typename Request::template ParamDescription<std::string>;
+  const Config defaults;
+  std::set<std::string> served;
   for (const auto& description : Request::__getParamDescriptions__()) {
+    SCOPED_TRACE(description->name);
+    served.insert(description->name);
+    const BodyKey<Config>* key = findKey(bodyType<Config>().keys, description->name);
+    ASSERT_NE(key, nullptr) << "in the .cfg but no key of the body type";
+    ASSERT_TRUE(key->written()) << "a key that is never written has no value to serve";
+    const std::string unit = *key->unit ? std::string(" (") + key->unit + ")" : "";
+    EXPECT_EQ(description->description, key->meaning + unit);
+    EXPECT_EQ(description->level, static_cast<std::uint32_t>(key->change));
     const auto number = boost::dynamic_pointer_cast<const Number>(description);
-    if (!number) continue;
-    numbers.insert(number->name);
-    const NumericKey<Config>* key = findKey(keys, number->name);
-    ASSERT_NE(key, nullptr) << number->name << " is in the .cfg but is no key of the core";
-    EXPECT_EQ(Request::__getMin__().*(number->field), -kInfinity) << number->name << ": min";
-    EXPECT_EQ(Request::__getMax__().*(number->field), kInfinity) << number->name << ": max";
-    EXPECT_EQ(Request::__getDefault__().*(number->field), key->field(defaults))
-        << number->name << ": default";
+    const auto text = boost::dynamic_pointer_cast<const Text>(description);
+    if (key->isNumber()) {
+      ASSERT_TRUE(number) << "a number in the core, no double in the .cfg";
+      EXPECT_EQ(Request::__getMin__().*(number->field), -kInfinity) << "min";
+      EXPECT_EQ(Request::__getMax__().*(number->field), kInfinity) << "max";
+      EXPECT_EQ(Request::__getDefault__().*(number->field), key->number(defaults)) << "default";
+    } else {
+      ASSERT_TRUE(text) << "a text in the core, no string in the .cfg";
+      EXPECT_EQ(Request::__getDefault__().*(text->field), key->text(defaults)) << "default";
+    }
   }
-  for (const auto& key : keys)
-    EXPECT_EQ(numbers.count(key.name), 1u) << key.name << " is missing in the .cfg";
+  for (const auto& key : bodyType<Config>().keys) {
+    if (key.written()) EXPECT_EQ(served.count(key.name), 1u) << key.name << " is missing in the .cfg";
+  }
 }
 
 }  // namespace
 
-TEST(ReconfigureCfg, RodNumbersAreTheCoreKeys) {
-  expectNumbersAreTheCoreKeys<RodReconfigureConfig>(rodNumericKeys(), RodConfig{});
-  EXPECT_EQ(RodReconfigureConfig::__getDefault__().integrator, toString(RodParams{}.integrator));
-  EXPECT_EQ(RodReconfigureConfig::__getDefault__().substeps, substepsToString(RodParams{}.substeps));
+TEST(ReconfigureCfg, RodServerHoldsTheRodsKeys) {
+  expectCfgIsTheDescription<RodReconfigureConfig, RodConfig>();
 }
 
-TEST(ReconfigureCfg, RollerNumbersAreTheCoreKeys) {
-  expectNumbersAreTheCoreKeys<RollerReconfigureConfig>(rollerNumericKeys(), RollerConfig{});
-  EXPECT_EQ(RollerReconfigureConfig::__getDefault__().shape, toString(RollerParams{}.shape));
+TEST(ReconfigureCfg, RollerServerHoldsTheRollersKeys) {
+  expectCfgIsTheDescription<RollerReconfigureConfig, RollerConfig>();
 }
 
 // A server clamps every request (config.__clamp__()) before its callback: a value far outside the core's

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <random>
 #include <set>
 
 #include "rigid_body_sim/core/constants.h"
@@ -56,10 +58,10 @@ Range positive(double max) { return {0.0, max, true, false}; }
 Range closed(double min, double max) { return {min, max, false, false}; }
 
 template <class Config>
-void checkRanges(const std::string& body, const Config& config, const std::vector<NumericKey<Config>>& keys) {
-  auto& mutable_config = const_cast<Config&>(config);  // NumericKey fields are shared with the loader
-  for (const auto& key : keys) {
-    const double value = key.field(mutable_config);
+void checkRanges(const std::string& body, const Config& config) {
+  for (const auto& key : bodyType<Config>().keys) {
+    if (!key.isNumber()) continue;
+    const double value = key.number(config);
     if (!key.range.contains(value)) {
       throw ConfigError(body, key.name, formatNumber(value), key.range.describe());
     }
@@ -88,43 +90,237 @@ std::string Range::describe() const {
          formatNumber(max) + (max_open ? ")" : "]");
 }
 
-const std::vector<NumericKey<RodConfig>>& rodNumericKeys() {
-  static const std::vector<NumericKey<RodConfig>> keys = {
-      {"length", [](RodConfig& c) -> double& { return c.params.length; }, positive(kMaxSize)},
-      {"mass", [](RodConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
-      {"k", [](RodConfig& c) -> double& { return c.params.k; }, positive(kMaxStiffness)},
-      {"floor_length", [](RodConfig& c) -> double& { return c.params.floor_length; }, closed(0, kMaxSize)},
-      {"x0", [](RodConfig& c) -> double& { return c.initial.x; }, closed(-kMaxSize, kMaxSize)},
-      // A centre under the floor is refused: a rod starts at or above it (it may lie on it, y0 = 0).
-      {"y0", [](RodConfig& c) -> double& { return c.initial.y; }, closed(0, kMaxSize)},
-      {"vx0", [](RodConfig& c) -> double& { return c.initial.vx; }, closed(-kMaxSpeed, kMaxSpeed)},
-      {"vy0", [](RodConfig& c) -> double& { return c.initial.vy; }, closed(-kMaxSpeed, kMaxSpeed)},
-      {"theta0", [](RodConfig& c) -> double& { return c.initial.theta; }, closed(-kMaxAngle, kMaxAngle)},
-      {"omega0", [](RodConfig& c) -> double& { return c.initial.omega; }, closed(-kMaxSpin, kMaxSpin)},
-  };
-  return keys;
+namespace {
+
+// A number of a body type's description.
+template <class Config>
+BodyKey<Config> number(const char* name, const char* unit, const char* meaning, KeyChange change,
+                       double& (*field)(Config&), Range range, const char* state_field = nullptr) {
+  BodyKey<Config> key{name, unit, meaning, change};
+  key.field = field;
+  key.range = range;
+  key.state_field = state_field;
+  return key;
 }
 
-const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys() {
-  static const std::vector<NumericKey<RollerConfig>> keys = {
-      {"radius", [](RollerConfig& c) -> double& { return c.params.radius; }, positive(kMaxSize)},
-      {"mass", [](RollerConfig& c) -> double& { return c.params.mass; }, positive(kMaxMass)},
-      {"inertia_factor", [](RollerConfig& c) -> double& { return c.params.inertia_factor; },
-       positive(kMaxInertiaFactor)},
-      {"incline_angle",
-       [](RollerConfig& c) -> double& { return c.params.incline_angle; },
-       {0.0, kPi / 2, false, true}},
-      {"incline_length", [](RollerConfig& c) -> double& { return c.params.incline_length; },
-       positive(kMaxSize)},
-      {"mu_s", [](RollerConfig& c) -> double& { return c.params.mu_s; }, closed(0, kMaxFriction)},
-      {"mu_d", [](RollerConfig& c) -> double& { return c.params.mu_d; }, closed(0, kMaxFriction)},
-      {"x0", [](RollerConfig& c) -> double& { return c.initial.x0; }, closed(0, kMaxSize)},
-      {"v0", [](RollerConfig& c) -> double& { return c.initial.v0; }, closed(-kMaxSpeed, kMaxSpeed)},
-      {"theta0", [](RollerConfig& c) -> double& { return c.initial.theta0; }, closed(-kMaxAngle, kMaxAngle)},
-      {"omega0", [](RollerConfig& c) -> double& { return c.initial.omega0; }, closed(-kMaxSpin, kMaxSpin)},
-  };
-  return keys;
+// A text of a body type's description: an enum's names (`choices`) or what `allowed` says.
+template <class Config>
+BodyKey<Config> text(const char* name, const char* meaning, KeyChange change,
+                     std::string (*write)(const Config&), bool (*read)(Config&, const std::string&),
+                     std::vector<std::string> (*choices)(), std::string (*allowed)() = nullptr) {
+  BodyKey<Config> key{name, "", meaning, change};
+  key.write = write;
+  key.read = read;
+  key.choices = choices;
+  key.allowed_text = allowed;
+  return key;
 }
+
+std::vector<std::string> integratorNames() {
+  return {toString(Integrator::EulerCromer), toString(Integrator::VelocityVerlet), toString(Integrator::Rk4)};
+}
+
+std::vector<std::string> shapeNames() {
+  std::vector<std::string> names;
+  for (const Shape shape : namedShapes()) names.push_back(toString(shape));
+  names.push_back(toString(Shape::Custom));
+  return names;
+}
+std::string seedAllowed() { return "a whole number in [0, 2^53), only when theta0 is not given"; }
+
+// A seed in [0, 2^53): a double holds every such whole number exactly.
+bool readSeed(RodConfig& config, const std::string& text) {
+  char* end = nullptr;
+  const double seed = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size()) return false;
+  if (!(seed >= 0 && seed < 9.007199254740992e15 && seed == std::floor(seed))) return false;
+  config.initial.theta = theta0FromSeed(static_cast<unsigned long long>(seed));
+  return true;
+}
+
+bool given(const std::vector<std::string>& keys, const char* name) {
+  return std::find(keys.begin(), keys.end(), name) != keys.end();
+}
+
+void completeRod(const std::string& body, const std::vector<std::string>& keys, RodConfig&) {
+  if (given(keys, "seed") && given(keys, "theta0")) {
+    throw ConfigError(body, "seed", "(with theta0)", "only when theta0 is not given");
+  }
+}
+
+// shape names a body with a known c (read first, it sets c); inertia_factor alone means shape custom.
+void completeRoller(const std::string& body, const std::vector<std::string>& keys, RollerConfig& config) {
+  const bool has_factor = given(keys, "inertia_factor");
+  if (has_factor && !given(keys, "shape")) config.params.shape = Shape::Custom;
+  if (config.params.shape == Shape::Custom && !has_factor) {
+    throw ConfigError(body, "shape", "'custom'", "custom only with inertia_factor");
+  }
+}
+
+}  // namespace
+
+const BodyType<RodConfig>& rodType() {
+  using C = RodConfig;
+  constexpr auto apply = KeyChange::Apply;
+  constexpr auto restart = KeyChange::Restart;
+  static const BodyType<RodConfig> type{
+      "rod",
+      {
+          number<C>(
+              "length", "m", "length", apply, [](C& c) -> double& { return c.params.length; },
+              positive(kMaxSize)),
+          number<C>(
+              "mass", "kg", "mass", apply, [](C& c) -> double& { return c.params.mass; }, positive(kMaxMass)),
+          number<C>(
+              "k", "N/m", "floor spring constant per end", apply, [](C& c) -> double& { return c.params.k; },
+              positive(kMaxStiffness)),
+          number<C>(
+              "floor_length", "m", "floor length from x = 0, 0 = unbounded", apply,
+              [](C& c) -> double& { return c.params.floor_length; }, closed(0, kMaxSize)),
+          number<C>(
+              "x0", "m", "initial centre x", restart, [](C& c) -> double& { return c.initial.x; },
+              closed(-kMaxSize, kMaxSize), "x"),
+          // A centre under the floor is refused: a rod starts at or above it (it may lie on it, y0 = 0).
+          number<C>(
+              "y0", "m", "initial centre height", restart, [](C& c) -> double& { return c.initial.y; },
+              closed(0, kMaxSize), "y"),
+          number<C>(
+              "vx0", "m/s", "initial velocity x", restart, [](C& c) -> double& { return c.initial.vx; },
+              closed(-kMaxSpeed, kMaxSpeed), "vx"),
+          number<C>(
+              "vy0", "m/s", "initial velocity y", restart, [](C& c) -> double& { return c.initial.vy; },
+              closed(-kMaxSpeed, kMaxSpeed), "vy"),
+          number<C>(
+              "theta0", "rad", "initial angle from +x", restart,
+              [](C& c) -> double& { return c.initial.theta; }, closed(-kMaxAngle, kMaxAngle), "theta"),
+          number<C>(
+              "omega0", "rad/s", "initial angular velocity", restart,
+              [](C& c) -> double& { return c.initial.omega; }, closed(-kMaxSpin, kMaxSpin), "omega"),
+          text<C>(
+              "integrator", "integration scheme", apply,
+              [](const C& c) { return toString(c.params.integrator); },
+              [](C& c, const std::string& name) {
+                const auto integrator = integratorFromString(name);
+                if (integrator) c.params.integrator = *integrator;
+                return integrator.has_value();
+              },
+              integratorNames),
+          [] {
+            auto key = text<C>(
+                "substeps",
+                "sub-steps per step: auto (split only when omega_c dt > 0.1) or a whole number N >= 1 with "
+                "omega_c dt / N < 2 (1: the text's scheme)",
+                apply, [](const C& c) { return substepsToString(c.params.substeps); },
+                [](C& c, const std::string& value) {
+                  const auto substeps = substepsFromString(value);
+                  if (substeps) c.params.substeps = *substeps;
+                  return substeps.has_value();
+                },
+                nullptr, substepsAllowed);
+            key.counts = true;
+            return key;
+          }(),
+          text<C>("seed", "draws theta0 = 2 pi u, u from std::mt19937_64(seed), instead of theta0", restart,
+                  nullptr, readSeed, nullptr, seedAllowed),
+      },
+      completeRod};
+  return type;
+}
+
+const BodyType<RollerConfig>& rollerType() {
+  using C = RollerConfig;
+  constexpr auto apply = KeyChange::Apply;
+  constexpr auto restart = KeyChange::Restart;
+  static const BodyType<RollerConfig> type{
+      "roller",
+      {
+          // Before inertia_factor: a named shape sets c, which a given inertia_factor then overrides (and
+          // validation refuses unless it is the shape's).
+          text<C>(
+              "shape", "shape (sets c unless custom)", apply,
+              [](const C& c) { return toString(c.params.shape); },
+              [](C& c, const std::string& name) {
+                if (name == toString(Shape::Custom)) {
+                  c.params.shape = Shape::Custom;
+                  return true;
+                }
+                const auto shape = shapeFromString(name);
+                if (!shape) return false;
+                c.params.shape = *shape;
+                c.params.inertia_factor = inertiaFactorOf(*shape);
+                return true;
+              },
+              shapeNames),
+          number<C>(
+              "inertia_factor", "", "c = I / (M R^2), used with shape custom", apply,
+              [](C& c) -> double& { return c.params.inertia_factor; }, positive(kMaxInertiaFactor)),
+          number<C>(
+              "radius", "m", "radius", apply, [](C& c) -> double& { return c.params.radius; },
+              positive(kMaxSize)),
+          number<C>(
+              "mass", "kg", "mass", apply, [](C& c) -> double& { return c.params.mass; }, positive(kMaxMass)),
+          number<C>("incline_angle", "rad", "slope angle", apply,
+                    [](C& c) -> double& { return c.params.incline_angle; }, {0.0, kPi / 2, false, true}),
+          number<C>(
+              "incline_length", "m", "slope length", apply,
+              [](C& c) -> double& { return c.params.incline_length; }, positive(kMaxSize)),
+          number<C>(
+              "mu_s", "", "static friction coefficient", apply, [](C& c) -> double& { return c.params.mu_s; },
+              closed(0, kMaxFriction)),
+          number<C>(
+              "mu_d", "", "kinetic friction coefficient, <= mu_s", apply,
+              [](C& c) -> double& { return c.params.mu_d; }, closed(0, kMaxFriction)),
+          number<C>(
+              "x0", "m", "initial position along the slope, <= incline_length", restart,
+              [](C& c) -> double& { return c.initial.x0; }, closed(0, kMaxSize), "x"),
+          number<C>(
+              "v0", "m/s", "initial velocity along the slope", restart,
+              [](C& c) -> double& { return c.initial.v0; }, closed(-kMaxSpeed, kMaxSpeed), "v"),
+          number<C>(
+              "theta0", "rad", "initial rotation", restart, [](C& c) -> double& { return c.initial.theta0; },
+              closed(-kMaxAngle, kMaxAngle), "theta"),
+          number<C>(
+              "omega0", "rad/s", "initial angular velocity", restart,
+              [](C& c) -> double& { return c.initial.omega0; }, closed(-kMaxSpin, kMaxSpin), "omega"),
+      },
+      completeRoller};
+  return type;
+}
+
+std::string oneOf(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  return out;
+}
+
+double theta0FromSeed(unsigned long long seed) {
+  std::mt19937_64 generator(seed);
+  const double unit = static_cast<double>(generator() >> 11) * 0x1.0p-53;
+  return 2.0 * kPi * unit;
+}
+
+template <class Config>
+void setKeyText(const std::string& body, const BodyKey<Config>& key, const std::string& text,
+                Config& config) {
+  if (key.isNumber()) {
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) {
+      throw ConfigError(body, key.name, "'" + text + "'", key.allowed());
+    }
+    key.field(config) = value;  // its range is validation's
+    return;
+  }
+  Config changed = config;
+  if (!key.read || !key.read(changed, text))
+    throw ConfigError(body, key.name, "'" + text + "'", key.allowed());
+  config = changed;
+}
+
+template void setKeyText(const std::string&, const BodyKey<RodConfig>&, const std::string&, RodConfig&);
+template void setKeyText(const std::string&, const BodyKey<RollerConfig>&, const std::string&, RollerConfig&);
 
 // A quantity derived from the keys (an inertia, a frequency, an energy at the start) that a step divides by
 // or carries: refused unless finite and, where asked, a normal positive double (an underflow to 0 or into the
@@ -159,7 +355,7 @@ void checkDerived(const std::string& body, const RollerConfig& config) {
 }
 
 void validate(const std::string& body, const RodConfig& config) {
-  checkRanges(body, config, rodNumericKeys());
+  checkRanges(body, config);
   const RodParams& p = config.params;
   const double x0 = config.initial.x;
   if (p.floor_length > 0.0 && !(x0 >= 0.0 && x0 <= p.floor_length)) {
@@ -202,7 +398,7 @@ void validateSubsteps(const std::string& body, const RodConfig& config, double r
 }
 
 void validate(const std::string& body, const RollerConfig& config) {
-  checkRanges(body, config, rollerNumericKeys());
+  checkRanges(body, config);
   const RollerParams& p = config.params;
   if (!gravityRange().contains(p.gravity)) {
     throw ConfigError(body, "gravity", formatNumber(p.gravity), gravityRange().describe());
@@ -223,18 +419,6 @@ void validate(const std::string& body, const RollerConfig& config) {
                           toString(p.shape));
   }
   checkDerived(body, config);
-}
-
-bool initialChanged(const RodConfig& a, const RodConfig& b) {
-  const RodMotion& p = a.initial;
-  const RodMotion& q = b.initial;
-  return p.x != q.x || p.y != q.y || p.theta != q.theta || p.vx != q.vx || p.vy != q.vy || p.omega != q.omega;
-}
-
-bool initialChanged(const RollerConfig& a, const RollerConfig& b) {
-  const RollerInitial& p = a.initial;
-  const RollerInitial& q = b.initial;
-  return p.x0 != q.x0 || p.v0 != q.v0 || p.theta0 != q.theta0 || p.omega0 != q.omega0;
 }
 
 Range rateRange() { return {1.0, 1e6, false, false}; }

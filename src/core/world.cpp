@@ -51,9 +51,8 @@ auto fieldOf(const Model& model, const std::string& body, const StateValue& valu
 // A state field takes the range of its initial condition (x: x0, omega: omega0, ...); a roller's x must also
 // be on its slope. Throws ConfigError naming the body, the field and the value.
 template <class Config>
-void checkStateValue(const std::string& body, const StateValue& value, const Config& config,
-                     const std::vector<NumericKey<Config>>& keys) {
-  const NumericKey<Config>* key = findKey(keys, value.field + "0");
+void checkStateValue(const std::string& body, const StateValue& value, const Config& config) {
+  const BodyKey<Config>* key = keyOfStateField<Config>(value.field);
   if (!key->range.contains(value.value)) {
     throw ConfigError(body, value.field, formatNumber(value.value), key->range.describe());
   }
@@ -213,11 +212,7 @@ void World::setState(std::size_t index, const std::vector<StateValue>& state) {
               throw ConfigError(name, value.field, formatNumber(value.value), "each field once");
             }
           }
-          if constexpr (std::is_same_v<std::decay_t<decltype(model)>, Rod>) {
-            checkStateValue(name, value, std::get<RodConfig>(config), rodNumericKeys());
-          } else {
-            checkStateValue(name, value, std::get<RollerConfig>(config), rollerNumericKeys());
-          }
+          std::visit([&](const auto& body_config) { checkStateValue(name, value, body_config); }, config);
           motion.*field = value.value;
         }
         model.setState(motion);  // only once every value passed: a refusal changes nothing

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <random>
 #include <set>
 
 #include "rigid_body_sim/core/constants.h"
@@ -85,71 +84,28 @@ void refuseUnknownKeys(const std::string& body, const YAML::Node& map, const std
   refuseRepeatedKeys(body, map);
 }
 
+// A body's keys, as its type describes them: read in the description's order (a roller's shape before its
+// inertia_factor), each number or text checked as the key takes it; then what depends on which keys were
+// given. Unknown and repeated keys are refused first.
 template <class Config>
-std::set<std::string> keyNames(const std::vector<NumericKey<Config>>& keys, std::set<std::string> extra) {
-  for (const auto& key : keys) extra.insert(key.name);
-  return extra;
-}
-
-template <class Config>
-void readNumericKeys(const std::string& body, const YAML::Node& map, Config& config,
-                     const std::vector<NumericKey<Config>>& keys) {
-  for (const auto& key : keys) {
-    if (map[key.name]) key.field(config) = asNumber(body, key.name, map[key.name], key.range.describe());
-  }
-}
-
-RodConfig parseRod(const std::string& body, const YAML::Node& map) {
-  refuseUnknownKeys(body, map, keyNames(rodNumericKeys(), {"type", "integrator", "substeps", "seed"}));
-  RodConfig config;
-  readNumericKeys(body, map, config, rodNumericKeys());
-  if (map["integrator"]) {
-    const std::string allowed = "euler_cromer, velocity_verlet or rk4";
-    const std::string name = asString(body, "integrator", map["integrator"], allowed);
-    const auto integrator = integratorFromString(name);
-    if (!integrator) throw ConfigError(body, "integrator", "'" + name + "'", allowed);
-    config.params.integrator = *integrator;
-  }
-  if (map["substeps"]) {
-    const auto substeps = substepsFromString(asString(body, "substeps", map["substeps"], substepsAllowed()));
-    if (!substeps) throw ConfigError(body, "substeps", describe(map["substeps"]), substepsAllowed());
-    config.params.substeps = *substeps;
-  }
-  if (map["seed"]) {
-    if (map["theta0"]) {
-      throw ConfigError(body, "seed", describe(map["seed"]), "only when theta0 is not given");
+Config parseKeys(const std::string& body, const YAML::Node& map) {
+  const BodyType<Config>& type = bodyType<Config>();
+  std::set<std::string> known{"type"};
+  for (const auto& key : type.keys) known.insert(key.name);
+  refuseUnknownKeys(body, map, known);
+  Config config;
+  std::vector<std::string> given;
+  for (const auto& key : type.keys) {
+    const YAML::Node value = map[key.name];
+    if (!value) continue;
+    given.push_back(key.name);
+    if (key.isNumber()) {
+      key.field(config) = asNumber(body, key.name, value, key.allowed());
+    } else {
+      setKeyText(body, key, asString(body, key.name, value, key.allowed()), config);
     }
-    const double seed = asNumber(body, "seed", map["seed"]);
-    if (!(seed >= 0 && seed < 9.007199254740992e15 && seed == std::floor(seed))) {
-      throw ConfigError(body, "seed", describe(map["seed"]), "a whole number in [0, 2^53)");
-    }
-    config.initial.theta = theta0FromSeed(static_cast<unsigned long long>(seed));
   }
-  return config;
-}
-
-// shape names a body with a known c; inertia_factor alone (or with shape: custom) gives any c.
-void parseShape(const std::string& body, const YAML::Node& map, RollerParams& params) {
-  const std::string allowed = "sphere, cylinder, ring, spherical_shell or custom";
-  const bool has_factor = static_cast<bool>(map["inertia_factor"]);
-  std::string name = has_factor ? "custom" : "sphere";
-  if (map["shape"]) name = asString(body, "shape", map["shape"], allowed);
-  if (name == "custom") {
-    if (!has_factor) throw ConfigError(body, "shape", "'custom'", "custom only with inertia_factor");
-    params.shape = Shape::Custom;
-    return;
-  }
-  const auto shape = shapeFromString(name);
-  if (!shape) throw ConfigError(body, "shape", "'" + name + "'", allowed);
-  params.shape = *shape;
-  if (!has_factor) params.inertia_factor = inertiaFactorOf(*shape);
-}
-
-RollerConfig parseRoller(const std::string& body, const YAML::Node& map) {
-  refuseUnknownKeys(body, map, keyNames(rollerNumericKeys(), {"type", "shape"}));
-  RollerConfig config;
-  readNumericKeys(body, map, config, rollerNumericKeys());
-  parseShape(body, map, config.params);
+  type.complete(body, given, config);
   return config;
 }
 
@@ -157,8 +113,8 @@ BodyConfig parseBody(const std::string& name, const YAML::Node& map) {
   if (!map.IsMap()) throw ConfigError(name, "(body)", describe(map), "a map of the body's keys");
   if (!map["type"]) throw ConfigError(name, "type", "(missing)", "rod or roller");
   const std::string type = asString(name, "type", map["type"], "rod or roller");
-  if (type == "rod") return {name, parseRod(name, map)};
-  if (type == "roller") return {name, parseRoller(name, map)};
+  if (type == rodType().type) return {name, parseKeys<RodConfig>(name, map)};
+  if (type == rollerType().type) return {name, parseKeys<RollerConfig>(name, map)};
   throw ConfigError(name, "type", "'" + type + "'", "rod or roller");
 }
 
@@ -288,20 +244,21 @@ void checkFlow(const std::string& text, const std::string& what) {
 
 YAML::Node loadText(const std::string& text, const std::string& what) {
   checkFlow(text, what);
+  std::vector<YAML::Node> documents;
   try {
-    return YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& error) {
     throw ConfigError(what + " is not valid YAML: " + error.what());
   }
+  // A second document ("---") would otherwise be dropped without a word.
+  if (documents.size() > 1) {
+    throw ConfigError(what + " holds " + std::to_string(documents.size()) +
+                      " YAML documents (allowed: one; '---' starts another)");
+  }
+  return documents.empty() ? YAML::Node() : documents.front();
 }
 
 }  // namespace
-
-double theta0FromSeed(unsigned long long seed) {
-  std::mt19937_64 generator(seed);
-  const double unit = static_cast<double>(generator() >> 11) * 0x1.0p-53;
-  return 2.0 * kPi * unit;
-}
 
 WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (!root.IsMap()) {

@@ -9,21 +9,15 @@ namespace {
 // Names (bodies, frames, keys, enum values) are validated to [A-Za-z0-9_]: plain YAML scalars as they are.
 std::string entry(const std::string& key, const std::string& value) { return key + ": " + value; }
 
+// Every key its type writes, in the description's order: what the loader reads back to the same config.
 template <class Config>
-std::string numbers(Config config, const std::vector<NumericKey<Config>>& keys) {
-  std::string out;
-  for (const auto& key : keys) out += ", " + entry(key.name, formatNumber(key.field(config)));
+std::string bodyKeys(const Config& config) {
+  const BodyType<Config>& type = bodyType<Config>();
+  std::string out = entry("type", type.type);
+  for (const auto& key : type.keys) {
+    if (key.written()) out += ", " + entry(key.name, key.text(config));
+  }
   return out;
-}
-
-std::string bodyKeys(const RodConfig& rod) {
-  return entry("type", "rod") + numbers(rod, rodNumericKeys()) + ", " +
-         entry("integrator", toString(rod.params.integrator));
-}
-
-std::string bodyKeys(const RollerConfig& roller) {
-  return entry("type", "roller") + ", " + entry("shape", toString(roller.params.shape)) +
-         numbers(roller, rollerNumericKeys());
 }
 
 WorldCommand::Kind kindFrom(const std::string& name) {

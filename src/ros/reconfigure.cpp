@@ -6,88 +6,78 @@ namespace rigid_body_sim {
 
 namespace {
 
-// Calls visit(key, field) for every number of a .cfg: `field` is the request's member, `key` the core's
-// numeric key of the same name (test_reconfigure checks that the .cfg's numbers are the core's keys, with
-// their defaults and no ranges of their own). Texts (the integrator, substeps, the shape) are left to the
-// caller.
-template <class Request, class Config, class Visit>
-void forEachNumber(const std::vector<NumericKey<Config>>& keys, Visit visit) {
+// The member of a reconfigure request that holds a key: a double for a number, a string for a text; neither
+// for a key the .cfg does not serve (a rod's seed, which is written as theta0). test_reconfigure checks that
+// the .cfg holds exactly the description's written keys, with their defaults, levels and meanings, and no
+// ranges of its own. (Type names: clang-format 14 and 19 space `Request::*field` apart.)
+template <class Request>
+struct Member {
+  double Request::*number = nullptr;
+  std::string Request::*text = nullptr;
+};
+
+template <class Request>
+Member<Request> memberNamed(const std::string& name) {
   using Number = typename Request::template ParamDescription<double>;
+  using Text = typename Request::template ParamDescription<std::string>;
+  Member<Request> member;
   for (const auto& description : Request::__getParamDescriptions__()) {
-    const auto number = boost::dynamic_pointer_cast<const Number>(description);
-    const NumericKey<Config>* key = number ? findKey(keys, number->name) : nullptr;
-    if (key) visit(*key, number->field);
+    if (description->name != name) continue;
+    if (const auto number = boost::dynamic_pointer_cast<const Number>(description))
+      member.number = number->field;
+    if (const auto text = boost::dynamic_pointer_cast<const Text>(description)) member.text = text->field;
   }
+  return member;
 }
 
-// A double field of a reconfigure request (a name: clang-format 14 and 19 space `Request::*field` apart).
-template <class Request>
-using NumberField = double Request::*;
-
 template <class Request, class Config>
-Request numbersOf(Config config, const std::vector<NumericKey<Config>>& keys) {
+Request requestOf(const Config& config) {
   Request request;
-  forEachNumber<Request>(keys, [&](const NumericKey<Config>& key, NumberField<Request> field) {
-    request.*field = key.field(config);
-  });
+  for (const auto& key : bodyType<Config>().keys) {
+    const Member<Request> member = memberNamed<Request>(key.name);
+    if (member.number) request.*member.number = key.number(config);
+    if (member.text) request.*member.text = key.text(config);
+  }
   return request;
 }
 
+// The keys whose requested value differs from the current one, in the description's order (a roller's shape
+// before its inertia_factor: a new named shape brings its own c, an unchanged one keeps the requested c for
+// validation to judge).
 template <class Request, class Config>
-void setNumbers(const Request& request, Config& config, const std::vector<NumericKey<Config>>& keys) {
-  forEachNumber<Request>(keys, [&](const NumericKey<Config>& key, NumberField<Request> field) {
-    key.field(config) = request.*field;
-  });
+Config configOf(const std::string& body, const Request& request, const Config& current) {
+  const Request now = requestOf<Request>(current);
+  Config out = current;
+  for (const auto& key : bodyType<Config>().keys) {
+    const Member<Request> member = memberNamed<Request>(key.name);
+    if (member.number && request.*member.number != now.*member.number) {
+      key.field(out) = request.*member.number;
+    }
+    if (member.text && request.*member.text != now.*member.text) {
+      setKeyText(body, key, request.*member.text, out);
+    }
+  }
+  return out;
 }
 
 }  // namespace
 
 RodReconfigureConfig toReconfigure(const RodConfig& config) {
-  auto request = numbersOf<RodReconfigureConfig>(config, rodNumericKeys());
-  request.integrator = toString(config.params.integrator);
-  request.substeps = substepsToString(config.params.substeps);
-  return request;
+  return requestOf<RodReconfigureConfig>(config);
 }
 
 RollerReconfigureConfig toReconfigure(const RollerConfig& config) {
-  auto request = numbersOf<RollerReconfigureConfig>(config, rollerNumericKeys());
-  request.shape = toString(config.params.shape);
-  return request;
+  return requestOf<RollerReconfigureConfig>(config);
 }
 
 RodConfig fromReconfigure(const std::string& body, const RodReconfigureConfig& request,
                           const RodConfig& current) {
-  RodConfig out = current;
-  setNumbers(request, out, rodNumericKeys());
-  const auto integrator = integratorFromString(request.integrator);
-  if (!integrator) {
-    throw ConfigError(body, "integrator", "'" + request.integrator + "'",
-                      "euler_cromer, velocity_verlet or rk4");
-  }
-  out.params.integrator = *integrator;
-  const auto substeps = substepsFromString(request.substeps);
-  if (!substeps) throw ConfigError(body, "substeps", "'" + request.substeps + "'", substepsAllowed());
-  out.params.substeps = *substeps;
-  return out;
+  return configOf(body, request, current);
 }
 
 RollerConfig fromReconfigure(const std::string& body, const RollerReconfigureConfig& request,
                              const RollerConfig& current) {
-  RollerConfig out = current;
-  setNumbers(request, out, rollerNumericKeys());
-  if (request.shape == "custom") {
-    out.params.shape = Shape::Custom;
-    return out;
-  }
-  const auto shape = shapeFromString(request.shape);
-  if (!shape) {
-    throw ConfigError(body, "shape", "'" + request.shape + "'",
-                      "sphere, cylinder, ring, spherical_shell or custom");
-  }
-  // A new named shape brings its own c; an unchanged one keeps the requested c for validation.
-  if (*shape != current.params.shape) out.params.inertia_factor = inertiaFactorOf(*shape);
-  out.params.shape = *shape;
-  return out;
+  return configOf(body, request, current);
 }
 
 }  // namespace rigid_body_sim

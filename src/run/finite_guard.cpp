@@ -13,24 +13,22 @@ namespace rigid_body_sim {
 
 namespace {
 
-// Every numeric key of the body's config table, as key=value.
+// Every key the body's type writes, as key=value, then what no key holds.
 template <class Config>
-void describeKeys(std::ostream& out, Config config, const std::vector<NumericKey<Config>>& keys) {
-  for (const auto& key : keys) out << key.name << '=' << formatNumber(key.field(config)) << ' ';
+void describeKeys(std::ostream& out, const Config& config) {
+  for (const auto& key : bodyType<Config>().keys) {
+    if (key.written()) out << key.name << '=' << key.text(config) << ' ';
+  }
+  out << "gravity=" << formatNumber(config.params.gravity);
 }
 
 void describeModel(std::ostream& out, const Rod& rod) {
-  describeKeys(out, RodConfig{rod.params(), rod.initial()}, rodNumericKeys());
-  out << "integrator=" << toString(rod.params().integrator)
-      << " gravity=" << formatNumber(rod.params().gravity);
+  describeKeys(out, RodConfig{rod.params(), rod.initial()});
 }
 
 void describeModel(std::ostream& out, const Roller& roller) {
-  const RollerParams& p = roller.params();
-  const RollerInitial& i = roller.initial();
-  describeKeys(out, RollerConfig{p, i}, rollerNumericKeys());
-  out << "shape=" << toString(p.shape) << " gravity=" << formatNumber(p.gravity)
-      << " mode=" << toString(roller.mode());
+  describeKeys(out, RollerConfig{roller.params(), roller.initial()});
+  out << " mode=" << toString(roller.mode());
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <set>
 #include <thread>
 #include <tuple>
+#include <type_traits>
 
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/run/progress.h"
@@ -44,11 +45,25 @@ bool parseWhole(const std::string& text, std::int64_t min, std::int64_t max, std
   return true;
 }
 
+// The keys a sweep varies: the numbers, and the texts that take whole numbers (a rod's substeps).
 template <class Config>
-std::string keyNames(const std::vector<NumericKey<Config>>& keys) {
+bool sweepable(const BodyKey<Config>& key) {
+  return key.isNumber() || key.counts;
+}
+
+template <class Config>
+std::string sweepableNames() {
   std::string names;
-  for (const auto& key : keys) names += (names.empty() ? "" : ", ") + std::string(key.name);
+  for (const auto& key : bodyType<Config>().keys) {
+    if (sweepable(key)) names += (names.empty() ? "" : ", ") + std::string(key.name);
+  }
   return names;
+}
+
+template <class Config>
+const BodyKey<Config>* sweepableKey(const std::string& name) {
+  const BodyKey<Config>* key = findKey(bodyType<Config>().keys, name);
+  return key && sweepable(*key) ? key : nullptr;
 }
 
 const BodyConfig* findBody(const WorldConfig& config, const std::string& name) {
@@ -58,24 +73,20 @@ const BodyConfig* findBody(const WorldConfig& config, const std::string& name) {
   return nullptr;
 }
 
-// A rod's fixed sub-step count is swept as numbers too (auto is not one).
-const char* const kSubsteps = "substeps";
-
-// Sets a numeric key of a body config; the key was checked by parseSweepAxis.
+// Sets a swept key of a body config (parseSweepAxis checked it): a number as it is, a text as the number
+// written (a rod's substeps: 3), refused unless the key takes it (2.5 sub-steps).
 void setKey(BodyConfig& body, const std::string& key, double value) {
-  if (auto* rod = std::get_if<RodConfig>(&body.config)) {
-    if (key == kSubsteps) {
-      if (!(value >= 1 && value <= kMaxSubsteps && value == std::floor(value))) {
-        throw ConfigError(body.name, key, formatNumber(value), substepsAllowed());
-      }
-      rod->params.substeps = static_cast<int>(value);
-      return;
-    }
-    findKey(rodNumericKeys(), key)->field(*rod) = value;
-  } else {
-    auto& roller = std::get<RollerConfig>(body.config);
-    findKey(rollerNumericKeys(), key)->field(roller) = value;
-  }
+  std::visit(
+      [&](auto& config) {
+        using Config = std::decay_t<decltype(config)>;
+        const BodyKey<Config>& found = *sweepableKey<Config>(key);
+        if (found.isNumber()) {
+          found.field(config) = value;
+        } else if (!found.read(config, formatNumber(value))) {
+          throw ConfigError(body.name, key, formatNumber(value), found.allowed());
+        }
+      },
+      body.config);
 }
 
 // The body's final state (its CSV columns), its energy drift, and its bounces (rod) or first slip-to-roll
@@ -164,14 +175,15 @@ SweepAxis parseSweepAxis(const std::string& spec, const WorldConfig& config) {
   }
   const BodyConfig* body = findBody(config, axis.body);
   if (!body) throw refuse("a body of the config, as BODY.KEY");
-  const bool rod = std::holds_alternative<RodConfig>(body->config);
-  const bool known = rod ? findKey(rodNumericKeys(), axis.key) != nullptr || axis.key == kSubsteps
-                         : findKey(rollerNumericKeys(), axis.key) != nullptr;
-  if (!known) {
-    const std::string names =
-        rod ? keyNames(rodNumericKeys()) + ", " + kSubsteps : keyNames(rollerNumericKeys());
-    throw ConfigError(axis.body, axis.key, "'" + spec + "'", "a numeric key of this body: " + names);
-  }
+  std::visit(
+      [&](const auto& config) {
+        using Config = std::decay_t<decltype(config)>;
+        if (!sweepableKey<Config>(axis.key)) {
+          throw ConfigError(axis.body, axis.key, "'" + spec + "'",
+                            "a numeric key of this body: " + sweepableNames<Config>());
+        }
+      },
+      body->config);
   return axis;
 }
 

@@ -209,8 +209,8 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   ASSERT_FALSE(assignments(command).empty()) << command;
   for (const auto& [key, value] : assignments(command)) {
     EXPECT_EQ(value, doubleOf(shown, key)) << command;
-    const auto* numeric = findKey(rollerNumericKeys(), key);
-    ASSERT_NE(numeric, nullptr) << key;
+    const auto* numeric = findKey(rollerType().keys, key);
+    ASSERT_TRUE(numeric && numeric->isNumber()) << key;
     numeric->field(wanted) = value;
   }
   roller.setParams(wanted.params);  // the README changes parameters only, no initial condition

@@ -43,25 +43,95 @@ struct RollerConfig {
   RollerInitial initial;
 };
 
-// A numeric key of a body: its YAML name, where it lives in the config, and its allowed range.
+// How a key's change applies to a running body: at the next step, or by restarting the body from its
+// initial conditions (the key is one of them). The levels of the reconfigure servers' .cfg files.
+enum class KeyChange { Apply = 0, Restart = 1 };
+
+// One key of a body type: its name, unit, meaning, how it is read and written and whether a change restarts
+// the body. A number lives in a double of the config (`field`) and is written in its shortest round-trip
+// form; a text (an enum name, `auto` or a count) is written by `write` and read by `read`. The loader, the
+// writer
+// (~get_config, the command log), the reconfigure conversion, the guard's report, the sweep's keys, the docs'
+// tables and the round-trip tests all walk these tables: a key added to one is added everywhere.
 template <class Config>
-struct NumericKey {
+struct BodyKey {
   const char* name;
-  double& (*field)(Config&);
-  Range range;
+  const char* unit;     // SI unit of a number ("" for a pure number or a text)
+  const char* meaning;  // one line: the docs' tables and the .cfg's descriptions
+  KeyChange change;
+  // A number: where it lives and its allowed range (null for a text).
+  double& (*field)(Config&) = nullptr;
+  Range range{};
+  // A text: its value as written (null: never written, as `seed`, which writes theta0), its reader (false:
+  // refused, the config as it was), and what it allows: the names of `choices` (an enum's), or allowed_text.
+  std::string (*write)(const Config&) = nullptr;
+  bool (*read)(Config&, const std::string&) = nullptr;
+  std::vector<std::string> (*choices)() = nullptr;
+  std::string (*allowed_text)() = nullptr;
+  // The state field whose initial value the key is (x0: "x"): a set_state value takes this key's range.
+  const char* state_field = nullptr;
+  // A text that takes whole numbers too (substeps): a sweep varies it as numbers.
+  bool counts = false;
+
+  bool isNumber() const { return field != nullptr; }
+  bool written() const { return field != nullptr || write != nullptr; }
+  double number(const Config& config) const { return field(const_cast<Config&>(config)); }
+  // As a config file writes it; a key that is never written gives "".
+  std::string text(const Config& config) const;
+  // What it allows, for messages and the docs.
+  std::string allowed() const;
 };
 
-const std::vector<NumericKey<RodConfig>>& rodNumericKeys();
-const std::vector<NumericKey<RollerConfig>>& rollerNumericKeys();
+// The description of a body type: its `type` name in a config file and its keys in the order files list them.
+// `complete` runs after a config file's keys are read, with the names of those given: what depends on which
+// keys a file gave (a roller's inertia_factor alone means shape custom; a rod's seed excludes theta0).
+template <class Config>
+struct BodyType {
+  const char* type;
+  std::vector<BodyKey<Config>> keys;
+  void (*complete)(const std::string& body, const std::vector<std::string>& given, Config& config);
+};
+
+const BodyType<RodConfig>& rodType();
+const BodyType<RollerConfig>& rollerType();
+// The type of a config: bodyType<RodConfig>() is rodType().
+template <class Config>
+const BodyType<Config>& bodyType();
+template <>
+inline const BodyType<RodConfig>& bodyType<RodConfig>() {
+  return rodType();
+}
+template <>
+inline const BodyType<RollerConfig>& bodyType<RollerConfig>() {
+  return rollerType();
+}
 
 // The key named `name`, or null.
 template <class Config>
-const NumericKey<Config>* findKey(const std::vector<NumericKey<Config>>& keys, const std::string& name) {
+const BodyKey<Config>* findKey(const std::vector<BodyKey<Config>>& keys, const std::string& name) {
   for (const auto& key : keys) {
     if (name == key.name) return &key;
   }
   return nullptr;
 }
+
+// The key whose initial value state field `field` takes (x: x0), or null.
+template <class Config>
+const BodyKey<Config>* keyOfStateField(const std::string& field) {
+  for (const auto& key : bodyType<Config>().keys) {
+    if (key.state_field && field == key.state_field) return &key;
+  }
+  return nullptr;
+}
+
+// Sets `key` of `config` from its text as a file writes it (a number: digits as formatNumber writes them, or
+// any form strtod reads); throws ConfigError naming the body, the key, the value and what is allowed.
+template <class Config>
+void setKeyText(const std::string& body, const BodyKey<Config>& key, const std::string& text, Config& config);
+
+// The theta0 drawn for a rod from `seed` when theta0 is not given: 2 pi u, u uniform in [0, 1) from
+// the first output of std::mt19937_64(seed) (portable, unlike std::uniform_real_distribution).
+double theta0FromSeed(unsigned long long seed);
 
 // Throw ConfigError on the first refused value (ranges, then relations between keys such as
 // mu_d <= mu_s, x0 on the slope, inertia_factor matching the shape).
@@ -86,9 +156,23 @@ struct BodyConfig {
 enum class BodyKind { Rod, Roller };
 BodyKind kindOf(const BodyConfig& body);
 
-// True when the initial conditions differ (the body restarts), false when only parameters changed.
-bool initialChanged(const RodConfig& a, const RodConfig& b);
-bool initialChanged(const RollerConfig& a, const RollerConfig& b);
+// True when a key of level Restart differs (the body restarts), false when only parameters changed.
+template <class Config>
+bool initialChanged(const Config& a, const Config& b) {
+  for (const auto& key : bodyType<Config>().keys) {
+    if (key.change == KeyChange::Restart && key.written() && key.text(a) != key.text(b)) return true;
+  }
+  return false;
+}
+
+// Every written key of both configs equal, numbers bit for bit (their shortest round-trip text).
+template <class Config>
+bool sameKeys(const Config& a, const Config& b) {
+  for (const auto& key : bodyType<Config>().keys) {
+    if (key.written() && key.text(a) != key.text(b)) return false;
+  }
+  return true;
+}
 
 // The most bodies a world holds, from its config file or spawned while it runs: each brings a thread-safe
 // publisher, a reconfigure server and markers to the node, and a CSV file to `simulate`.
@@ -144,5 +228,20 @@ bool dividesRate(double rate, double divisor);
 
 // Formats a double the way error messages and CSV files show it (shortest round-trip form).
 std::string formatNumber(double value);
+
+// "a, b or c".
+std::string oneOf(const std::vector<std::string>& names);
+
+template <class Config>
+std::string BodyKey<Config>::allowed() const {
+  if (isNumber()) return range.describe();
+  return choices ? oneOf(choices()) : allowed_text();
+}
+
+template <class Config>
+std::string BodyKey<Config>::text(const Config& config) const {
+  if (isNumber()) return formatNumber(number(config));
+  return write ? write(config) : "";
+}
 
 }  // namespace rigid_body_sim

@@ -30,8 +30,4 @@ std::vector<StateValue> parseStateText(const std::string& body, const std::strin
 // Reads a file; a missing file or a YAML syntax error is a ConfigError too.
 WorldConfig loadWorldConfigFile(const std::string& path);
 
-// The theta0 drawn for a rod from `seed` when theta0 is not given: 2 pi u, u uniform in [0, 1) from
-// the first output of std::mt19937_64(seed) (portable, unlike std::uniform_real_distribution).
-double theta0FromSeed(unsigned long long seed);
-
 }  // namespace rigid_body_sim
