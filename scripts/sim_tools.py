@@ -4,7 +4,7 @@ processes and ROS masters.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
-The defaults below are the node's and simulate's (README, Configuration); test/tools/test_sim_tools.py
+The defaults below are the node's and simulate's (docs/configuration.md); test/tools/test_sim_tools.py
 checks them against the .cfg files (themselves checked against the core) and against simulate."""
 from __future__ import annotations
 
@@ -39,7 +39,7 @@ KEY_UNITS: Dict[str, Dict[str, str]] = {
                "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
 }
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
-# column (README, Parameter sweeps).
+# column (docs/sweeps.md).
 FIRST_SWEEP_RESULT = "energy_drift"
 # Words and units for the columns a sweep adds, for axis labels (a column not named here is shown by its
 # own name, without a unit).
