@@ -157,6 +157,32 @@ TEST_F(SimulateTest, WritesABag) {
   EXPECT_EQ(counts, expected);
 }
 
+// The text's own scheme (substeps: 1) at a stiff k, and a fixed count: the config on /sim/commands carries
+// every key, so `simulate --replay` of the bag is the run it recorded, CSV for CSV, byte for byte.
+TEST_F(SimulateTest, ReplayOfItsBagIsTheSameRunForEveryKey) {
+  const fs::path config_file = write(
+      "stiff.yaml",
+      "bodies:\n"
+      "  book: {type: rod, k: 50000, substeps: 1, integrator: euler_cromer, theta0: 0.4}\n"
+      "  split: {type: rod, k: 20000, substeps: 3, integrator: velocity_verlet, floor_length: 30, vy0: 1}\n"
+      "  hoop: {type: roller, shape: custom, inertia_factor: 0.8, incline_angle: 0.6, v0: 1.5, omega0: 4}\n");
+  const fs::path run = dir_ / "run";
+  const fs::path replay = dir_ / "replay";
+  fs::create_directories(run);
+  fs::create_directories(replay);
+  const auto recorded = simulate(config_file.string() + " --duration 5 --out-dir " + run.string() +
+                                 " --bag " + (dir_ / "run.bag").string());
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
+  const auto replayed =
+      simulate("--replay " + (dir_ / "run.bag").string() + " --duration 5 --out-dir " + replay.string());
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.err;
+  for (const char* body : {"book", "split", "hoop"}) {
+    const std::string csv = std::string(body) + ".csv";
+    ASSERT_TRUE(fs::exists(run / csv)) << csv;
+    EXPECT_EQ(slurp(run / csv), slurp(replay / csv)) << csv;
+  }
+}
+
 TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   const fs::path bad = write("bad.yaml", "bodies: {rod: {type: rod, k: -1}}\n");
   const auto run = simulate(bad.string() + " --out-dir " + (dir_ / "out").string());
