@@ -4,12 +4,13 @@
 #   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy),
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
+#   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them
 PICTURES_OUT = $(BUILD)/pictures
 SIMULATE = $(DEVEL)/lib/rigid_body_sim/simulate
 # θ0 = i 2π/1000 (0 and 2π both included): θ0 + π (the same rod, its ends swapped) is on the grid too
 THETA0_RODS = 1001
 
-.PHONY: screenshot pictures
+.PHONY: screenshot pictures figures
 
 screenshot: build
 	mkdir -p docs/images
@@ -37,3 +38,8 @@ pictures: screenshot
 	  $(PICTURES_OUT)/plots/demo_energy.png $(PICTURES_OUT)/plots/incline_race.png \
 	  $(PICTURES_OUT)/plots/theta0_sweep_rod.png docs/images/
 	ls -l docs/images
+
+# The figures docs/physics.md and docs/sweeps.md state about runs, computed from those runs and written into
+# the docs (the ctest doc_figures fails while a doc differs).
+figures: build
+	python3 scripts/doc_figures.py $(SIMULATE) --write
