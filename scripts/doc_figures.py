@@ -179,6 +179,15 @@ def sweep_figures(r: Runs) -> Dict[str, str]:
             "low_percent": f"{100 * drift.min() / e0:.1f}"}
 
 
+def race_time(_: Runs) -> float:
+    """The sphere's time down its slope in the lesson's race below the critical angles: rolling from rest,
+    sqrt(2 L / a) (the stepped race gives it to 1e-9 s: test_race)."""
+    config = load_config(os.path.join(PACKAGE, "config", "race_below.yaml"))
+    p = body_spec(config, "sphere")
+    assert isinstance(p, RollerSpec)
+    return math.sqrt(2 * p.slope / rolling_acceleration(p))
+
+
 def settle_of_screenshot(_: Runs) -> List[str]:
     """The simulated seconds that `make screenshot` steps before the demo's picture (the script's default)."""
     with open(os.path.join(PACKAGE, "test", "pictures", "rviz_screenshot.py")) as f:
@@ -227,6 +236,8 @@ FIGURES = [
                       f"{rod_swing(r)['energy_last']:.4f}",
                       f"{100 * (rod_swing(r)['energy_last'] / rod_swing(r)['energy_first'] - 1):.2f}"
                       .replace("-", "−")]),
+    Figure("docs/rviz.md", r"`sphere: 1st, (\S+) s \(closed form (\S+) s\)`",
+           lambda r: [f"{race_time(r):.4f}"] * 2),
     Figure("docs/sweeps.md", r"lands on both ends at once\s+and bounces (\S+) times",
            lambda r: [sweep_figures(r)["flat"]]),
     Figure("docs/sweeps.md", r"(\S+) to (\S+) bounces \(8 to 13 for (\S+) %\)",

@@ -20,7 +20,8 @@ import yaml
 
 Config = Dict[str, Any]
 
-WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world"}
+WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world",
+                                  "race": False}
 ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0,
                                 "integrator": "euler_cromer", "substeps": "auto", "x0": 0.0, "y0": 4.0, "vx0": 2.0,
                                 "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}

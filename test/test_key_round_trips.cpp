@@ -116,7 +116,8 @@ std::string drawBody(std::mt19937_64& random, bool seeded, Config& config) {
 // A random world: `rods` rods (the first with a seed) and `rollers` rollers, every key drawn.
 WorldConfig drawWorld(std::mt19937_64& random, int rods, int rollers, std::string* text) {
   *text = "rate: " + formatNumber(kRate) + "\npublish_rate: 50\ngravity: " +
-          formatNumber(1.0 + 19.0 * std::uniform_real_distribution<double>(0, 1)(random)) + "\nbodies:\n";
+          formatNumber(1.0 + 19.0 * std::uniform_real_distribution<double>(0, 1)(random)) +
+          "\nrace: " + (random() % 2 ? "true" : "false") + "\nbodies:\n";
   for (int i = 0; i < rods; ++i) {
     RodConfig rod;
     *text += "  rod" + std::to_string(i) + ": " + drawBody(random, i == 0, rod) + "\n";
@@ -139,6 +140,7 @@ void expectSameWorld(const WorldConfig& a, const WorldConfig& b, const std::stri
   EXPECT_EQ(toYaml(a), toYaml(b)) << what;
   ASSERT_EQ(a.bodies.size(), b.bodies.size()) << what;
   EXPECT_EQ(formatNumber(a.gravity), formatNumber(b.gravity)) << what;
+  EXPECT_EQ(a.race, b.race) << what;
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
     ASSERT_EQ(a.bodies[i].name, b.bodies[i].name);
     ASSERT_EQ(kindOf(a.bodies[i]), kindOf(b.bodies[i]));

@@ -174,6 +174,8 @@ TEST(Docs, DesignsExampleConfigIsTheDefaults) {
       type = value;
     } else if (key == "world_frame") {
       EXPECT_EQ(value, world.world_frame);
+    } else if (key == "race") {
+      EXPECT_EQ(value, world.race ? "true" : "false");
     } else if (line->rfind("  ", 0) != 0) {
       ASSERT_EQ(world_numbers.count(key), 1u);
       EXPECT_EQ(std::stod(value), world_numbers.at(key));

@@ -451,7 +451,8 @@ std::string fixedFrameOf(const std::string& name, BodyKind kind) {
 std::string fixedFrameOf(const BodyConfig& body) { return fixedFrameOf(body.name, kindOf(body)); }
 
 const std::vector<std::string>& worldKeys() {
-  static const std::vector<std::string> keys = {"rate", "publish_rate", "gravity", "world_frame", "bodies"};
+  static const std::vector<std::string> keys = {"rate",        "publish_rate", "gravity",
+                                                "world_frame", "race",         "bodies"};
   return keys;
 }
 

@@ -86,6 +86,14 @@ void Roller::reset() {
   enterModeFromState();
   laps_ = 0;
   pending_started_slipping_ = false;
+  finished_ = false;
+}
+
+void Roller::restartLap() {
+  state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
+  enterModeFromState();
+  ++laps_;
+  finished_ = false;
 }
 
 void Roller::setState(const RollerMotion& state) {
@@ -100,6 +108,7 @@ void Roller::restore(const Progress& progress) {
   slip_sign_ = progress.slip_sign;
   laps_ = progress.laps;
   pending_started_slipping_ = progress.pending_started_slipping;
+  finished_ = progress.finished;
 }
 
 void Roller::enterModeFromState() {
@@ -174,10 +183,20 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr int kMaxPasses = 3;
 }  // namespace
 
+double exitTime(double x, double v, double a, double h, double length) {
+  const double end = x + v * h + 0.5 * a * h * h > length ? length : 0.0;
+  // a s^2 / 2 + v s - (end - x) = 0: s = 2 d / (v + sign(v) sqrt(v^2 + 2 a d)) avoids the cancellation of
+  // -v + sqrt(...) when a s is small beside v; with v = 0 the root is sqrt(2 d / a).
+  const double d = end - x;
+  const double root = std::sqrt(std::max(0.0, v * v + 2.0 * a * d));
+  const double s = v == 0.0 ? std::sqrt(std::max(0.0, 2.0 * d / a)) : 2.0 * d / (v + std::copysign(root, v));
+  return std::clamp(s, 0.0, h);
+}
+
 RollerStepEvents Roller::step(double dt) {
   RollerStepEvents events;
   events.started_slipping = std::exchange(pending_started_slipping_, false);
-  if (!(dt > 0.0)) return events;  // time only runs forward; a zero or NaN step changes nothing
+  if (!(dt > 0.0) || finished_) return events;  // time only runs forward; a finished racer waits
   double elapsed = 0.0;
   // Each pass either ends the step or handles one u = 0 instant. After such an instant the body rolls
   // or slips forward with du/dt > 0 (see below), so two passes suffice; the bound only guards against
@@ -192,6 +211,18 @@ RollerStepEvents Roller::step(double dt) {
       const double dudt = a + alpha * params_.radius;
       // u approaches 0 only when it changes against its own sign; clamp rounding-sized negative times.
       if (slipDirection() * dudt < 0.0) to_zero = std::max(0.0, -slipSpeed() / dudt);
+    }
+    const double h = to_zero <= remaining ? to_zero : remaining;
+    const double x_after = state_.x + state_.v * h + 0.5 * a * h * h;  // as advance(h) computes it
+    if (x_after > params_.incline_length || x_after < 0.0) {
+      const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
+      events.left_at = elapsed + s;
+      if (hold_at_end_) {  // a racer stops at the line: the instant it passes it
+        advance(s, a, alpha);
+        state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
+        finished_ = true;
+        return events;
+      }
     }
     if (!(to_zero <= remaining)) {
       advance(remaining, a, alpha);
@@ -217,6 +248,68 @@ RollerStepEvents Roller::step(double dt) {
     events.restarted = true;
   }
   return events;
+}
+
+}  // namespace rigid_body_sim
+
+namespace rigid_body_sim {
+
+namespace {
+
+// The first t in [0, duration] at which x + v t + a t^2 / 2 leaves [0, length], if any: the smallest
+// non-negative root of reaching either end, each end's roots in their cancellation-free form.
+std::optional<double> firstExit(double x, double v, double a, double duration, double length) {
+  std::optional<double> first;
+  for (const double end : {length, 0.0}) {
+    const double d = end - x;  // a t^2 / 2 + v t - d = 0
+    const double discriminant = v * v + 2.0 * a * d;
+    if (discriminant < 0.0) continue;
+    const double q = -0.5 * (v + std::copysign(std::sqrt(discriminant), v == 0.0 ? 1.0 : v));
+    // Roots: q / (a / 2) and -d / q (Numerical Recipes' form of the quadratic formula).
+    for (const double t : {a != 0.0 ? q / (0.5 * a) : -1.0, q != 0.0 ? -d / q : -1.0}) {
+      if (t > 0.0 && t <= duration && (!first || t < *first)) first = t;
+    }
+  }
+  return first;
+}
+
+}  // namespace
+
+// Section 16.3.2 in continuous time, phase by phase: slipping (sigma = sign of u = v + omega R) until u
+// reaches 0, then rolling where static friction holds (else slipping forward); between the events every
+// acceleration is constant.
+RollerRun closedFormRun(const RollerParams& p, const RollerInitial& initial) {
+  const double g = p.gravity;
+  const double c = p.inertia_factor;
+  const double sine = std::sin(p.incline_angle);
+  const double cosine = std::cos(p.incline_angle);
+  const bool can_roll = std::tan(p.incline_angle) <= criticalTangent(p.mu_s, c);
+  const double rolling = g * sine / (1.0 + c);
+  RollerRun run;
+  double x = initial.x0;
+  double v = initial.v0;
+  double t = 0.0;
+  const double u0 = initial.v0 + initial.omega0 * p.radius;
+  if (u0 != 0.0 || !can_roll) {
+    const double sigma = u0 < 0.0 ? -1.0 : 1.0;
+    const double a = g * (sine - sigma * p.mu_d * cosine);
+    const double dudt = g * sine - sigma * p.mu_d * g * cosine * (1.0 + c) / c;
+    const double to_zero = sigma * dudt < 0.0 ? -u0 / dudt : kNever;
+    if (const auto out = firstExit(x, v, a, to_zero, p.incline_length)) {
+      run.finish = *out;
+      return run;
+    }
+    if (to_zero == kNever) return run;
+    x += v * to_zero + 0.5 * a * to_zero * to_zero;
+    v += a * to_zero;
+    t = to_zero;
+    if (can_roll) run.slip_to_roll = t;
+    const double after = can_roll ? rolling : g * (sine - p.mu_d * cosine);  // else slipping forward
+    if (const auto out = firstExit(x, v, after, kNever, p.incline_length)) run.finish = t + *out;
+    return run;
+  }
+  if (const auto out = firstExit(x, v, rolling, kNever, p.incline_length)) run.finish = *out;
+  return run;
 }
 
 }  // namespace rigid_body_sim

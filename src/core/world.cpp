@@ -9,7 +9,8 @@ namespace rigid_body_sim {
 namespace {
 
 // Builds the model of one body; the world's gravity overrides whatever the body config carried.
-std::variant<Rod, Roller> makeModel(const BodyConfig& body, double gravity) {
+// A race's rollers stop at the end of their slopes until every one has finished.
+std::variant<Rod, Roller> makeModel(const BodyConfig& body, double gravity, bool race) {
   if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
     RodParams params = rod->params;
     params.gravity = gravity;
@@ -18,7 +19,9 @@ std::variant<Rod, Roller> makeModel(const BodyConfig& body, double gravity) {
   const auto& roller = std::get<RollerConfig>(body.config);
   RollerParams params = roller.params;
   params.gravity = gravity;
-  return Roller(params, roller.initial);
+  Roller model(params, roller.initial);
+  model.setHoldAtEnd(race);
+  return model;
 }
 
 BodyConfig withGravity(BodyConfig body, double gravity) {
@@ -92,7 +95,8 @@ std::string toString(WorldEvent::Kind kind) {
   switch (kind) {
     case WorldEvent::Kind::StartedRolling: return "started rolling";
     case WorldEvent::Kind::StartedSlipping: return "started slipping";
-    case WorldEvent::Kind::Restarted: return "left the end of its slope or floor and restarted";
+    case WorldEvent::Kind::Restarted: return "restarted (the end of its slope or floor, or a race's new lap)";
+    case WorldEvent::Kind::Finished: return "finished the race's lap";
   }
   return "?";
 }
@@ -106,7 +110,7 @@ World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
   bodies_.reserve(config.bodies.size());
   for (auto& body : config_.bodies) {
     body = withGravity(body, config.gravity);
-    bodies_.push_back(Body{body.name, makeModel(body, config.gravity)});
+    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race)});
   }
 }
 
@@ -125,6 +129,8 @@ void World::apply(const WorldCommand& command) {
       World fresh(command.world, reserved_names_);
       config_ = fresh.config_;
       bodies_ = std::move(fresh.bodies_);
+      lap_start_step_ = steps_;
+      race_over_step_.reset();
       return;
     }
     case WorldCommand::Kind::Reconfigure: {
@@ -145,6 +151,8 @@ void World::apply(const WorldCommand& command) {
             model.setParams(next.params);
             if (initialChanged(next, std::get<Config>(config_.bodies[index].config))) {
               model.setInitial(next.initial);
+              bodies_[index].finish.reset();
+              if (std::is_same_v<Config, RollerConfig>) restartRace();  // a racer that restarts restarts all
             }
           },
           bodies_[index].model);
@@ -156,8 +164,9 @@ void World::apply(const WorldCommand& command) {
       WorldConfig would_be = config_;
       would_be.bodies.push_back(wanted);
       validateWouldBe(would_be);
-      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity)});
+      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race)});
       config_.bodies.push_back(wanted);
+      if (kindOf(wanted) == BodyKind::Roller) restartRace();  // the newcomer starts with the others
       return;
     }
     case WorldCommand::Kind::Delete: {
@@ -229,24 +238,65 @@ void World::step() {
       if (rod->step(dt_)) events_.push_back({t0 + dt_, body.name, WorldEvent::Kind::Restarted});
       continue;
     }
-    const RollerStepEvents happened = std::get<Roller>(body.model).step(dt_);
+    auto& roller = std::get<Roller>(body.model);
+    const RollerStepEvents happened = roller.step(dt_);
     if (happened.started_slipping) {
       events_.push_back({t0, body.name, WorldEvent::Kind::StartedSlipping});
     }
     if (happened.stuck_at) {
       events_.push_back({t0 + *happened.stuck_at, body.name, WorldEvent::Kind::StartedRolling});
     }
+    if (happened.left_at && roller.finished()) finish(body, t0 + *happened.left_at);
     if (happened.restarted) {
       events_.push_back({t0 + dt_, body.name, WorldEvent::Kind::Restarted});
     }
   }
   ++steps_;
+  if (!config_.race || !raceOver()) return;
+  if (!race_over_step_) race_over_step_ = steps_;
+  if (static_cast<double>(steps_ - *race_over_step_) < kRaceResultsShown * rate_) return;
+  restartRace();
+  for (const auto& body : bodies_) {
+    if (kindOf(body) == BodyKind::Roller) events_.push_back({time(), body.name, WorldEvent::Kind::Restarted});
+  }
+}
+
+void World::finish(Body& body, double t) {
+  int place = 1;
+  for (const auto& other : bodies_) place += other.finish ? 1 : 0;
+  const auto& roller = std::get<Roller>(body.model);
+  const double lap_start = static_cast<double>(lap_start_step_) / rate_;
+  body.finish = RaceFinish{place, t - lap_start, closedFormRun(roller.params(), roller.initial()).finish};
+  events_.push_back({t, body.name, WorldEvent::Kind::Finished});
+}
+
+bool World::raceOver() const {
+  bool any = false;
+  for (const auto& body : bodies_) {
+    const auto* roller = std::get_if<Roller>(&body.model);
+    if (roller && !roller->finished()) return false;
+    any = any || roller;
+  }
+  return any;
+}
+
+void World::restartRace() {
+  if (!config_.race) return;
+  for (auto& body : bodies_) {
+    if (auto* roller = std::get_if<Roller>(&body.model)) roller->restartLap();
+    body.finish.reset();
+  }
+  lap_start_step_ = steps_;
+  race_over_step_.reset();
 }
 
 void World::reset() {
   for (auto& body : bodies_) {
     std::visit([](auto& model) { model.reset(); }, body.model);
+    body.finish.reset();
   }
+  lap_start_step_ = steps_;
+  race_over_step_.reset();
 }
 
 std::optional<std::size_t> World::indexOf(const std::string& name) const {

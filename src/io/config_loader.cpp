@@ -1,6 +1,7 @@
 #include "rigid_body_sim/io/config_loader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -45,6 +46,16 @@ std::string asString(const std::string& body, const std::string& key, const YAML
                      const std::string& allowed) {
   if (!node.IsScalar()) throw ConfigError(body, key, describe(node), allowed);
   return node.Scalar();
+}
+
+// The booleans of YAML 1.1, as rosparam reads a file for the node: true, yes, on / false, no, off, any case.
+bool asBool(const std::string& body, const std::string& key, const YAML::Node& node) {
+  const std::string allowed = "true or false (or yes, no, on, off)";
+  std::string text = asString(body, key, node, allowed);
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (text == "true" || text == "yes" || text == "on") return true;
+  if (text == "false" || text == "no" || text == "off") return false;
+  throw ConfigError(body, key, describe(node), allowed);
 }
 
 // "a, b and c" with last_separator " and ".
@@ -275,6 +286,7 @@ WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (root["world_frame"]) {
     config.world_frame = asString(kWorld, "world_frame", root["world_frame"], "a frame name");
   }
+  if (root["race"]) config.race = asBool(kWorld, "race", root["race"]);
   config.bodies = parseBodies(root["bodies"]);
   for (auto& body : config.bodies) {
     std::visit([&](auto& body_config) { body_config.params.gravity = config.gravity; }, body.config);

@@ -35,7 +35,8 @@ std::string toYaml(const WorldConfig& config) {
   std::string out = entry("rate", formatNumber(config.rate)) + "\n" +
                     entry("publish_rate", formatNumber(config.publish_rate)) + "\n" +
                     entry("gravity", formatNumber(config.gravity)) + "\n" +
-                    entry("world_frame", config.world_frame) + "\nbodies:\n";
+                    entry("world_frame", config.world_frame) + "\n" +
+                    entry("race", config.race ? "true" : "false") + "\nbodies:\n";
   for (const auto& body : config.bodies) out += "  " + entry(body.name, toYaml(body)) + "\n";
   return out;
 }

@@ -186,9 +186,34 @@ visualization_msgs::Marker spokeMarker(const Body& body, const std::string& fram
   return spoke;
 }
 
+// "1st", "2nd", "3rd", "4th" ... "11th", "12th", "13th", "21st".
+std::string ordinal(int place) {
+  const int tens = place % 100;
+  const int last = place % 10;
+  const char* suffix = (tens >= 11 && tens <= 13) || last == 0 || last > 3 ? "th"
+                       : last == 1                                         ? "st"
+                       : last == 2                                         ? "nd"
+                                                                           : "rd";
+  return std::to_string(place) + suffix;
+}
+
+// A racer over the line: its place and time beside the closed form's (the text's formulas, 16.3.2).
+std::string finishText(const Body& body, const RaceFinish& finish) {
+  char text[96];
+  if (finish.closed_form) {
+    std::snprintf(text, sizeof text, "%s, %.4f s (closed form %.4f s)", ordinal(finish.place).c_str(),
+                  finish.time, *finish.closed_form);
+  } else {
+    std::snprintf(text, sizeof text, "%s, %.4f s", ordinal(finish.place).c_str(), finish.time);
+  }
+  return body.name + ": " + text;
+}
+
 std::string labelText(const Body& body, bool critical_angle) {
+  if (body.finish) return finishText(body, *body.finish);
   char energy[48];
-  std::snprintf(energy, sizeof energy, "E = %.3f J", energyOf(body));
+  const double e = energyOf(body);
+  std::snprintf(energy, sizeof energy, "E = %.3f J", std::abs(e) < 5e-4 ? 0.0 : e);  // never "-0.000"
   if (const auto* roller = std::get_if<Roller>(&body.model)) {
     const std::string head = body.name + ": " + toString(roller->mode()) + ", ";
     if (!critical_angle) return head + energy;

@@ -183,6 +183,10 @@ struct WorldConfig {
   double publish_rate = 50.0;        // samples per simulated second
   double gravity = kDefaultGravity;  // copied into every body
   std::string world_frame = "world";
+  // A race: the rollers start together, each stops at the end of its slope, and all start a new lap together
+  // once every one has finished and the results have stood 2 s (World::step); false: each restarts alone at
+  // the end of its slope.
+  bool race = false;
   std::vector<BodyConfig> bodies;
 };
 

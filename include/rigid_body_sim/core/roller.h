@@ -65,8 +65,21 @@ struct RollerMotion {
 struct RollerStepEvents {
   std::optional<double> stuck_at;  // offset in [0, dt] at which slipping turned into rolling
   bool started_slipping = false;   // a rolling body could not hold (only after setParams)
+  std::optional<double> left_at;   // offset in (0, dt] at which the centre passed an end of the slope
   bool restarted = false;          // the centre left the slope and the body restarted
 };
+
+// The motion from the initial conditions in closed form (section 16.3.2, DESIGN.md): the instant at which
+// slipping turns into rolling, if it does, and the instant the centre passes an end of the slope, if it does.
+struct RollerRun {
+  std::optional<double> slip_to_roll;  // s after the start
+  std::optional<double> finish;        // s after the start
+};
+RollerRun closedFormRun(const RollerParams& params, const RollerInitial& initial);
+
+// The first s in (0, h] at which x + v s + a s^2 / 2 passes beyond [0, length] (above length, or below 0),
+// given that the position after h is beyond it; the root is taken in its cancellation-free form.
+double exitTime(double x, double v, double a, double h, double length);
 
 class Roller {
  public:
@@ -88,6 +101,13 @@ class Roller {
   // the lap count are kept.
   void setState(const RollerMotion& state);
 
+  // In a race: a centre that passes an end of the slope stops there (at the end, with the speed and spin of
+  // that instant: finished()) instead of restarting, until restartLap().
+  void setHoldAtEnd(bool hold) { hold_at_end_ = hold; }
+  bool finished() const { return finished_; }
+  // A new lap from the initial conditions, as at the end of the slope.
+  void restartLap();
+
   // Everything a step changes (the motion, the mode, the laps): kept and put back exactly, a few bytes
   // instead of the whole body (the node's guard keeps one after every step).
   struct Progress {
@@ -96,8 +116,11 @@ class Roller {
     int slip_sign;
     int laps;
     bool pending_started_slipping;
+    bool finished;
   };
-  Progress progress() const { return {state_, mode_, slip_sign_, laps_, pending_started_slipping_}; }
+  Progress progress() const {
+    return {state_, mode_, slip_sign_, laps_, pending_started_slipping_, finished_};
+  }
   void restore(const Progress& progress);
 
   const RollerParams& params() const { return params_; }
@@ -145,6 +168,8 @@ class Roller {
   int slip_sign_ = 1;
   int laps_ = 0;
   bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
+  bool hold_at_end_ = false;
+  bool finished_ = false;  // held at an end of the slope (hold_at_end_)
 };
 
 }  // namespace rigid_body_sim

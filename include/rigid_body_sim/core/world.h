@@ -15,14 +15,22 @@
 
 namespace rigid_body_sim {
 
+// A racer's result in the current lap of a race (WorldConfig::race).
+struct RaceFinish {
+  int place;                          // 1: the first over the line
+  double time;                        // s from the lap's start to the instant it passed the end of its slope
+  std::optional<double> closed_form;  // s: the same from the closed forms (closedFormRun)
+};
+
 struct Body {
   std::string name;
   std::variant<Rod, Roller> model;
+  std::optional<RaceFinish> finish;  // a racer that finished the current lap
 };
 
 // Something worth telling that happened to a body at simulated time t.
 struct WorldEvent {
-  enum class Kind { StartedRolling, StartedSlipping, Restarted };
+  enum class Kind { StartedRolling, StartedSlipping, Restarted, Finished };
   double t;
   std::string body;
   Kind kind;
@@ -31,11 +39,14 @@ std::string toString(WorldEvent::Kind kind);
 
 class World {
  public:
+  // Simulated seconds a race's results stand, every racer at its finish, before the next lap starts.
+  static constexpr double kRaceResultsShown = 2.0;
+
   // Validates (with the names a body may not take beside the world keys); throws ConfigError.
   explicit World(const WorldConfig& config, std::vector<std::string> reserved_names = {});
 
   void step();   // one step of dt = 1 / rate for every body
-  void reset();  // every body back to its initial conditions; time goes on
+  void reset();  // every body back to its initial conditions (a race's new lap); time goes on
 
   // Applies a change made while the world runs (command.step must be stepCount()). The world it would make
   // is validated exactly like a config file (names, reserved names, distinct frames, ranges, relations, at
@@ -71,12 +82,20 @@ class World {
   BodyConfig bodyOf(const WorldCommand& command) const;
   void validateWouldBe(const WorldConfig& config) const;
   void setState(std::size_t index, const std::vector<StateValue>& state);
+  // A race (WorldConfig::race): a roller that passes the end of its slope at t finishes in its place; once
+  // every roller has, the results stand kRaceResultsShown simulated seconds, then all start a new lap
+  // together.
+  void finish(Body& body, double t);
+  bool raceOver() const;
+  void restartRace();
 
   WorldConfig config_;
   std::vector<std::string> reserved_names_;
   double rate_;
   double dt_;
   std::int64_t steps_ = 0;
+  std::int64_t lap_start_step_ = 0;             // of the race's current lap
+  std::optional<std::int64_t> race_over_step_;  // when its last racer finished
   std::vector<Body> bodies_;
   std::vector<WorldEvent> events_;
 };
