@@ -1,7 +1,8 @@
 // A rigid rod bouncing on a floor (y = 0); each end below the floor is pushed up by N = -k y_end.
 //
 // Rod plane: x horizontal, y up; theta is measured from +x towards +y; u = (cos theta, sin theta).
-// End A is at R + (L/2) u, end B at R - (L/2) u. No friction, no damping. See DESIGN.md.
+// End A is at R + (L/2) u, end B at R - (L/2) u. An end below the floor also feels Coulomb friction
+// floor_mu N along x (none by default: the text's floor). No damping. See DESIGN.md and physics.md.
 //
 // The floor is unbounded (the text's), or spans x in [0, floor_length]: a rod whose centre leaves it
 // restarts from its initial conditions at the end of that step, as a roller does at a slope's end.
@@ -35,6 +36,7 @@ struct RodParams {
   Integrator integrator = Integrator::EulerCromer;
   double floor_length = 0.0;     // m of floor from x = 0; 0 = unbounded (the text's floor)
   int substeps = kAutoSubsteps;  // sub-steps per step
+  double floor_mu = 0.0;         // Coulomb friction of the floor, in [0, 100]; 0 = frictionless (the text)
 };
 
 struct RodMotion {
