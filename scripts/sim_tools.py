@@ -22,7 +22,7 @@ Config = Dict[str, Any]
 
 WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world",
                                   "race": False}
-ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0,
+ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0, "floor_mu": 0.0,
                                 "integrator": "euler_cromer", "substeps": "auto", "x0": 0.0, "y0": 4.0, "vx0": 2.0,
                                 "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
 ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
@@ -34,8 +34,8 @@ INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0,
 # The units of the numeric keys by body type, for axis labels ("" for a pure number), as the .cfg files'
 # descriptions give them.
 KEY_UNITS: Dict[str, Dict[str, str]] = {
-    "rod": {"length": "m", "floor_length": "m", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m", "vx0": "m/s",
-            "vy0": "m/s", "theta0": "rad", "omega0": "rad/s"},
+    "rod": {"length": "m", "floor_length": "m", "floor_mu": "", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m",
+            "vx0": "m/s", "vy0": "m/s", "theta0": "rad", "omega0": "rad/s"},
     "roller": {"inertia_factor": "", "radius": "m", "mass": "kg", "incline_angle": "rad", "incline_length": "m",
                "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
 }

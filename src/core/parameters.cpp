@@ -178,6 +178,9 @@ const BodyType<RodConfig>& rodType() {
               "floor_length", "m", "floor length from x = 0, 0 = unbounded", apply,
               [](C& c) -> double& { return c.params.floor_length; }, closed(0, kMaxSize)),
           number<C>(
+              "floor_mu", "", "Coulomb friction of the floor at the rod's ends, 0 = frictionless", apply,
+              [](C& c) -> double& { return c.params.floor_mu; }, closed(0, kMaxFriction)),
+          number<C>(
               "x0", "m", "initial centre x", restart, [](C& c) -> double& { return c.initial.x; },
               closed(-kMaxSize, kMaxSize), "x"),
           // A centre under the floor is refused: a rod starts at or above it (it may lie on it, y0 = 0).
