@@ -103,19 +103,17 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   use_sim_time_ = ros::param::param("/use_sim_time", false);
   anchor();  // for anything published before stepping starts (a ~reset during start_delay)
   paused_ = options_.start_paused;
-  const MarkerOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate),
-                            options_.label_critical_angles};
+  const MarkerOptions markers = markerOptions(options_, world().config().publish_rate);
   snapshots_ = std::make_unique<SnapshotBuilder>(world().config().world_frame, options_.frame_prefix,
-                                                 world().bodies(), trail);
+                                                 world().bodies(), markers);
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
   if (!options_.bag.empty()) {
-    try {
-      recorder_ = std::make_unique<BagRecorder>(options_.bag, world().config(), world().bodies(),
-                                                private_node_.getNamespace(), options_.frame_prefix);
-    } catch (const rosbag::BagException& error) {
-      throw ConfigError("cannot write the bag '" + options_.bag + "': " + error.what());
-    }
+    const BagOptions bag{private_node_.getNamespace(), options_.frame_prefix, markers};
+    recorder_ = std::make_unique<NodeRecorder>(options_.bag, world().config(), world().bodies(), bag,
+                                               [this](double t, const std::string& what) {
+                                                 stopRecording(t, what);
+                                               });
   }
   advertise();
   WorldCommand start;
@@ -123,6 +121,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   start.world = world().config();
   publishCommand(start, 0);  // before the stepping thread starts
   session_.addSink(publication_);
+  if (recorder_) session_.addSink(*recorder_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
@@ -302,8 +301,6 @@ void SimNode::publishCommand(const WorldCommand& command, std::size_t index) {
   const auto message = toMessage(command, static_cast<std::uint32_t>(index), world().time(),
                                  stampOf(world().time()), world().config().world_frame);
   command_publisher_.publish(message);
-  // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
-  if (index > 0) record([&](BagRecorder& recorder) { recorder.writeCommand(message); });
 }
 
 void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
@@ -539,7 +536,6 @@ void SimNode::publishStates() {
     last_tf_stamp_ = stamp;
   }
   publishMarkers(stamp);
-  record([&](BagRecorder& recorder) { recorder.write(world()); });
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!state_publishers_[i].watched()) continue;
     std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
@@ -587,22 +583,15 @@ void SimNode::rebuildScene() {
   const bool changed = snapshots_->scene().rebuild(world().bodies());
   publishStaticTransforms();  // the new placements' frames first, then the markers drawn in them
   if (changed) scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-  record([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
 }
 
-void SimNode::record(const std::function<void(BagRecorder&)>& write) {
-  if (!recorder_) return;
-  try {
-    write(*recorder_);
-  } catch (const rosbag::BagException& error) {
-    recorder_.reset();
-    ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d",
-              formatNumber(world().time()).c_str(), error.what(), kRecordingFailedStatus);
-    exit_status_ = kRecordingFailedStatus;
-    stopping_ = true;
-    if (options_.end_launch) endParentRoslaunch();
-    ros::requestShutdown();
-  }
+void SimNode::stopRecording(double t, const std::string& what) {
+  ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d", formatNumber(t).c_str(), what.c_str(),
+            kRecordingFailedStatus);
+  exit_status_ = kRecordingFailedStatus;
+  stopping_ = true;
+  if (options_.end_launch) endParentRoslaunch();
+  ros::requestShutdown();
 }
 
 // start_delay wall seconds; with start_on_subscribers only until every state topic and the transforms (/tf,
@@ -739,7 +728,7 @@ int SimNode::run() {
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();
   stopThreads();
-  onStepper([this] { record([](BagRecorder& recorder) { recorder.commit(); }); });
+  if (recorder_) onStepper([this] { recorder_->commit(); });
   return exit_status_;
 }
 

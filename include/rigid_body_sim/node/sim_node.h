@@ -35,7 +35,7 @@
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/ros/bag_recorder.h"
+#include "rigid_body_sim/ros/node_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
@@ -178,9 +178,8 @@ class SimNode {
   // the scene are sent again. Trails go on by body name.
   void rebuildScene();
   void waitForStart();
-  // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
-  // line (kRecordingFailedStatus), never the process.
-  void record(const std::function<void(BagRecorder&)>& write);
+  // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
+  void stopRecording(double t, const std::string& what);
   ros::Time stampOf(double t) const;
   const World& world() const { return session_.world(); }  // on the stepping thread
   void anchor();  // the pace and the wall-clock stamps start from now and the current step
@@ -212,7 +211,7 @@ class SimNode {
   bool paused_ = false;
   StepPacer pacer_;
   std::unique_ptr<SnapshotBuilder> snapshots_;
-  std::unique_ptr<BagRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
+  std::unique_ptr<NodeRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
   ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
   double time_anchor_ = 0.0;  // s
   bool use_sim_time_ = false;
