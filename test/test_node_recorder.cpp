@@ -16,6 +16,7 @@
 #include <rosbag/view.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "bag_messages.h"
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/ros/node_recorder.h"
@@ -24,34 +25,14 @@
 #include "test_util.h"
 
 using namespace rigid_body_sim;
+using test::firstDifference;
 using test::FolderTest;
+using test::messagesOf;
 namespace fs = std::filesystem;
 
 namespace {
 
 constexpr double kDuration = 3.0;  // s
-
-struct BagMessage {
-  std::string topic;
-  ros::Time time;
-  std::vector<std::uint8_t> bytes;
-  bool operator==(const BagMessage& other) const {
-    return topic == other.topic && time == other.time && bytes == other.bytes;
-  }
-};
-
-std::vector<BagMessage> messagesOf(const fs::path& path) {
-  rosbag::Bag bag(path.string());
-  std::vector<BagMessage> messages;
-  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
-    BagMessage message{m.getTopic(), m.getTime(), std::vector<std::uint8_t>(m.size())};
-    ros::serialization::OStream stream(message.bytes.data(),
-                                       static_cast<std::uint32_t>(message.bytes.size()));
-    m.write(stream);
-    messages.push_back(std::move(message));
-  }
-  return messages;
-}
 
 std::vector<visualization_msgs::MarkerArray> markersOf(const fs::path& path) {
   rosbag::Bag bag(path.string());
@@ -59,16 +40,6 @@ std::vector<visualization_msgs::MarkerArray> markersOf(const fs::path& path) {
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/sim/markers")))
     arrays.push_back(*m.instantiate<visualization_msgs::MarkerArray>());
   return arrays;
-}
-
-// The first differing message, for a failure that says where.
-std::string firstDifference(const std::vector<BagMessage>& a, const std::vector<BagMessage>& b) {
-  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
-    if (!(a[i] == b[i]))
-      return "message " + std::to_string(i) + ": " + a[i].topic + " at " + std::to_string(a[i].time.toSec()) +
-             " vs " + b[i].topic + " at " + std::to_string(b[i].time.toSec());
-  }
-  return "counts " + std::to_string(a.size()) + " vs " + std::to_string(b.size());
 }
 
 WorldConfig demo() { return loadWorldConfigFile(test::config("demo.yaml")); }
@@ -118,8 +89,8 @@ TEST_F(NodeRecorderTest, HoldsWhatSimulateBagHoldsForTheSameOptions) {
   for (const BagOptions& options : {BagOptions{}, nodeMarkers()}) {
     const fs::path node_bag = dir_ / "node.bag";
     recordAsTheNode(node_bag, demo(), options);
-    const auto recorded = messagesOf(node_bag);
-    const auto simulated = messagesOf(simulateBag(dir_, demo(), options));
+    const auto recorded = messagesOf(node_bag.string());
+    const auto simulated = messagesOf(simulateBag(dir_, demo(), options).string());
     ASSERT_GT(recorded.size(), 600u);
     EXPECT_TRUE(recorded == simulated)
         << "marker rate " << options.markers.pieces_rate << ": " << firstDifference(recorded, simulated);
@@ -178,8 +149,8 @@ TEST_F(NodeRecorderTest, HoldsEveryChangeAsTheReplaysBag) {
   offline.out_dir = dir_.string();
   offline.bag = (dir_ / "replay.bag").string();
   replayRun(commands, offline, bagOpener());
-  const auto recorded = messagesOf(dir_ / "node.bag");
-  const auto replayed = messagesOf(dir_ / "replay.bag");
+  const auto recorded = messagesOf((dir_ / "node.bag").string());
+  const auto replayed = messagesOf((dir_ / "replay.bag").string());
   EXPECT_TRUE(recorded == replayed) << firstDifference(recorded, replayed);
   std::size_t logged = 0;
   for (const auto& message : recorded) logged += message.topic == "/sim/commands";

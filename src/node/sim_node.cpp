@@ -9,13 +9,11 @@
 #include <ros/callback_queue.h>
 #include <boost/make_shared.hpp>
 
-#include <rosgraph_msgs/Clock.h>
 #include <std_msgs/Bool.h>
 
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/config_writer.h"
-#include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/reconfigure.h"
@@ -25,11 +23,7 @@ namespace rigid_body_sim {
 
 namespace {
 
-// Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
-constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
-// ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
-constexpr std::uint32_t kCommandQueue = 100000;
 constexpr auto kWatchPeriod = std::chrono::seconds(1);       // how often the master is asked
 constexpr auto kClockWait = std::chrono::seconds(2);         // for a /clock when /use_sim_time is true
 constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
@@ -95,32 +89,22 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       session_(sessionOf(parseNodeConfig(start_params_))),
       after_step_([this](World& world) { afterStep(world); }),
       guard_(world().bodies()),
-      steps_per_markers_(
-          session_.stepsPerSample() *
-          std::max<std::int64_t>(1, std::llround(world().config().publish_rate /
-                                                 markerRate(options_, world().config().publish_rate)))),
-      pacer_(world().rate(), options_.real_time_factor) {
-  use_sim_time_ = ros::param::param("/use_sim_time", false);
-  anchor();  // for anything published before stepping starts (a ~reset during start_delay)
+      pacer_(world().rate(), options_.real_time_factor),
+      use_sim_time_(ros::param::param("/use_sim_time", false)),
+      publisher_(node_, private_node_, options_, world(), use_sim_time_, stepper_tasks_) {
   paused_ = options_.start_paused;
-  const MarkerOptions markers = markerOptions(options_, world().config().publish_rate);
-  snapshots_ = std::make_unique<SnapshotBuilder>(world().config().world_frame, options_.frame_prefix,
-                                                 world().bodies(), markers);
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
   if (!options_.bag.empty()) {
-    const BagOptions bag{private_node_.getNamespace(), options_.frame_prefix, markers};
-    recorder_ = std::make_unique<NodeRecorder>(options_.bag, world().config(), world().bodies(), bag,
-                                               [this](double t, const std::string& what) {
-                                                 stopRecording(t, what);
-                                               });
+    const BagOptions bag{private_node_.getNamespace(), options_.frame_prefix,
+                         markerOptions(options_, world().config().publish_rate)};
+    recorder_ =
+        std::make_unique<NodeRecorder>(options_.bag, world().config(), world().bodies(), bag,
+                                       [this](double t, const std::string& what) { stopRecording(t, what); });
   }
   advertise();
-  WorldCommand start;
-  start.kind = WorldCommand::Kind::Config;
-  start.world = world().config();
-  publishCommand(start, 0);  // before the stepping thread starts
-  session_.addSink(publication_);
+  publisher_.publishConfig(world());  // before the stepping thread starts
+  session_.addSink(publisher_);
   if (recorder_) session_.addSink(*recorder_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
@@ -135,43 +119,10 @@ SimNode::~SimNode() {
   ros::getGlobalCallbackQueue()->removeByID(reinterpret_cast<std::uint64_t>(this));
 }
 
-template <class Message>
-SimNode::CountedPublisher SimNode::advertiseCounted(ros::NodeHandle& node, const std::string& topic,
-                                                    std::uint32_t queue) {
-  auto count = std::make_shared<std::atomic<int>>(0);
-  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
-  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
-  return {node.advertise<Message>(topic, queue, connected, disconnected), std::move(count)};
-}
-
 void SimNode::advertise() {
   namespace names = node_interface;
-  marker_publisher_ = advertiseCounted<visualization_msgs::MarkerArray>(private_node_, names::kMarkers, 10);
-  tf_publisher_ = advertiseCounted<tf2_msgs::TFMessage>(node_, "/tf", 100);
-  // A viewer gets the latched scene as it subscribes, and the scene once more a second or two later: rviz
-  // drops for good a marker of stamp 0 whose frame's first transform comes in the instant it looks for it
-  // (tf2's transformable request sees "the transform is older than the cache" for stamp 0). By then it
-  // has the transforms, and the second copy is drawn whatever happened to the first.
-  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(
-      names::kScene, 1, [this](const ros::SingleSubscriberPublisher&) { scene_viewer_joined_ = true; },
-      ros::SubscriberStatusCallback(), ros::VoidConstPtr(), true);
-  scene_resend_timer_ =
-      private_node_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
-        const bool due = scene_resend_due_.exchange(false);
-        if (scene_viewer_joined_.exchange(false)) scene_resend_due_ = true;
-        if (due)
-          stepper_tasks_.post([this] { scene_publisher_.publish(snapshots_->scene().sceneMarkers()); });
-      });
-  if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
-  if (node_.getNamespace() != "/") {
-    namespace_tf_ = advertiseCounted<tf2_msgs::TFMessage>(node_, names::kNamespaceTf, 100);
-    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
-  }
-  command_publisher_ =
-      private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
   paused_publisher_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
   publishPaused(paused_);
-  for (const auto& body : world().bodies()) advertiseState(body);
   services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
   services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
   services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
@@ -180,13 +131,6 @@ void SimNode::advertise() {
   services_.push_back(private_node_.advertiseService(names::kPause, &SimNode::onPause, this));
   services_.push_back(private_node_.advertiseService(names::kUnpause, &SimNode::onUnpause, this));
   services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
-}
-
-void SimNode::advertiseState(const Body& body) {
-  const std::string topic = node_interface::stateTopic(body.name);
-  state_publishers_.push_back(kindOf(body) == BodyKind::Rod
-                                  ? advertiseCounted<RodState>(private_node_, topic, kStateQueue)
-                                  : advertiseCounted<RollerState>(private_node_, topic, kStateQueue));
 }
 
 void SimNode::defer(std::function<void()> work) {
@@ -272,7 +216,7 @@ SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& b
     answer.command = build(world());
     if (answer.command) {
       index = indexIn(world().config(), answer.command->body);
-      // The pending publishing instant, the command, then publication_.applied.
+      // The pending publishing instant, the command, then the sinks' applied.
       session_.apply(*answer.command);
     }
   } catch (const ConfigError& error) {
@@ -288,48 +232,18 @@ SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& b
   return answer;
 }
 
-void SimNode::Publication::write(const World&) { node_.publishStates(); }
-
-void SimNode::Publication::applied(const WorldCommand& command, std::size_t index, const World& world) {
-  ROS_INFO_STREAM(toString(command.kind)
-                  << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
-                  << " (t = " << formatNumber(world.time()) << " s)");
-  node_.publishCommand(command, index);
-}
-
-void SimNode::publishCommand(const WorldCommand& command, std::size_t index) {
-  const auto message = toMessage(command, static_cast<std::uint32_t>(index), world().time(),
-                                 stampOf(world().time()), world().config().world_frame);
-  command_publisher_.publish(message);
-}
-
 void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
   switch (command.kind) {
-    case WorldCommand::Kind::Spawn:
-      advertiseState(world().bodies().back());
-      guard_.add(world().bodies().back());
-      rebuildScene();
-      return;
-    case WorldCommand::Kind::Delete:
-      state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
-      guard_.remove(index);
-      rebuildScene();
-      return;
+    case WorldCommand::Kind::Spawn: guard_.add(world().bodies().back()); return;
+    case WorldCommand::Kind::Delete: guard_.remove(index); return;
     case WorldCommand::Kind::Reconfigure:
     case WorldCommand::Kind::SetState:
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
       guard_.release(index, world().bodies()[index]);
-      // Any key may change the look (a rod's length, a slope, a radius): the scene knows which do, and
-      // sends only what changed, as the recorder of simulate --bag does.
-      if (command.kind == WorldCommand::Kind::Reconfigure) rebuildScene();
       return;
     case WorldCommand::Kind::Reset:
       session_.takeEvents();
       guard_.releaseAll(world().bodies());
-      // Trails start anew: the viewer drops the old ones.
-      snapshots_->scene().clearTrails();
-      if (markers_watched_)
-        marker_publisher_.publisher.publish(snapshots_->scene().clearMarkers(stampOf(world().time())));
       return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
@@ -458,7 +372,7 @@ void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
   } else {
     session_.advance(static_cast<std::int64_t>(steps), after_step_);
     session_.sampleNow();  // show where the steps ended
-    publishMarkersNow();
+    publisher_.publishMarkersNow(world());
     response.success = true;
     response.message = "ok";
   }
@@ -478,19 +392,10 @@ double SimNode::wallNow() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-ros::Time SimNode::stampOf(double t) const {
-  return use_sim_time_ ? simStamp(t) : stamp_anchor_ + ros::Duration(t - time_anchor_);
-}
-
-// The pace and the wall-clock stamps start from now and the current step: stepping starts (after any
-// start_delay) or resumes at wall-clock pace, and so the stamps of what follows are current. Never earlier
-// than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
-// the clock): stamps stay strictly increasing.
+// The pace and the stamps start from now and the current step: stepping starts or resumes.
 void SimNode::anchor() {
   pacer_.restart(wallNow(), world().stepCount());
-  const ros::WallTime wall = ros::WallTime::now();
-  stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
-  time_anchor_ = world().time();
+  publisher_.anchor(world().time());
 }
 
 void SimNode::afterStep(World& world) {
@@ -507,87 +412,9 @@ void SimNode::afterStep(World& world) {
   }
 }
 
-// Only forward: /clock never repeats a time (a reset or a ~step publishes the current time once more).
-void SimNode::publishClock() {
-  const ros::Time now = simStamp(world().time());
-  if (!options_.publish_clock || now <= last_clock_) return;
-  rosgraph_msgs::Clock clock;
-  clock.clock = now;
-  clock_publisher_.publish(clock);
-  last_clock_ = now;
-}
-
-void SimNode::publishStates() {
-  const double t = world().time();
-  const ros::Time stamp = stampOf(t);
-  publishClock();
-  const auto& bodies = world().bodies();
-  // Every body's transform in one message and a state message per body, built only for a topic with a
-  // subscriber (a viewer that joins finds every frame at the next publication). A transform is never sent
-  // twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset at a publishing instant
-  // the frames move with the next one.
-  if (stamp > last_tf_stamp_ && (tf_publisher_.watched() || namespace_tf_.watched())) {
-    tf2_msgs::TFMessage tf;
-    tf.transforms.reserve(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
-    tf_publisher_.publisher.publish(tf);
-    if (namespace_tf_.publisher) namespace_tf_.publisher.publish(tf);
-    last_tf_stamp_ = stamp;
-  }
-  publishMarkers(stamp);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!state_publishers_[i].watched()) continue;
-    std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
-               snapshots_->state(i, t, stamp, bodies[i]));
-  }
-}
-
-void SimNode::publishMarkers(const ros::Time& stamp) {
-  Scene& scene = snapshots_->scene();
-  const bool watched = marker_publisher_.watched();
-  if (!watched) {
-    if (markers_watched_) scene.clearTrails();  // a viewer that comes sees trails from then on
-    markers_watched_ = false;
-    return;
-  }
-  markers_watched_ = true;
-  scene.sample(world().bodies());
-  if (world().stepCount() % steps_per_markers_ == 0) {
-    marker_publisher_.publisher.publish(scene.changes(stamp, world().bodies()));
-  }
-}
-
-// A ~step ends anywhere between marker periods: its labels (and the trail up to there) go out at once, so
-// that a paused picture shows them where the bodies are, not where the last period left them.
-void SimNode::publishMarkersNow() {
-  if (!markers_watched_) return;
-  marker_publisher_.publisher.publish(snapshots_->scene().changes(stampOf(world().time()), world().bodies()));
-}
-
-void SimNode::publishStaticTransforms() {
-  tf2_msgs::TFMessage fixed;
-  fixed.transforms = snapshots_->staticTransforms(stampOf(world().time()));
-  static_broadcaster_.sendTransform(fixed.transforms);
-  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
-}
-
-void SimNode::publishScene() {
-  publishStaticTransforms();
-  scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-}
-
-// The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
-// when it changed; trails are kept by body name.
-void SimNode::rebuildScene() {
-  const bool changed = snapshots_->scene().rebuild(world().bodies());
-  publishStaticTransforms();  // the new placements' frames first, then the markers drawn in them
-  if (changed) scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-}
-
 void SimNode::stopRecording(double t, const std::string& what) {
-  ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d", formatNumber(t).c_str(), what.c_str(),
-            kRecordingFailedStatus);
+  ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d", formatNumber(t).c_str(),
+            what.c_str(), kRecordingFailedStatus);
   exit_status_ = kRecordingFailedStatus;
   stopping_ = true;
   if (options_.end_launch) endParentRoslaunch();
@@ -601,11 +428,7 @@ void SimNode::waitForStart() {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                              std::chrono::duration<double>(options_.start_delay));
-  const auto subscribed = [this] {
-    return (tf_publisher_.watched() || namespace_tf_.watched()) &&
-           std::all_of(state_publishers_.begin(), state_publishers_.end(),
-                       [](const CountedPublisher& p) { return p.watched(); });
-  };
+  const auto subscribed = [this] { return publisher_.subscribed(); };
   while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
     stepper_tasks_.runPending();
     if (options_.start_on_subscribers && subscribed()) return;
@@ -625,10 +448,10 @@ void SimNode::stepLoop() {
   stepper_tasks_.becomeOwner();
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
-  publishClock();
+  publisher_.publishClock(world());
   waitForStart();
   anchor();
-  publishScene();
+  publisher_.publishScene(world());
   session_.sampleNow();  // unless a command published this count
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world().rate()));
   while (!stopping_ && ros::ok()) {

@@ -25,8 +25,6 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
-#include <tf2_msgs/TFMessage.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 
 #include "rigid_body_sim/Delete.h"
 #include "rigid_body_sim/GetConfig.h"
@@ -35,10 +33,10 @@
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/ros/node_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
+#include "rigid_body_sim/ros/node_publisher.h"
+#include "rigid_body_sim/ros/node_recorder.h"
 #include "rigid_body_sim/ros/params.h"
-#include "rigid_body_sim/ros/snapshot.h"
 #include "rigid_body_sim/run/finite_guard.h"
 #include "rigid_body_sim/run/session.h"
 #include "rigid_body_sim/run/step_pacer.h"
@@ -74,17 +72,6 @@ class SimNode {
   // refusal.
   using BuildCommand = std::function<std::optional<WorldCommand>(const World& world)>;
 
-  // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
-  // deleted body's may still run). Publisher::getNumSubscribers looks the topic up among all of the node's
-  // publications, and once per body per publication that was most of the node's work with 1000 bodies.
-  struct CountedPublisher {
-    ros::Publisher publisher;
-    std::shared_ptr<std::atomic<int>> subscribers;
-    bool watched() const { return subscribers && *subscribers > 0; }
-  };
-  template <class Message>
-  CountedPublisher advertiseCounted(ros::NodeHandle& node, const std::string& topic, std::uint32_t queue);
-
   using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
   using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
   struct BodyServer {  // one of the two, by the body's type
@@ -93,21 +80,8 @@ class SimNode {
   };
 
   void advertise();
-  void advertiseState(const Body& body);  // its publisher and subscriber count, at the end of the lists
   template <class Config, class Request>
   void onReconfigure(const std::string& name, Request& request);
-  // The node's side of the Session, called by it on the stepping thread: write publishes the states of a
-  // count (publishStates), applied logs a command and publishes it on ~commands (publishCommand).
-  class Publication : public SampleSink {
-   public:
-    explicit Publication(SimNode& node) : node_(node) {}
-    void write(const World& world) override;
-    void applied(const WorldCommand& command, std::size_t index, const World& world) override;
-
-   private:
-    SimNode& node_;
-  };
-
   // --- The one way to change the running world, from any callback: the services, the reconfigure servers,
   // the interactive markers. On the stepping thread: `build` makes the command from the running world and
   // Session::apply applies it (a publishing instant not yet published first, then the command at the current
@@ -117,10 +91,8 @@ class SimNode {
   // is published on ~commands.
   Answer change(const std::string& kind, const std::string& body, const BuildCommand& build);
   Answer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
-  // On ~commands as number `index` (header.seq; 0: the config at the start); recorded after the config.
-  void publishCommand(const WorldCommand& command, std::size_t index);
-  // After an accepted command, on the stepping thread: publishers, the guard and the scene follow the world.
-  // `index` is the command's body's place in the world before it.
+  // After an accepted command, on the stepping thread: the guard follows the world (the sinks have). `index`
+  // is the command's body's place in the world before it.
   void followWorld(const WorldCommand& command, std::size_t index);
   // After an accepted command, on the spinner thread: the reconfigure servers and the interactive markers.
   void followWorldServers(const Answer& answer);
@@ -164,23 +136,9 @@ class SimNode {
   // The step hook, after every step: holds a body that became non-finite at its last finite state (the
   // one error about it), then the step's events (DEBUG).
   void afterStep(World& world);
-  // The states, TF, markers and /clock of the current count; the same into the recorder.
-  void publishStates();
-  void publishClock();
-  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
-  void publishMarkers(const ros::Time& stamp);
-  void publishMarkersNow();
-  // The fixed frames on /tf_static (and <ns>/tf_static).
-  void publishStaticTransforms();
-  // The fixed frames and the latched ~scene.
-  void publishScene();
-  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
-  // the scene are sent again. Trails go on by body name.
-  void rebuildScene();
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
   void stopRecording(double t, const std::string& what);
-  ros::Time stampOf(double t) const;
   const World& world() const { return session_.world(); }  // on the stepping thread
   void anchor();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
@@ -198,40 +156,19 @@ class SimNode {
   XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
 
+  TaskQueue stepper_tasks_;  // the work handed to the stepping thread
+
   // Owned by the stepping thread (set up before it starts):
   // The world (also the running config, what ~get_config returns), sampled at every publishing instant.
   Session session_;
-  Publication publication_{*this};  // the session's one sink
-  StepHook after_step_;             // afterStep
+  StepHook after_step_;  // afterStep
   FiniteGuard guard_;
-  std::int64_t steps_per_markers_;  // a whole number of publishing intervals
-  bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
-  ros::Time last_clock_;            // the last /clock published (zero: none yet)
-  ros::Time last_tf_stamp_;         // the stamp of the last transforms on /tf
   bool paused_ = false;
   StepPacer pacer_;
-  std::unique_ptr<SnapshotBuilder> snapshots_;
+  bool use_sim_time_;
+  NodePublisher publisher_;                 // the session's first sink: the node's topics
   std::unique_ptr<NodeRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
-  ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
-  double time_anchor_ = 0.0;  // s
-  bool use_sim_time_ = false;
-
-  TaskQueue stepper_tasks_;  // the work handed to the stepping thread
-
-  // Published on the stepping thread (the scene resend timer hands its publication over too).
-  ros::Publisher command_publisher_;
-  ros::Publisher paused_publisher_;  // ~paused: true from ~pause (or start_paused) until ~unpause
-  CountedPublisher marker_publisher_;
-  ros::Publisher scene_publisher_;
-  ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined
-  std::atomic<bool> scene_viewer_joined_{false};  // since the last tick
-  std::atomic<bool> scene_resend_due_{false};     // a viewer joined before the last tick
-  ros::Publisher clock_publisher_;
-  CountedPublisher tf_publisher_;       // /tf, as tf2_ros::TransformBroadcaster sends it
-  CountedPublisher namespace_tf_;       // in a namespace: <ns>/tf, a copy of what goes to /tf
-  ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
-  std::vector<CountedPublisher> state_publishers_;
-  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
+  ros::Publisher paused_publisher_;         // ~paused: true from ~pause (or start_paused) until ~unpause
   std::vector<ros::ServiceServer> services_;
 
   // Owned by the spinner thread:
