@@ -6,9 +6,6 @@
 #include <optional>
 #include <type_traits>
 
-#include <ros/callback_queue.h>
-#include <boost/make_shared.hpp>
-
 #include <std_msgs/Bool.h>
 
 #include "rigid_body_sim/core/node_interface.h"
@@ -16,7 +13,6 @@
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
-#include "rigid_body_sim/ros/reconfigure.h"
 #include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
@@ -32,19 +28,6 @@ constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how ofte
 // subscriber's backlog (docs/performance.md: what a slow subscriber loses).
 constexpr auto kEndWait = std::chrono::milliseconds(500);
 
-// A callback on the spinner thread's queue, behind those waiting.
-class Deferred : public ros::CallbackInterface {
- public:
-  explicit Deferred(std::function<void()> work) : work_(std::move(work)) {}
-  CallResult call() override {
-    work_();
-    return Success;
-  }
-
- private:
-  std::function<void()> work_;
-};
-
 // The place of body `name` in `config`, or the number of bodies if it has none.
 std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   std::size_t index = 0;
@@ -52,26 +35,16 @@ std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   return index;
 }
 
+std::optional<BodyConfig> findBody(const WorldConfig& config, const std::string& name) {
+  const std::size_t index = indexIn(config, name);
+  if (index == config.bodies.size()) return std::nullopt;
+  return config.bodies[index];
+}
+
 const BodyConfig& bodyOf(const WorldConfig& config, const std::string& name) {
   const std::size_t index = indexIn(config, name);
   if (index == config.bodies.size()) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
   return config.bodies[index];
-}
-
-// A body's config with some numeric keys set as a reconfigure request would set them (the same parsing).
-template <class Config>
-Config withReconfigured(const std::string& body, const Config& current,
-                        const std::map<std::string, double>& keys) {
-  auto request = toReconfigure(current);
-  dynamic_reconfigure::Config asked;
-  for (const auto& [key, value] : keys) {
-    dynamic_reconfigure::DoubleParameter parameter;
-    parameter.name = key;
-    parameter.value = value;
-    asked.doubles.push_back(parameter);
-  }
-  request.__fromMessage__(asked);
-  return fromReconfigure(body, request, current);
 }
 
 // The node's run: sampled (published) at publish_rate.
@@ -91,7 +64,15 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       guard_(world().bodies()),
       pacer_(world().rate(), options_.real_time_factor),
       use_sim_time_(ros::param::param("/use_sim_time", false)),
-      publisher_(node_, private_node_, options_, world(), use_sim_time_, stepper_tasks_) {
+      publisher_(node_, private_node_, options_, world(), use_sim_time_, stepper_tasks_),
+      servers_(
+          private_node_,
+          [this](const std::string& name, const ReconfigureServers::Reconfigured& reconfigured) {
+            return findBody(reconfigure(name, reconfigured, true).config, name);
+          },
+          [this](const std::string& name) {
+            return onStepper([&] { return findBody(world().config(), name); });
+          }) {
   paused_ = options_.start_paused;
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
@@ -114,10 +95,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   interactive_->show(world().config());
 }
 
-SimNode::~SimNode() {
-  stopThreads();
-  ros::getGlobalCallbackQueue()->removeByID(reinterpret_cast<std::uint64_t>(this));
-}
+SimNode::~SimNode() { stopThreads(); }
 
 void SimNode::advertise() {
   namespace names = node_interface;
@@ -133,78 +111,12 @@ void SimNode::advertise() {
   services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
 }
 
-void SimNode::defer(std::function<void()> work) {
-  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<Deferred>(std::move(work)),
-                                             reinterpret_cast<std::uint64_t>(this));
-}
-
-void SimNode::startReconfigureServers() {
-  for (const auto& body : onStepper([this] { return world().config().bodies; })) {
-    bodies_without_server_.push_back(body.name);
-  }
-  startNextReconfigureServer();
-}
-
-void SimNode::startNextReconfigureServer() {
-  while (!bodies_without_server_.empty() && ros::ok() && !stopping_) {
-    const std::string name = bodies_without_server_.front();
-    bodies_without_server_.pop_front();
-    if (servers_.count(name)) continue;
-    const auto body = onStepper([&]() -> std::optional<BodyConfig> {
-      const std::size_t index = indexIn(world().config(), name);
-      if (index == world().config().bodies.size()) return std::nullopt;
-      return world().config().bodies[index];
-    });
-    if (!body) continue;
-    startReconfigureServer(*body);
-    defer([this] { startNextReconfigureServer(); });
-    return;
-  }
-}
-
-// The body's values go to its server before its callback is set, so that they win over the .cfg defaults;
-// the first callback then finds nothing to change.
-void SimNode::startReconfigureServer(const BodyConfig& body) {
-  const ros::NodeHandle body_node(private_node_, body.name);
-  BodyServer& server = servers_[body.name];
-  const std::string name = body.name;
-  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    server.rod = std::make_unique<RodServer>(servers_mutex_, body_node);
-    server.rod->updateConfig(toReconfigure(*rod));
-    server.rod->setCallback(
-        [this, name](RodReconfigureConfig& request, uint32_t) { onReconfigure<RodConfig>(name, request); });
-  } else {
-    server.roller = std::make_unique<RollerServer>(servers_mutex_, body_node);
-    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(body.config)));
-    server.roller->setCallback([this, name](RollerReconfigureConfig& request, uint32_t) {
-      onReconfigure<RollerConfig>(name, request);
-    });
-  }
-}
-
-// A request that changes nothing (the server's first call, a dynparam set of the same values) is no
-// command. The request is rewritten to what runs, so that the server shows the truth.
-template <class Config, class Request>
-void SimNode::onReconfigure(const std::string& name, Request& request) {
-  const auto reconfigure = [&](const World& world) -> std::optional<WorldCommand> {
-    const BodyConfig& before = bodyOf(world.config(), name);
-    WorldCommand command;
-    command.kind = WorldCommand::Kind::Reconfigure;
-    command.body = name;
-    command.config = {name, fromReconfigure(name, request, std::get<Config>(before.config))};
-    if (toYaml(command.config) == toYaml(before)) return std::nullopt;
-    return command;
-  };
-  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), name, reconfigure);
-  const std::size_t index = indexIn(answer.config, name);
-  if (index < answer.config.bodies.size())
-    request = toReconfigure(std::get<Config>(answer.config.bodies[index].config));
-}
-
 SimNode::Answer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
   Answer answer = onStepper([&] { return applyHere(kind, body, build); });
   if (!answer.accepted) ROS_WARN_STREAM(answer.why);
-  followWorldServers(answer);
+  if (!answer.command) return answer;
+  servers_.follow(*answer.command);
+  if (interactive_) interactive_->show(answer.config);  // the handles where the bodies now start
   return answer;
 }
 
@@ -249,37 +161,31 @@ void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
   }
 }
 
-void SimNode::followWorldServers(const Answer& answer) {
-  if (!answer.command) return;
-  const WorldCommand& command = *answer.command;
-  if (command.kind == WorldCommand::Kind::Spawn) startReconfigureServer(command.config);
-  if (command.kind == WorldCommand::Kind::Delete) servers_.erase(command.body);
-  const auto server = servers_.find(command.body);  // none yet: it will start with the values that run then
-  if (command.kind == WorldCommand::Kind::Reconfigure && server != servers_.end()) {
-    if (server->second.rod)
-      server->second.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
-    if (server->second.roller)
-      server->second.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
-  }
-  if (interactive_) interactive_->show(answer.config);  // the handles where the bodies now start
+// A request to a body's server that changes nothing (the server's first call, a dynparam set of the same
+// values) is no command; a drop in rviz always is one.
+SimNode::Answer SimNode::reconfigure(const std::string& name,
+                                     const ReconfigureServers::Reconfigured& reconfigured,
+                                     bool unchanged_is_none) {
+  return change(toString(WorldCommand::Kind::Reconfigure), name,
+                [&](const World& world) -> std::optional<WorldCommand> {
+                  const BodyConfig& before = bodyOf(world.config(), name);
+                  WorldCommand command;
+                  command.kind = WorldCommand::Kind::Reconfigure;
+                  command.body = name;
+                  command.config = reconfigured(before);
+                  if (unchanged_is_none && toYaml(command.config) == toYaml(before)) return std::nullopt;
+                  return command;
+                });
 }
 
 // A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
 // refused, the same log, and the server then shows what runs (as dynparam and the panel see it).
 bool SimNode::onDrop(const std::string& body, const std::map<std::string, double>& initial,
                      std::string* why) {
-  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), body,
-                               [&](const World& world) -> std::optional<WorldCommand> {
-                                 WorldCommand command;
-                                 command.kind = WorldCommand::Kind::Reconfigure;
-                                 command.body = body;
-                                 const auto reconfigured = [&](const auto& config) {
-                                   return BodyConfig{body, withReconfigured(body, config, initial)};
-                                 };
-                                 command.config =
-                                     std::visit(reconfigured, bodyOf(world.config(), body).config);
-                                 return command;
-                               });
+  const auto dropped = [&](const BodyConfig& running) {
+    return ReconfigureServers::withKeys(running, initial);
+  };
+  const Answer answer = reconfigure(body, dropped, false);
   if (why) *why = answer.why;
   return answer.accepted;
 }
@@ -525,6 +431,7 @@ void SimNode::stopThreads() {
     stopping_ = true;
   }
   stepper_tasks_.stop();
+  servers_.stop();
   watch_wake_.notify_all();
   if (stepper_.joinable()) stepper_.join();
   if (watcher_.joinable()) watcher_.join();
@@ -546,7 +453,14 @@ int SimNode::run() {
     stepper_tasks_.finish();
   });
   watcher_ = std::thread([this] { watchMaster(); });
-  defer([this] { startReconfigureServers(); });  // once stepping has started: the first states need not wait
+  // Once stepping has started: the first states need not wait.
+  servers_.startAll([this] {
+    return onStepper([this] {
+      std::vector<std::string> names;
+      for (const auto& body : world().bodies()) names.push_back(body.name);
+      return names;
+    });
+  });
   // The stepper runs until roscpp shuts down (Ctrl-C, the duration done, a forgetful master): waiting for
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();

@@ -64,15 +64,7 @@ class TopicLog {
   std::map<std::string, std::vector<std::vector<std::uint8_t>>> received_;
 };
 
-// Waits until `holds` (looked at every 10 ms), at most kTimeout.
-bool waitUntil(const std::function<bool()>& holds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(kTimeout);
-  while (!holds()) {
-    if (ros::WallTime::now() > end) return false;
-    ros::WallDuration(0.01).sleep();
-  }
-  return true;
-}
+bool waitUntil(const std::function<bool()>& holds) { return test::waitUntil(holds, kTimeout); }
 
 template <class Message>
 Message fromBytes(std::vector<std::uint8_t> bytes) {

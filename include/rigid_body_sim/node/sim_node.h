@@ -22,14 +22,11 @@
 #include <thread>
 #include <vector>
 
-#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 
 #include "rigid_body_sim/Delete.h"
 #include "rigid_body_sim/GetConfig.h"
-#include "rigid_body_sim/RodReconfigureConfig.h"
-#include "rigid_body_sim/RollerReconfigureConfig.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
@@ -37,6 +34,7 @@
 #include "rigid_body_sim/ros/node_publisher.h"
 #include "rigid_body_sim/ros/node_recorder.h"
 #include "rigid_body_sim/ros/params.h"
+#include "rigid_body_sim/ros/reconfigure_servers.h"
 #include "rigid_body_sim/run/finite_guard.h"
 #include "rigid_body_sim/run/session.h"
 #include "rigid_body_sim/run/step_pacer.h"
@@ -72,16 +70,7 @@ class SimNode {
   // refusal.
   using BuildCommand = std::function<std::optional<WorldCommand>(const World& world)>;
 
-  using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
-  using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
-  struct BodyServer {  // one of the two, by the body's type
-    std::unique_ptr<RodServer> rod;
-    std::unique_ptr<RollerServer> roller;
-  };
-
   void advertise();
-  template <class Config, class Request>
-  void onReconfigure(const std::string& name, Request& request);
   // --- The one way to change the running world, from any callback: the services, the reconfigure servers,
   // the interactive markers. On the stepping thread: `build` makes the command from the running world and
   // Session::apply applies it (a publishing instant not yet published first, then the command at the current
@@ -94,8 +83,10 @@ class SimNode {
   // After an accepted command, on the stepping thread: the guard follows the world (the sinks have). `index`
   // is the command's body's place in the world before it.
   void followWorld(const WorldCommand& command, std::size_t index);
-  // After an accepted command, on the spinner thread: the reconfigure servers and the interactive markers.
-  void followWorldServers(const Answer& answer);
+  // A reconfigure of body `name` from its server (`unchanged_is_none`: a request that changes nothing is
+  // no command) or from a drop in rviz.
+  Answer reconfigure(const std::string& name, const ReconfigureServers::Reconfigured& reconfigured,
+                     bool unchanged_is_none);
   // A service's change of one body: `fill` puts in what the request brings (a ConfigError refuses it); the
   // response says whether it applied, the one line if not, and (~spawn) the time it applied at.
   using FillCommand = std::function<void(WorldCommand& command)>;
@@ -121,15 +112,6 @@ class SimNode {
     return stepper_tasks_.call(std::move(work));
   }
   void serveTasksFor(std::chrono::milliseconds wait);  // on the stepping thread: runs what comes meanwhile
-
-  // --- On the spinner thread: one body's reconfigure server at a time, each a callback of its own behind
-  // those waiting (a server takes some 40 calls to the master: a thousand at once would hold the services
-  // for seconds), after stepping has started. A body spawned meanwhile has its own already; one deleted
-  // meanwhile gets none.
-  void startReconfigureServers();
-  void startNextReconfigureServer();
-  void startReconfigureServer(const BodyConfig& body);
-  void defer(std::function<void()> work);  // behind the callbacks waiting on the spinner thread
 
   // --- The stepping thread
   void stepLoop();
@@ -172,11 +154,7 @@ class SimNode {
   std::vector<ros::ServiceServer> services_;
 
   // Owned by the spinner thread:
-  // The servers' mutex, held while they call back (dynamic_reconfigure warns of deadlocks when updateConfig
-  // is called on a server that has its own).
-  boost::recursive_mutex servers_mutex_;
-  std::map<std::string, BodyServer> servers_;         // by body name
-  std::deque<std::string> bodies_without_server_;     // startReconfigureServers' list
+  ReconfigureServers servers_;                        // ~<body>: each body's keys
   std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
