@@ -20,8 +20,6 @@ namespace rigid_body_sim {
 namespace {
 
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
-constexpr auto kWatchPeriod = std::chrono::seconds(1);       // how often the master is asked
-constexpr auto kClockWait = std::chrono::seconds(2);         // for a /clock when /use_sim_time is true
 constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
 // After the last step of a `duration`: for subscribers (a recorder) to receive the last messages before the
 // launch ends. roscpp counts a message sent when it is queued and tells a publisher nothing of a
@@ -72,6 +70,13 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
           },
           [this](const std::string& name) {
             return onStepper([&] { return findBody(world().config(), name); });
+          }),
+      watch_(
+          {private_node_.getNamespace(), start_params_, use_sim_time_, options_.publish_clock},
+          kMasterForgotStatus, [this] { return stopping_.load(); },
+          [this] {
+            exit_status_ = kMasterForgotStatus;
+            ros::requestShutdown();
           }) {
   paused_ = options_.start_paused;
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
@@ -389,60 +394,12 @@ void SimNode::stepLoop() {
   }
 }
 
-// /use_sim_time left true by an earlier launch (playback.launch sets it) and no /clock: this node stamps in
-// simulated time and every node on simulated time waits for a clock that never comes. Said once.
-void SimNode::warnIfNoClock() {
-  if (!use_sim_time_ || options_.publish_clock || !ros::Time::now().isZero()) return;
-  ROS_WARN(
-      "/use_sim_time is true but nothing publishes /clock: this node stamps in simulated time and nodes on "
-      "simulated time stand still (rosparam set /use_sim_time false, or sim.launch use_sim_time:=true to "
-      "have this node publish /clock)");
-}
-
-void SimNode::watchMaster() {
-  const auto started = std::chrono::steady_clock::now();
-  bool clock_checked = false;
-  while (!stopping_ && ros::ok()) {
-    if (!clock_checked && std::chrono::steady_clock::now() - started >= kClockWait) {
-      clock_checked = true;
-      warnIfNoClock();
-    }
-    if (askMaster() == MasterView::Forgot) {
-      // A node shutting down (its duration done, Ctrl-C) unregisters itself: then the master rightly
-      // forgets it, and that is no restart. roscpp marks the shutdown before it unregisters.
-      if (stopping_ || ros::isShuttingDown() || !ros::ok()) return;
-      restoreParameters();
-      ROS_ERROR(
-          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
-          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
-          ros::master::getURI().c_str(), kMasterForgotStatus);
-      exit_status_ = kMasterForgotStatus;
-      ros::requestShutdown();
-      return;
-    }
-    std::unique_lock<std::mutex> lock(watch_mutex_);
-    watch_wake_.wait_for(lock, kWatchPeriod, [this] { return stopping_.load(); });
-  }
-}
-
 void SimNode::stopThreads() {
-  {
-    const std::lock_guard<std::mutex> lock(watch_mutex_);  // the watcher, between its check and its wait
-    stopping_ = true;
-  }
+  stopping_ = true;
   stepper_tasks_.stop();
   servers_.stop();
-  watch_wake_.notify_all();
+  watch_.stop();
   if (stepper_.joinable()) stepper_.join();
-  if (watcher_.joinable()) watcher_.join();
-}
-
-// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
-// so that a respawned node starts on the same config (unless something has set them meanwhile).
-void SimNode::restoreParameters() {
-  if (ros::param::has(private_node_.getNamespace())) return;
-  ros::param::set(private_node_.getNamespace(), start_params_);
-  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
 }
 
 int SimNode::run() {
@@ -452,7 +409,7 @@ int SimNode::run() {
     stepLoop();
     stepper_tasks_.finish();
   });
-  watcher_ = std::thread([this] { watchMaster(); });
+  watch_.start();
   // Once stepping has started: the first states need not wait.
   servers_.startAll([this] {
     return onStepper([this] {

@@ -11,12 +11,9 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -31,6 +28,7 @@
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
+#include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/node_publisher.h"
 #include "rigid_body_sim/ros/node_recorder.h"
 #include "rigid_body_sim/ros/params.h"
@@ -125,13 +123,7 @@ class SimNode {
   void anchor();  // the pace and the wall-clock stamps start from now and the current step
   double wallNow() const;
 
-  // --- Other threads
-  // Every second: does the master still know this node? When a restarted master does not, puts the
-  // parameters this node started from back on it (for the respawned node) and shuts down.
-  void watchMaster();
-  void warnIfNoClock();
-  void stopThreads();  // stops and joins the stepper and the watcher
-  void restoreParameters();
+  void stopThreads();  // stops and joins the stepper and the master watch
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
@@ -160,9 +152,7 @@ class SimNode {
   std::atomic<bool> stopping_{false};
   std::atomic<int> exit_status_{0};
   std::thread stepper_;
-  std::thread watcher_;
-  std::mutex watch_mutex_;  // the watcher's wait, cut short by stopThreads
-  std::condition_variable watch_wake_;
+  MasterWatch watch_;  // a thread of its own
 };
 
 }  // namespace rigid_body_sim
