@@ -4,9 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <type_traits>
-
-#include <std_msgs/Bool.h>
 
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
@@ -26,6 +23,10 @@ constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how ofte
 // subscriber's backlog (docs/performance.md: what a slow subscriber loses).
 constexpr auto kEndWait = std::chrono::milliseconds(500);
 
+double wallNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 // The place of body `name` in `config`, or the number of bodies if it has none.
 std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   std::size_t index = 0;
@@ -35,14 +36,7 @@ std::size_t indexIn(const WorldConfig& config, const std::string& name) {
 
 std::optional<BodyConfig> findBody(const WorldConfig& config, const std::string& name) {
   const std::size_t index = indexIn(config, name);
-  if (index == config.bodies.size()) return std::nullopt;
-  return config.bodies[index];
-}
-
-const BodyConfig& bodyOf(const WorldConfig& config, const std::string& name) {
-  const std::size_t index = indexIn(config, name);
-  if (index == config.bodies.size()) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
-  return config.bodies[index];
+  return index < config.bodies.size() ? std::optional(config.bodies[index]) : std::nullopt;
 }
 
 // The node's run: sampled (published) at publish_rate.
@@ -77,7 +71,14 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
           [this] {
             exit_status_ = kMasterForgotStatus;
             ros::requestShutdown();
-          }) {
+          }),
+      services_(private_node_, {[this](const std::string& kind, const std::string& body,
+                                       const BuildCommand& build) { return change(kind, body, build); },
+                                [this] { return onStepper([this] { return world().config(); }); },
+                                [this](bool paused) { onStepper([&] { setPaused(paused); }); },
+                                [this](std::uint64_t steps, Step::Response& response) {
+                                  onStepper([&] { stepPaused(steps, response); });
+                                }}) {
   paused_ = options_.start_paused;
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
@@ -88,7 +89,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
         std::make_unique<NodeRecorder>(options_.bag, world().config(), world().bodies(), bag,
                                        [this](double t, const std::string& what) { stopRecording(t, what); });
   }
-  advertise();
+  publisher_.publishPaused(paused_);
   publisher_.publishConfig(world());  // before the stepping thread starts
   session_.addSink(publisher_);
   if (recorder_) session_.addSink(*recorder_);
@@ -102,22 +103,8 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
 
 SimNode::~SimNode() { stopThreads(); }
 
-void SimNode::advertise() {
-  namespace names = node_interface;
-  paused_publisher_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
-  publishPaused(paused_);
-  services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
-  services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
-  services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
-  services_.push_back(private_node_.advertiseService(names::kGetConfig, &SimNode::onGetConfig, this));
-  services_.push_back(private_node_.advertiseService(names::kReset, &SimNode::onReset, this));
-  services_.push_back(private_node_.advertiseService(names::kPause, &SimNode::onPause, this));
-  services_.push_back(private_node_.advertiseService(names::kUnpause, &SimNode::onUnpause, this));
-  services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
-}
-
-SimNode::Answer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
-  Answer answer = onStepper([&] { return applyHere(kind, body, build); });
+ChangeAnswer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
+  ChangeAnswer answer = onStepper([&] { return applyHere(kind, body, build); });
   if (!answer.accepted) ROS_WARN_STREAM(answer.why);
   if (!answer.command) return answer;
   servers_.follow(*answer.command);
@@ -125,9 +112,8 @@ SimNode::Answer SimNode::change(const std::string& kind, const std::string& body
   return answer;
 }
 
-SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& body,
-                                   const BuildCommand& build) {
-  Answer answer;
+ChangeAnswer SimNode::applyHere(const std::string& kind, const std::string& body, const BuildCommand& build) {
+  ChangeAnswer answer;
   std::size_t index = 0;  // the command's body's, before it
   try {
     answer.command = build(world());
@@ -168,17 +154,18 @@ void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
 
 // A request to a body's server that changes nothing (the server's first call, a dynparam set of the same
 // values) is no command; a drop in rviz always is one.
-SimNode::Answer SimNode::reconfigure(const std::string& name,
-                                     const ReconfigureServers::Reconfigured& reconfigured,
-                                     bool unchanged_is_none) {
+ChangeAnswer SimNode::reconfigure(const std::string& name,
+                                  const ReconfigureServers::Reconfigured& reconfigured,
+                                  bool unchanged_is_none) {
   return change(toString(WorldCommand::Kind::Reconfigure), name,
                 [&](const World& world) -> std::optional<WorldCommand> {
-                  const BodyConfig& before = bodyOf(world.config(), name);
+                  const auto before = findBody(world.config(), name);
+                  if (!before) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
                   WorldCommand command;
                   command.kind = WorldCommand::Kind::Reconfigure;
                   command.body = name;
-                  command.config = reconfigured(before);
-                  if (unchanged_is_none && toYaml(command.config) == toYaml(before)) return std::nullopt;
+                  command.config = reconfigured(*before);
+                  if (unchanged_is_none && toYaml(command.config) == toYaml(*before)) return std::nullopt;
                   return command;
                 });
 }
@@ -190,87 +177,15 @@ bool SimNode::onDrop(const std::string& body, const std::map<std::string, double
   const auto dropped = [&](const BodyConfig& running) {
     return ReconfigureServers::withKeys(running, initial);
   };
-  const Answer answer = reconfigure(body, dropped, false);
+  const ChangeAnswer answer = reconfigure(body, dropped, false);
   if (why) *why = answer.why;
   return answer.accepted;
 }
 
-template <class Response>
-bool SimNode::answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
-                            Response& response) {
-  const Answer answer = change(toString(kind), body, [&](const World&) {
-    WorldCommand command;
-    command.kind = kind;
-    command.body = body;
-    fill(command);
-    return std::optional(command);
-  });
-  response.success = answer.accepted;
-  response.message = answer.why;
-  if constexpr (std::is_same_v<Response, Spawn::Response>) response.t = answer.t;
-  return true;
-}
-
-bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
-  const auto body = [&](WorldCommand& command) {
-    command.config = parseBodyText(request.name, request.body);
-  };
-  return answerService(WorldCommand::Kind::Spawn, request.name, body, response);
-}
-
-bool SimNode::onDelete(Delete::Request& request, Delete::Response& response) {
-  const auto nothing_more = [](WorldCommand&) {};
-  return answerService(WorldCommand::Kind::Delete, request.name, nothing_more, response);
-}
-
-bool SimNode::onSetState(SetState::Request& request, SetState::Response& response) {
-  const auto state = [&](WorldCommand& command) {
-    command.state = parseStateText(request.name, request.state);
-  };
-  return answerService(WorldCommand::Kind::SetState, request.name, state, response);
-}
-
-bool SimNode::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
-  response.yaml = toYaml(onStepper([this] { return world().config(); }));
-  return true;
-}
-
-bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  change(toString(WorldCommand::Kind::Reset), "", [](const World&) {
-    WorldCommand command;
-    command.kind = WorldCommand::Kind::Reset;
-    return std::optional(command);
-  });
-  return true;
-}
-
-bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  onStepper([this] {
-    paused_ = true;
-    publishPaused(true);
-  });
-  return true;
-}
-
-void SimNode::publishPaused(bool paused) {
-  std_msgs::Bool message;
-  message.data = paused;
-  paused_publisher_.publish(message);
-}
-
-bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  onStepper([this] {
-    paused_ = false;
-    publishPaused(false);
-    anchor();
-  });
-  return true;
-}
-
-bool SimNode::onStep(Step::Request& request, Step::Response& response) {
-  onStepper([&] { stepPaused(request.steps, response); });
-  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
-  return true;
+void SimNode::setPaused(bool paused) {
+  paused_ = paused;
+  publisher_.publishPaused(paused);
+  if (!paused) anchor();
 }
 
 void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
@@ -297,10 +212,6 @@ void SimNode::serveTasksFor(std::chrono::milliseconds wait) {
     stepper_tasks_.waitFor(until);
   }
   stepper_tasks_.runPending();
-}
-
-double SimNode::wallNow() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // The pace and the stamps start from now and the current step: stepping starts or resumes.
@@ -339,15 +250,14 @@ void SimNode::waitForStart() {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                              std::chrono::duration<double>(options_.start_delay));
-  const auto subscribed = [this] { return publisher_.subscribed(); };
   while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
     stepper_tasks_.runPending();
-    if (options_.start_on_subscribers && subscribed()) return;
+    if (options_.start_on_subscribers && publisher_.subscribed()) return;
     // Subscriptions arrive on the spinner's thread, which does not wake this one: look again soon.
     stepper_tasks_.waitFor(
         std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
   }
-  if (options_.start_on_subscribers && !stopping_ && !subscribed()) {
+  if (options_.start_on_subscribers && !stopping_ && !publisher_.subscribed()) {
     ROS_WARN(
         "stepping starts after start_delay (%s s) although not every state topic and /tf has a subscriber: "
         "a recorder misses the first states",
@@ -411,13 +321,7 @@ int SimNode::run() {
   });
   watch_.start();
   // Once stepping has started: the first states need not wait.
-  servers_.startAll([this] {
-    return onStepper([this] {
-      std::vector<std::string> names;
-      for (const auto& body : world().bodies()) names.push_back(body.name);
-      return names;
-    });
-  });
+  servers_.startAll([this] { return onStepper([this] { return world().config(); }); });
   // The stepper runs until roscpp shuts down (Ctrl-C, the duration done, a forgetful master): waiting for
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();

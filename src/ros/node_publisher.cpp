@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <rosgraph_msgs/Clock.h>
+#include <std_msgs/Bool.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include "rigid_body_sim/core/node_interface.h"
@@ -65,6 +66,7 @@ NodePublisher::NodePublisher(ros::NodeHandle node, ros::NodeHandle private_node,
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
   commands_ = private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
+  paused_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
   for (const auto& body : world.bodies()) advertiseState(body);
 }
 
@@ -99,6 +101,12 @@ void NodePublisher::publishConfig(const World& world) {
   start.kind = WorldCommand::Kind::Config;
   start.world = world.config();
   commands_.publish(toMessage(start, 0, world.time(), stampOf(world.time()), world.config().world_frame));
+}
+
+void NodePublisher::publishPaused(bool paused) {
+  std_msgs::Bool message;
+  message.data = paused;
+  paused_.publish(message);
 }
 
 // A reset or a ~step publishes the current time once more: not on /clock.

@@ -60,9 +60,9 @@ void ReconfigureServers::defer(std::function<void()> work) {
                                              reinterpret_cast<std::uint64_t>(this));
 }
 
-void ReconfigureServers::startAll(std::function<std::vector<std::string>()> names) {
-  defer([this, names = std::move(names)] {
-    for (auto& name : names()) waiting_.push_back(std::move(name));
+void ReconfigureServers::startAll(std::function<WorldConfig()> config) {
+  defer([this, config = std::move(config)] {
+    for (const auto& body : config().bodies) waiting_.push_back(body.name);
     startNext();
   });
 }

@@ -95,7 +95,7 @@ TEST(ReconfigureServers, ServeEachBodyAndFollowTheWorld) {
   std::vector<std::string> names;
   for (const auto& body : config.bodies) names.push_back(body.name);
   ASSERT_EQ(names.back(), "bowler");
-  servers.startAll([names] { return names; });
+  servers.startAll([config] { return config; });
   ASSERT_TRUE(ros::service::waitForService("/sim/bowler/set_parameters", 20000)) << "the last body's server";
   for (const auto& name : names) EXPECT_EQ(served(name), name != "ring") << name;
   // A server's service comes before its first callback.

@@ -1,36 +1,30 @@
 // sim_node: a ROS adapter around a Session (run/session.h) of the core World; physics and validation stay in
-// the core and the config loader, the order of steps, samples and commands in the Session.
+// the core and the config loader, the order of steps, samples and commands in the Session. Its parts: the
+// topics (ros/node_publisher.h) and the ~bag recording (ros/node_recorder.h) are the Session's sinks; the
+// services (ros/node_services.h), the reconfigure servers (ros/reconfigure_servers.h), the master watch
+// (ros/master_watch.h). The node holds the stepping thread and the one path for every change.
 //
-// Threads. The stepping thread owns the session, the publishers of what it hands out and the recorder: it
-// steps at the pace, publishes, and between two publishing instants runs the work handed to it. Every
-// callback (services, reconfigure servers, interactive markers, timers) runs on the one spinner thread: it
-// hands its change of the world to the stepping thread (onStepper) and waits for the answer; then, on the
-// spinner thread, the reconfigure servers and the interactive markers follow (the stepping thread never
-// touches them). No lock guards the world, so no lock order exists (run/task_queue.h).
+// Threads. The stepping thread owns the session and its sinks: it steps at the pace, publishes, and between
+// two publishing instants runs the work handed to it. Every callback (services, reconfigure servers,
+// interactive markers, timers) runs on the one spinner thread: it hands its change of the world to the
+// stepping thread (onStepper) and waits for the answer; then, on the spinner thread, the reconfigure servers
+// and the interactive markers follow. No lock guards the world, so no lock order exists (run/task_queue.h).
 #pragma once
 
 #include <atomic>
 #include <chrono>
-#include <functional>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <thread>
-#include <vector>
 
 #include <ros/ros.h>
-#include <std_srvs/Empty.h>
 
-#include "rigid_body_sim/Delete.h"
-#include "rigid_body_sim/GetConfig.h"
-#include "rigid_body_sim/SetState.h"
-#include "rigid_body_sim/Spawn.h"
-#include "rigid_body_sim/Step.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
 #include "rigid_body_sim/ros/master_watch.h"
 #include "rigid_body_sim/ros/node_publisher.h"
 #include "rigid_body_sim/ros/node_recorder.h"
+#include "rigid_body_sim/ros/node_services.h"
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/reconfigure_servers.h"
 #include "rigid_body_sim/run/finite_guard.h"
@@ -56,52 +50,20 @@ class SimNode {
   int run();
 
  private:
-  // A change of the world as the stepping thread answers it.
-  struct Answer {
-    bool accepted = false;
-    std::string why;  // "ok", or the one refusal line
-    double t = 0.0;   // the simulated time it applied at (its ~commands entry's t), or then
-    std::optional<WorldCommand> command;  // as applied; none for a request that changes nothing
-    WorldConfig config;                   // the world's after it
-  };
-  // Makes the command of a change from the running world: none if it changes nothing; a ConfigError is its
-  // refusal.
-  using BuildCommand = std::function<std::optional<WorldCommand>(const World& world)>;
-
-  void advertise();
-  // --- The one way to change the running world, from any callback: the services, the reconfigure servers,
-  // the interactive markers. On the stepping thread: `build` makes the command from the running world and
-  // Session::apply applies it (a publishing instant not yet published first, then the command at the current
-  // step, logged (INFO) and published on ~commands); what depends on the world follows (state topics, the
-  // guard, static TF, markers, the recorder). Then, on the caller's thread: the reconfigure servers and the
-  // interactive markers. A refusal: one WARN line, the same line in the answer; nothing changes and nothing
-  // is published on ~commands.
-  Answer change(const std::string& kind, const std::string& body, const BuildCommand& build);
-  Answer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
-  // After an accepted command, on the stepping thread: the guard follows the world (the sinks have). `index`
-  // is the command's body's place in the world before it.
+  // --- The one way to change the running world, from any callback (services, reconfigure servers,
+  // interactive markers). On the stepping thread (applyHere): `build` makes the command from the running
+  // world, Session::apply applies it and its sinks follow, then the guard. Then, on the caller's thread: the
+  // reconfigure servers and the interactive markers. A refusal: one WARN line, the same in the answer.
+  ChangeAnswer change(const std::string& kind, const std::string& body, const BuildCommand& build);
+  ChangeAnswer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
+  // After an accepted command: the guard follows the world. `index`: the body's place before it.
   void followWorld(const WorldCommand& command, std::size_t index);
   // A reconfigure of body `name` from its server (`unchanged_is_none`: a request that changes nothing is
   // no command) or from a drop in rviz.
-  Answer reconfigure(const std::string& name, const ReconfigureServers::Reconfigured& reconfigured,
-                     bool unchanged_is_none);
-  // A service's change of one body: `fill` puts in what the request brings (a ConfigError refuses it); the
-  // response says whether it applied, the one line if not, and (~spawn) the time it applied at.
-  using FillCommand = std::function<void(WorldCommand& command)>;
-  template <class Response>
-  bool answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
-                     Response& response);
-  bool onSpawn(Spawn::Request& request, Spawn::Response& response);
-  bool onDelete(Delete::Request& request, Delete::Response& response);
-  bool onSetState(SetState::Request& request, SetState::Response& response);
-  bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
-  // Initial conditions dropped in rviz: a reconfigure of those keys, a change like any other.
+  ChangeAnswer reconfigure(const std::string& name, const ReconfigureServers::Reconfigured& reconfigured,
+                           bool unchanged_is_none);
   bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
-  bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  void publishPaused(bool paused);  // on ~paused
-  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onStep(Step::Request& request, Step::Response& response);
+  void setPaused(bool paused);  // ~pause and ~unpause, on the stepping thread
   void stepPaused(std::uint64_t steps, Step::Response& response);  // on the stepping thread
 
   // Runs `work` on the stepping thread between two publishing instants and returns its result.
@@ -113,15 +75,13 @@ class SimNode {
 
   // --- The stepping thread
   void stepLoop();
-  // The step hook, after every step: holds a body that became non-finite at its last finite state (the
-  // one error about it), then the step's events (DEBUG).
+  // The step hook: the NaN guard (one ERROR line a held body), then the step's events (DEBUG).
   void afterStep(World& world);
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
   void stopRecording(double t, const std::string& what);
   const World& world() const { return session_.world(); }  // on the stepping thread
   void anchor();  // the pace and the wall-clock stamps start from now and the current step
-  double wallNow() const;
 
   void stopThreads();  // stops and joins the stepper and the master watch
 
@@ -142,8 +102,6 @@ class SimNode {
   bool use_sim_time_;
   NodePublisher publisher_;                 // the session's first sink: the node's topics
   std::unique_ptr<NodeRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
-  ros::Publisher paused_publisher_;         // ~paused: true from ~pause (or start_paused) until ~unpause
-  std::vector<ros::ServiceServer> services_;
 
   // Owned by the spinner thread:
   ReconfigureServers servers_;                        // ~<body>: each body's keys
@@ -152,7 +110,8 @@ class SimNode {
   std::atomic<bool> stopping_{false};
   std::atomic<int> exit_status_{0};
   std::thread stepper_;
-  MasterWatch watch_;  // a thread of its own
+  MasterWatch watch_;      // a thread of its own
+  NodeServices services_;  // their callbacks on the spinner thread
 };
 
 }  // namespace rigid_body_sim

@@ -37,6 +37,7 @@ class NodePublisher : public SampleSink {
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
 
   void publishConfig(const World& world);  // ~commands' entry 0, the world at the start
+  void publishPaused(bool paused);         // ~paused (latched)
   void publishClock(const World& world);   // only forward: /clock never repeats a time
   void publishScene(const World& world);   // /tf_static, then ~scene (latched): when stepping starts
   // The trail up to now and the labels on ~markers off the marker period (the end of a ~step).
@@ -80,6 +81,7 @@ class NodePublisher : public SampleSink {
   double time_anchor_ = 0.0;        // s
 
   ros::Publisher commands_;
+  ros::Publisher paused_;
   CountedPublisher markers_;
   ros::Publisher scene_;
   ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined

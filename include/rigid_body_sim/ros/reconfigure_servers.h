@@ -23,6 +23,7 @@
 #include "rigid_body_sim/RodReconfigureConfig.h"
 #include "rigid_body_sim/RollerReconfigureConfig.h"
 #include "rigid_body_sim/core/command.h"
+#include "rigid_body_sim/core/parameters.h"
 
 namespace rigid_body_sim {
 
@@ -43,8 +44,9 @@ class ReconfigureServers {
   ReconfigureServers(const ReconfigureServers&) = delete;
   ReconfigureServers& operator=(const ReconfigureServers&) = delete;
 
-  // Behind the callbacks waiting: a server for each body `names()` gives then, one per callback.
-  void startAll(std::function<std::vector<std::string>()> names);
+  // Behind the callbacks waiting: a server for each body of the world `config()` gives then, one per
+  // callback.
+  void startAll(std::function<WorldConfig()> config);
   void stop();  // no server starts from now on (the node shuts down)
 
   // After an accepted command: a spawned body's server starts, a deleted one's goes, a reconfigured one
