@@ -75,7 +75,7 @@ class SimNode {
 
   // --- The stepping thread
   void stepLoop();
-  // The step hook: the NaN guard (one ERROR line a held body), then the step's events (DEBUG).
+  // The step hook: the NaN guard (one ERROR line per body it holds), then the step's events (DEBUG).
   void afterStep(World& world);
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
