@@ -4,52 +4,28 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <type_traits>
-
-#include <ros/callback_queue.h>
-#include <boost/make_shared.hpp>
-
-#include <rosgraph_msgs/Clock.h>
-#include <std_msgs/Bool.h>
 
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/io/config_writer.h"
-#include "rigid_body_sim/ros/command_log.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
-#include "rigid_body_sim/ros/reconfigure.h"
 #include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
 
 namespace {
 
-// Room for the samples of a run as fast as possible to wait for a slow subscriber instead of being dropped.
-constexpr std::uint32_t kStateQueue = 10000;
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
-// ~commands keeps every change for a slow subscriber (a recorder): none may be dropped.
-constexpr std::uint32_t kCommandQueue = 100000;
-constexpr auto kWatchPeriod = std::chrono::seconds(1);       // how often the master is asked
-constexpr auto kClockWait = std::chrono::seconds(2);         // for a /clock when /use_sim_time is true
 constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
 // After the last step of a `duration`: for subscribers (a recorder) to receive the last messages before the
 // launch ends. roscpp counts a message sent when it is queued and tells a publisher nothing of a
 // subscriber's backlog (docs/performance.md: what a slow subscriber loses).
 constexpr auto kEndWait = std::chrono::milliseconds(500);
 
-// A callback on the spinner thread's queue, behind those waiting.
-class Deferred : public ros::CallbackInterface {
- public:
-  explicit Deferred(std::function<void()> work) : work_(std::move(work)) {}
-  CallResult call() override {
-    work_();
-    return Success;
-  }
-
- private:
-  std::function<void()> work_;
-};
+double wallNow() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // The place of body `name` in `config`, or the number of bodies if it has none.
 std::size_t indexIn(const WorldConfig& config, const std::string& name) {
@@ -58,26 +34,9 @@ std::size_t indexIn(const WorldConfig& config, const std::string& name) {
   return index;
 }
 
-const BodyConfig& bodyOf(const WorldConfig& config, const std::string& name) {
+std::optional<BodyConfig> findBody(const WorldConfig& config, const std::string& name) {
   const std::size_t index = indexIn(config, name);
-  if (index == config.bodies.size()) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
-  return config.bodies[index];
-}
-
-// A body's config with some numeric keys set as a reconfigure request would set them (the same parsing).
-template <class Config>
-Config withReconfigured(const std::string& body, const Config& current,
-                        const std::map<std::string, double>& keys) {
-  auto request = toReconfigure(current);
-  dynamic_reconfigure::Config asked;
-  for (const auto& [key, value] : keys) {
-    dynamic_reconfigure::DoubleParameter parameter;
-    parameter.name = key;
-    parameter.value = value;
-    asked.doubles.push_back(parameter);
-  }
-  request.__fromMessage__(asked);
-  return fromReconfigure(body, request, current);
+  return index < config.bodies.size() ? std::optional(config.bodies[index]) : std::nullopt;
 }
 
 // The node's run: sampled (published) at publish_rate.
@@ -95,34 +54,45 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       session_(sessionOf(parseNodeConfig(start_params_))),
       after_step_([this](World& world) { afterStep(world); }),
       guard_(world().bodies()),
-      steps_per_markers_(
-          session_.stepsPerSample() *
-          std::max<std::int64_t>(1, std::llround(world().config().publish_rate /
-                                                 markerRate(options_, world().config().publish_rate)))),
-      pacer_(world().rate(), options_.real_time_factor) {
-  use_sim_time_ = ros::param::param("/use_sim_time", false);
-  anchor();  // for anything published before stepping starts (a ~reset during start_delay)
+      pacer_(world().rate(), options_.real_time_factor),
+      use_sim_time_(ros::param::param("/use_sim_time", false)),
+      publisher_(node_, private_node_, options_, world(), use_sim_time_, stepper_tasks_),
+      servers_(
+          private_node_,
+          [this](const std::string& name, const ReconfigureServers::Reconfigured& reconfigured) {
+            return findBody(reconfigure(name, reconfigured, true).config, name);
+          },
+          [this](const std::string& name) {
+            return onStepper([&] { return findBody(world().config(), name); });
+          }),
+      watch_(
+          {private_node_.getNamespace(), start_params_, use_sim_time_, options_.publish_clock},
+          kMasterForgotStatus, [this] { return stopping_.load(); },
+          [this] {
+            exit_status_ = kMasterForgotStatus;
+            ros::requestShutdown();
+          }),
+      services_(private_node_, {[this](const std::string& kind, const std::string& body,
+                                       const BuildCommand& build) { return change(kind, body, build); },
+                                [this] { return onStepper([this] { return world().config(); }); },
+                                [this](bool paused) { onStepper([&] { setPaused(paused); }); },
+                                [this](std::uint64_t steps, Step::Response& response) {
+                                  onStepper([&] { stepPaused(steps, response); });
+                                }}) {
   paused_ = options_.start_paused;
-  const MarkerOptions trail{options_.trail_length, markerRate(options_, world().config().publish_rate),
-                            options_.label_critical_angles};
-  snapshots_ = std::make_unique<SnapshotBuilder>(world().config().world_frame, options_.frame_prefix,
-                                                 world().bodies(), trail);
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
   if (!options_.bag.empty()) {
-    try {
-      recorder_ = std::make_unique<BagRecorder>(options_.bag, world().config(), world().bodies(),
-                                                private_node_.getNamespace(), options_.frame_prefix);
-    } catch (const rosbag::BagException& error) {
-      throw ConfigError("cannot write the bag '" + options_.bag + "': " + error.what());
-    }
+    const BagOptions bag{private_node_.getNamespace(), options_.frame_prefix,
+                         markerOptions(options_, world().config().publish_rate)};
+    recorder_ =
+        std::make_unique<NodeRecorder>(options_.bag, world().config(), world().bodies(), bag,
+                                       [this](double t, const std::string& what) { stopRecording(t, what); });
   }
-  advertise();
-  WorldCommand start;
-  start.kind = WorldCommand::Kind::Config;
-  start.world = world().config();
-  publishCommand(start, 0);  // before the stepping thread starts
-  session_.addSink(publication_);
+  publisher_.publishPaused(paused_);
+  publisher_.publishConfig(world());  // before the stepping thread starts
+  session_.addSink(publisher_);
+  if (recorder_) session_.addSink(*recorder_);
   interactive_ = std::make_unique<InteractiveControls>(
       private_node_.resolveName(node_interface::kInteractive), options_.frame_prefix,
       [this](const std::string& body, const std::map<std::string, double>& initial, std::string* why) {
@@ -131,149 +101,25 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
   interactive_->show(world().config());
 }
 
-SimNode::~SimNode() {
-  stopThreads();
-  ros::getGlobalCallbackQueue()->removeByID(reinterpret_cast<std::uint64_t>(this));
-}
+SimNode::~SimNode() { stopThreads(); }
 
-template <class Message>
-SimNode::CountedPublisher SimNode::advertiseCounted(ros::NodeHandle& node, const std::string& topic,
-                                                    std::uint32_t queue) {
-  auto count = std::make_shared<std::atomic<int>>(0);
-  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
-  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
-  return {node.advertise<Message>(topic, queue, connected, disconnected), std::move(count)};
-}
-
-void SimNode::advertise() {
-  namespace names = node_interface;
-  marker_publisher_ = advertiseCounted<visualization_msgs::MarkerArray>(private_node_, names::kMarkers, 10);
-  tf_publisher_ = advertiseCounted<tf2_msgs::TFMessage>(node_, "/tf", 100);
-  // A viewer gets the latched scene as it subscribes, and the scene once more a second or two later: rviz
-  // drops for good a marker of stamp 0 whose frame's first transform comes in the instant it looks for it
-  // (tf2's transformable request sees "the transform is older than the cache" for stamp 0). By then it
-  // has the transforms, and the second copy is drawn whatever happened to the first.
-  scene_publisher_ = private_node_.advertise<visualization_msgs::MarkerArray>(
-      names::kScene, 1, [this](const ros::SingleSubscriberPublisher&) { scene_viewer_joined_ = true; },
-      ros::SubscriberStatusCallback(), ros::VoidConstPtr(), true);
-  scene_resend_timer_ =
-      private_node_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
-        const bool due = scene_resend_due_.exchange(false);
-        if (scene_viewer_joined_.exchange(false)) scene_resend_due_ = true;
-        if (due)
-          stepper_tasks_.post([this] { scene_publisher_.publish(snapshots_->scene().sceneMarkers()); });
-      });
-  if (options_.publish_clock) clock_publisher_ = node_.advertise<rosgraph_msgs::Clock>("/clock", 10, true);
-  if (node_.getNamespace() != "/") {
-    namespace_tf_ = advertiseCounted<tf2_msgs::TFMessage>(node_, names::kNamespaceTf, 100);
-    namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
-  }
-  command_publisher_ =
-      private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
-  paused_publisher_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
-  publishPaused(paused_);
-  for (const auto& body : world().bodies()) advertiseState(body);
-  services_.push_back(private_node_.advertiseService(names::kSpawn, &SimNode::onSpawn, this));
-  services_.push_back(private_node_.advertiseService(names::kDelete, &SimNode::onDelete, this));
-  services_.push_back(private_node_.advertiseService(names::kSetState, &SimNode::onSetState, this));
-  services_.push_back(private_node_.advertiseService(names::kGetConfig, &SimNode::onGetConfig, this));
-  services_.push_back(private_node_.advertiseService(names::kReset, &SimNode::onReset, this));
-  services_.push_back(private_node_.advertiseService(names::kPause, &SimNode::onPause, this));
-  services_.push_back(private_node_.advertiseService(names::kUnpause, &SimNode::onUnpause, this));
-  services_.push_back(private_node_.advertiseService(names::kStep, &SimNode::onStep, this));
-}
-
-void SimNode::advertiseState(const Body& body) {
-  const std::string topic = node_interface::stateTopic(body.name);
-  state_publishers_.push_back(kindOf(body) == BodyKind::Rod
-                                  ? advertiseCounted<RodState>(private_node_, topic, kStateQueue)
-                                  : advertiseCounted<RollerState>(private_node_, topic, kStateQueue));
-}
-
-void SimNode::defer(std::function<void()> work) {
-  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<Deferred>(std::move(work)),
-                                             reinterpret_cast<std::uint64_t>(this));
-}
-
-void SimNode::startReconfigureServers() {
-  for (const auto& body : onStepper([this] { return world().config().bodies; })) {
-    bodies_without_server_.push_back(body.name);
-  }
-  startNextReconfigureServer();
-}
-
-void SimNode::startNextReconfigureServer() {
-  while (!bodies_without_server_.empty() && ros::ok() && !stopping_) {
-    const std::string name = bodies_without_server_.front();
-    bodies_without_server_.pop_front();
-    if (servers_.count(name)) continue;
-    const auto body = onStepper([&]() -> std::optional<BodyConfig> {
-      const std::size_t index = indexIn(world().config(), name);
-      if (index == world().config().bodies.size()) return std::nullopt;
-      return world().config().bodies[index];
-    });
-    if (!body) continue;
-    startReconfigureServer(*body);
-    defer([this] { startNextReconfigureServer(); });
-    return;
-  }
-}
-
-// The body's values go to its server before its callback is set, so that they win over the .cfg defaults;
-// the first callback then finds nothing to change.
-void SimNode::startReconfigureServer(const BodyConfig& body) {
-  const ros::NodeHandle body_node(private_node_, body.name);
-  BodyServer& server = servers_[body.name];
-  const std::string name = body.name;
-  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    server.rod = std::make_unique<RodServer>(servers_mutex_, body_node);
-    server.rod->updateConfig(toReconfigure(*rod));
-    server.rod->setCallback(
-        [this, name](RodReconfigureConfig& request, uint32_t) { onReconfigure<RodConfig>(name, request); });
-  } else {
-    server.roller = std::make_unique<RollerServer>(servers_mutex_, body_node);
-    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(body.config)));
-    server.roller->setCallback([this, name](RollerReconfigureConfig& request, uint32_t) {
-      onReconfigure<RollerConfig>(name, request);
-    });
-  }
-}
-
-// A request that changes nothing (the server's first call, a dynparam set of the same values) is no
-// command. The request is rewritten to what runs, so that the server shows the truth.
-template <class Config, class Request>
-void SimNode::onReconfigure(const std::string& name, Request& request) {
-  const auto reconfigure = [&](const World& world) -> std::optional<WorldCommand> {
-    const BodyConfig& before = bodyOf(world.config(), name);
-    WorldCommand command;
-    command.kind = WorldCommand::Kind::Reconfigure;
-    command.body = name;
-    command.config = {name, fromReconfigure(name, request, std::get<Config>(before.config))};
-    if (toYaml(command.config) == toYaml(before)) return std::nullopt;
-    return command;
-  };
-  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), name, reconfigure);
-  const std::size_t index = indexIn(answer.config, name);
-  if (index < answer.config.bodies.size())
-    request = toReconfigure(std::get<Config>(answer.config.bodies[index].config));
-}
-
-SimNode::Answer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
-  Answer answer = onStepper([&] { return applyHere(kind, body, build); });
+ChangeAnswer SimNode::change(const std::string& kind, const std::string& body, const BuildCommand& build) {
+  ChangeAnswer answer = onStepper([&] { return applyHere(kind, body, build); });
   if (!answer.accepted) ROS_WARN_STREAM(answer.why);
-  followWorldServers(answer);
+  if (!answer.command) return answer;
+  servers_.follow(*answer.command);
+  if (interactive_) interactive_->show(answer.config);  // the handles where the bodies now start
   return answer;
 }
 
-SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& body,
-                                   const BuildCommand& build) {
-  Answer answer;
+ChangeAnswer SimNode::applyHere(const std::string& kind, const std::string& body, const BuildCommand& build) {
+  ChangeAnswer answer;
   std::size_t index = 0;  // the command's body's, before it
   try {
     answer.command = build(world());
     if (answer.command) {
       index = indexIn(world().config(), answer.command->body);
-      // The pending publishing instant, the command, then publication_.applied.
+      // The pending publishing instant, the command, then the sinks' applied.
       session_.apply(*answer.command);
     }
   } catch (const ConfigError& error) {
@@ -289,166 +135,57 @@ SimNode::Answer SimNode::applyHere(const std::string& kind, const std::string& b
   return answer;
 }
 
-void SimNode::Publication::write(const World&) { node_.publishStates(); }
-
-void SimNode::Publication::applied(const WorldCommand& command, std::size_t index, const World& world) {
-  ROS_INFO_STREAM(toString(command.kind)
-                  << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
-                  << " (t = " << formatNumber(world.time()) << " s)");
-  node_.publishCommand(command, index);
-}
-
-void SimNode::publishCommand(const WorldCommand& command, std::size_t index) {
-  const auto message = toMessage(command, static_cast<std::uint32_t>(index), world().time(),
-                                 stampOf(world().time()), world().config().world_frame);
-  command_publisher_.publish(message);
-  // The recorder wrote the config (seq 0) when it opened, as simulate --bag does.
-  if (index > 0) record([&](BagRecorder& recorder) { recorder.writeCommand(message); });
-}
-
 void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
   switch (command.kind) {
-    case WorldCommand::Kind::Spawn:
-      advertiseState(world().bodies().back());
-      guard_.add(world().bodies().back());
-      rebuildScene();
-      return;
-    case WorldCommand::Kind::Delete:
-      state_publishers_.erase(state_publishers_.begin() + static_cast<std::ptrdiff_t>(index));
-      guard_.remove(index);
-      rebuildScene();
-      return;
+    case WorldCommand::Kind::Spawn: guard_.add(world().bodies().back()); return;
+    case WorldCommand::Kind::Delete: guard_.remove(index); return;
     case WorldCommand::Kind::Reconfigure:
     case WorldCommand::Kind::SetState:
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
       guard_.release(index, world().bodies()[index]);
-      // Any key may change the look (a rod's length, a slope, a radius): the scene knows which do, and
-      // sends only what changed, as the recorder of simulate --bag does.
-      if (command.kind == WorldCommand::Kind::Reconfigure) rebuildScene();
       return;
     case WorldCommand::Kind::Reset:
       session_.takeEvents();
       guard_.releaseAll(world().bodies());
-      // Trails start anew: the viewer drops the old ones.
-      snapshots_->scene().clearTrails();
-      if (markers_watched_)
-        marker_publisher_.publisher.publish(snapshots_->scene().clearMarkers(stampOf(world().time())));
       return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
 }
 
-void SimNode::followWorldServers(const Answer& answer) {
-  if (!answer.command) return;
-  const WorldCommand& command = *answer.command;
-  if (command.kind == WorldCommand::Kind::Spawn) startReconfigureServer(command.config);
-  if (command.kind == WorldCommand::Kind::Delete) servers_.erase(command.body);
-  const auto server = servers_.find(command.body);  // none yet: it will start with the values that run then
-  if (command.kind == WorldCommand::Kind::Reconfigure && server != servers_.end()) {
-    if (server->second.rod)
-      server->second.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
-    if (server->second.roller)
-      server->second.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
-  }
-  if (interactive_) interactive_->show(answer.config);  // the handles where the bodies now start
+// A request to a body's server that changes nothing (the server's first call, a dynparam set of the same
+// values) is no command; a drop in rviz always is one.
+ChangeAnswer SimNode::reconfigure(const std::string& name,
+                                  const ReconfigureServers::Reconfigured& reconfigured,
+                                  bool unchanged_is_none) {
+  return change(toString(WorldCommand::Kind::Reconfigure), name,
+                [&](const World& world) -> std::optional<WorldCommand> {
+                  const auto before = findBody(world.config(), name);
+                  if (!before) throw ConfigError(name, "name", "'" + name + "'", "a body of the world");
+                  WorldCommand command;
+                  command.kind = WorldCommand::Kind::Reconfigure;
+                  command.body = name;
+                  command.config = reconfigured(*before);
+                  if (unchanged_is_none && toYaml(command.config) == toYaml(*before)) return std::nullopt;
+                  return command;
+                });
 }
 
 // A drop in rviz is a reconfigure of the body's initial keys: the same validation, the same one line when
 // refused, the same log, and the server then shows what runs (as dynparam and the panel see it).
 bool SimNode::onDrop(const std::string& body, const std::map<std::string, double>& initial,
                      std::string* why) {
-  const Answer answer = change(toString(WorldCommand::Kind::Reconfigure), body,
-                               [&](const World& world) -> std::optional<WorldCommand> {
-                                 WorldCommand command;
-                                 command.kind = WorldCommand::Kind::Reconfigure;
-                                 command.body = body;
-                                 const auto reconfigured = [&](const auto& config) {
-                                   return BodyConfig{body, withReconfigured(body, config, initial)};
-                                 };
-                                 command.config =
-                                     std::visit(reconfigured, bodyOf(world.config(), body).config);
-                                 return command;
-                               });
+  const auto dropped = [&](const BodyConfig& running) {
+    return ReconfigureServers::withKeys(running, initial);
+  };
+  const ChangeAnswer answer = reconfigure(body, dropped, false);
   if (why) *why = answer.why;
   return answer.accepted;
 }
 
-template <class Response>
-bool SimNode::answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
-                            Response& response) {
-  const Answer answer = change(toString(kind), body, [&](const World&) {
-    WorldCommand command;
-    command.kind = kind;
-    command.body = body;
-    fill(command);
-    return std::optional(command);
-  });
-  response.success = answer.accepted;
-  response.message = answer.why;
-  if constexpr (std::is_same_v<Response, Spawn::Response>) response.t = answer.t;
-  return true;
-}
-
-bool SimNode::onSpawn(Spawn::Request& request, Spawn::Response& response) {
-  const auto body = [&](WorldCommand& command) {
-    command.config = parseBodyText(request.name, request.body);
-  };
-  return answerService(WorldCommand::Kind::Spawn, request.name, body, response);
-}
-
-bool SimNode::onDelete(Delete::Request& request, Delete::Response& response) {
-  const auto nothing_more = [](WorldCommand&) {};
-  return answerService(WorldCommand::Kind::Delete, request.name, nothing_more, response);
-}
-
-bool SimNode::onSetState(SetState::Request& request, SetState::Response& response) {
-  const auto state = [&](WorldCommand& command) {
-    command.state = parseStateText(request.name, request.state);
-  };
-  return answerService(WorldCommand::Kind::SetState, request.name, state, response);
-}
-
-bool SimNode::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
-  response.yaml = toYaml(onStepper([this] { return world().config(); }));
-  return true;
-}
-
-bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  change(toString(WorldCommand::Kind::Reset), "", [](const World&) {
-    WorldCommand command;
-    command.kind = WorldCommand::Kind::Reset;
-    return std::optional(command);
-  });
-  return true;
-}
-
-bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  onStepper([this] {
-    paused_ = true;
-    publishPaused(true);
-  });
-  return true;
-}
-
-void SimNode::publishPaused(bool paused) {
-  std_msgs::Bool message;
-  message.data = paused;
-  paused_publisher_.publish(message);
-}
-
-bool SimNode::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  onStepper([this] {
-    paused_ = false;
-    publishPaused(false);
-    anchor();
-  });
-  return true;
-}
-
-bool SimNode::onStep(Step::Request& request, Step::Response& response) {
-  onStepper([&] { stepPaused(request.steps, response); });
-  if (!response.success) ROS_WARN_STREAM("~step " << response.message);
-  return true;
+void SimNode::setPaused(bool paused) {
+  paused_ = paused;
+  publisher_.publishPaused(paused);
+  if (!paused) anchor();
 }
 
 void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
@@ -461,7 +198,7 @@ void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
   } else {
     session_.advance(static_cast<std::int64_t>(steps), after_step_);
     session_.sampleNow();  // show where the steps ended
-    publishMarkersNow();
+    publisher_.publishMarkersNow(world());
     response.success = true;
     response.message = "ok";
   }
@@ -477,23 +214,10 @@ void SimNode::serveTasksFor(std::chrono::milliseconds wait) {
   stepper_tasks_.runPending();
 }
 
-double SimNode::wallNow() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-ros::Time SimNode::stampOf(double t) const {
-  return use_sim_time_ ? simStamp(t) : stamp_anchor_ + ros::Duration(t - time_anchor_);
-}
-
-// The pace and the wall-clock stamps start from now and the current step: stepping starts (after any
-// start_delay) or resumes at wall-clock pace, and so the stamps of what follows are current. Never earlier
-// than a stamp already published (faster than wall-clock pace, or after ~step calls, stamps can be ahead of
-// the clock): stamps stay strictly increasing.
+// The pace and the stamps start from now and the current step: stepping starts or resumes.
 void SimNode::anchor() {
   pacer_.restart(wallNow(), world().stepCount());
-  const ros::WallTime wall = ros::WallTime::now();
-  stamp_anchor_ = std::max(ros::Time(wall.sec, wall.nsec), last_tf_stamp_ + ros::Duration(0, 1));
-  time_anchor_ = world().time();
+  publisher_.anchor(world().time());
 }
 
 void SimNode::afterStep(World& world) {
@@ -510,99 +234,13 @@ void SimNode::afterStep(World& world) {
   }
 }
 
-// Only forward: /clock never repeats a time (a reset or a ~step publishes the current time once more).
-void SimNode::publishClock() {
-  const ros::Time now = simStamp(world().time());
-  if (!options_.publish_clock || now <= last_clock_) return;
-  rosgraph_msgs::Clock clock;
-  clock.clock = now;
-  clock_publisher_.publish(clock);
-  last_clock_ = now;
-}
-
-void SimNode::publishStates() {
-  const double t = world().time();
-  const ros::Time stamp = stampOf(t);
-  publishClock();
-  const auto& bodies = world().bodies();
-  // Every body's transform in one message and a state message per body, built only for a topic with a
-  // subscriber (a viewer that joins finds every frame at the next publication). A transform is never sent
-  // twice at one stamp (listeners warn TF_REPEATED_DATA and drop it): after a reset at a publishing instant
-  // the frames move with the next one.
-  if (stamp > last_tf_stamp_ && (tf_publisher_.watched() || namespace_tf_.watched())) {
-    tf2_msgs::TFMessage tf;
-    tf.transforms.reserve(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      tf.transforms.push_back(snapshots_->transform(i, stamp, bodies[i]));
-    tf_publisher_.publisher.publish(tf);
-    if (namespace_tf_.publisher) namespace_tf_.publisher.publish(tf);
-    last_tf_stamp_ = stamp;
-  }
-  publishMarkers(stamp);
-  record([&](BagRecorder& recorder) { recorder.write(world()); });
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    if (!state_publishers_[i].watched()) continue;
-    std::visit([&](const auto& msg) { state_publishers_[i].publisher.publish(msg); },
-               snapshots_->state(i, t, stamp, bodies[i]));
-  }
-}
-
-void SimNode::publishMarkers(const ros::Time& stamp) {
-  Scene& scene = snapshots_->scene();
-  const bool watched = marker_publisher_.watched();
-  if (!watched) {
-    if (markers_watched_) scene.clearTrails();  // a viewer that comes sees trails from then on
-    markers_watched_ = false;
-    return;
-  }
-  markers_watched_ = true;
-  scene.sample(world().bodies());
-  if (world().stepCount() % steps_per_markers_ == 0) {
-    marker_publisher_.publisher.publish(scene.changes(stamp, world().bodies()));
-  }
-}
-
-// A ~step ends anywhere between marker periods: its labels (and the trail up to there) go out at once, so
-// that a paused picture shows them where the bodies are, not where the last period left them.
-void SimNode::publishMarkersNow() {
-  if (!markers_watched_) return;
-  marker_publisher_.publisher.publish(snapshots_->scene().changes(stampOf(world().time()), world().bodies()));
-}
-
-void SimNode::publishStaticTransforms() {
-  tf2_msgs::TFMessage fixed;
-  fixed.transforms = snapshots_->staticTransforms(stampOf(world().time()));
-  static_broadcaster_.sendTransform(fixed.transforms);
-  if (namespace_tf_static_) namespace_tf_static_.publish(fixed);
-}
-
-void SimNode::publishScene() {
-  publishStaticTransforms();
-  scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-}
-
-// The scene follows the bodies there are now (spawned, deleted, moved or changed in look): re-sent only
-// when it changed; trails are kept by body name.
-void SimNode::rebuildScene() {
-  const bool changed = snapshots_->scene().rebuild(world().bodies());
-  publishStaticTransforms();  // the new placements' frames first, then the markers drawn in them
-  if (changed) scene_publisher_.publish(snapshots_->scene().sceneMarkers());
-  record([&](BagRecorder& recorder) { recorder.rebuild(world().bodies(), world().time()); });
-}
-
-void SimNode::record(const std::function<void(BagRecorder&)>& write) {
-  if (!recorder_) return;
-  try {
-    write(*recorder_);
-  } catch (const rosbag::BagException& error) {
-    recorder_.reset();
-    ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d",
-              formatNumber(world().time()).c_str(), error.what(), kRecordingFailedStatus);
-    exit_status_ = kRecordingFailedStatus;
-    stopping_ = true;
-    if (options_.end_launch) endParentRoslaunch();
-    ros::requestShutdown();
-  }
+void SimNode::stopRecording(double t, const std::string& what) {
+  ROS_ERROR("recording stopped at t = %s s: %s; exiting with status %d", formatNumber(t).c_str(),
+            what.c_str(), kRecordingFailedStatus);
+  exit_status_ = kRecordingFailedStatus;
+  stopping_ = true;
+  if (options_.end_launch) endParentRoslaunch();
+  ros::requestShutdown();
 }
 
 // start_delay wall seconds; with start_on_subscribers only until every state topic and the transforms (/tf,
@@ -612,19 +250,14 @@ void SimNode::waitForStart() {
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                              std::chrono::duration<double>(options_.start_delay));
-  const auto subscribed = [this] {
-    return (tf_publisher_.watched() || namespace_tf_.watched()) &&
-           std::all_of(state_publishers_.begin(), state_publishers_.end(),
-                       [](const CountedPublisher& p) { return p.watched(); });
-  };
   while (!stopping_ && std::chrono::steady_clock::now() < deadline) {
     stepper_tasks_.runPending();
-    if (options_.start_on_subscribers && subscribed()) return;
+    if (options_.start_on_subscribers && publisher_.subscribed()) return;
     // Subscriptions arrive on the spinner's thread, which does not wake this one: look again soon.
     stepper_tasks_.waitFor(
         std::min(deadline, std::chrono::steady_clock::now() + std::chrono::milliseconds(20)));
   }
-  if (options_.start_on_subscribers && !stopping_ && !subscribed()) {
+  if (options_.start_on_subscribers && !stopping_ && !publisher_.subscribed()) {
     ROS_WARN(
         "stepping starts after start_delay (%s s) although not every state topic and /tf has a subscriber: "
         "a recorder misses the first states",
@@ -636,10 +269,10 @@ void SimNode::stepLoop() {
   stepper_tasks_.becomeOwner();
   // A valid time before stepping starts (the clock is latched): rosbag record, for one, waits for one before
   // it subscribes to anything, and so would miss the start of a run on simulated time.
-  publishClock();
+  publisher_.publishClock(world());
   waitForStart();
   anchor();
-  publishScene();
+  publisher_.publishScene(world());
   session_.sampleNow();  // unless a command published this count
   const auto duration_steps = static_cast<std::int64_t>(std::llround(options_.duration * world().rate()));
   while (!stopping_ && ros::ok()) {
@@ -671,59 +304,12 @@ void SimNode::stepLoop() {
   }
 }
 
-// /use_sim_time left true by an earlier launch (playback.launch sets it) and no /clock: this node stamps in
-// simulated time and every node on simulated time waits for a clock that never comes. Said once.
-void SimNode::warnIfNoClock() {
-  if (!use_sim_time_ || options_.publish_clock || !ros::Time::now().isZero()) return;
-  ROS_WARN(
-      "/use_sim_time is true but nothing publishes /clock: this node stamps in simulated time and nodes on "
-      "simulated time stand still (rosparam set /use_sim_time false, or sim.launch use_sim_time:=true to "
-      "have this node publish /clock)");
-}
-
-void SimNode::watchMaster() {
-  const auto started = std::chrono::steady_clock::now();
-  bool clock_checked = false;
-  while (!stopping_ && ros::ok()) {
-    if (!clock_checked && std::chrono::steady_clock::now() - started >= kClockWait) {
-      clock_checked = true;
-      warnIfNoClock();
-    }
-    if (askMaster() == MasterView::Forgot) {
-      // A node shutting down (its duration done, Ctrl-C) unregisters itself: then the master rightly
-      // forgets it, and that is no restart. roscpp marks the shutdown before it unregisters.
-      if (stopping_ || ros::isShuttingDown() || !ros::ok()) return;
-      restoreParameters();
-      ROS_ERROR(
-          "the ROS master at %s restarted and no longer knows this node, which cannot register again: "
-          "exiting with status %d (sim.launch respawn:=true starts it afresh)",
-          ros::master::getURI().c_str(), kMasterForgotStatus);
-      exit_status_ = kMasterForgotStatus;
-      ros::requestShutdown();
-      return;
-    }
-    std::unique_lock<std::mutex> lock(watch_mutex_);
-    watch_wake_.wait_for(lock, kWatchPeriod, [this] { return stopping_.load(); });
-  }
-}
-
 void SimNode::stopThreads() {
-  {
-    const std::lock_guard<std::mutex> lock(watch_mutex_);  // the watcher, between its check and its wait
-    stopping_ = true;
-  }
+  stopping_ = true;
   stepper_tasks_.stop();
-  watch_wake_.notify_all();
+  servers_.stop();
+  watch_.stop();
   if (stepper_.joinable()) stepper_.join();
-  if (watcher_.joinable()) watcher_.join();
-}
-
-// A restarted master holds none of the parameters roslaunch set: put back the ones this node started from,
-// so that a respawned node starts on the same config (unless something has set them meanwhile).
-void SimNode::restoreParameters() {
-  if (ros::param::has(private_node_.getNamespace())) return;
-  ros::param::set(private_node_.getNamespace(), start_params_);
-  if (use_sim_time_ && !ros::param::has("/use_sim_time")) ros::param::set("/use_sim_time", true);
 }
 
 int SimNode::run() {
@@ -733,13 +319,14 @@ int SimNode::run() {
     stepLoop();
     stepper_tasks_.finish();
   });
-  watcher_ = std::thread([this] { watchMaster(); });
-  defer([this] { startReconfigureServers(); });  // once stepping has started: the first states need not wait
+  watch_.start();
+  // Once stepping has started: the first states need not wait.
+  servers_.startAll([this] { return onStepper([this] { return world().config(); }); });
   // The stepper runs until roscpp shuts down (Ctrl-C, the duration done, a forgetful master): waiting for
   // it wakes nothing, where ros::waitForShutdown would look 20 times a second.
   stepper_.join();
   stopThreads();
-  onStepper([this] { record([](BagRecorder& recorder) { recorder.commit(); }); });
+  if (recorder_) onStepper([this] { recorder_->commit(); });
   return exit_status_;
 }
 

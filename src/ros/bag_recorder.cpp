@@ -88,11 +88,11 @@ void BagRecorder::guarded(Write&& write) {
 }
 
 BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
-                         std::string node_namespace, std::string frame_prefix)
+                         BagOptions options)
     : path_(path),
-      node_namespace_(std::move(node_namespace)),
-      snapshots_(config.world_frame, std::move(frame_prefix), bodies),
-      marker_rate_(MarkerOptions().pieces_rate),
+      node_namespace_(std::move(options.node_namespace)),
+      snapshots_(config.world_frame, std::move(options.frame_prefix), bodies, options.markers),
+      marker_rate_(options.markers.pieces_rate),
       bag_(newBag()) {
   bag_->open(path_ + ".active", rosbag::bagmode::Write);  // a failure here leaves no file
   const ros::Time start = simStamp(0.0);
@@ -145,26 +145,17 @@ void BagRecorder::write(const World& world) {
 
 // As the node logs a change: the command, then the scene and fixed frames of a changed set of bodies.
 void BagRecorder::applied(const WorldCommand& command, std::size_t index, const World& world) {
-  const double t = world.time();
-  writeCommand(
-      toMessage(command, static_cast<std::uint32_t>(index), t, simStamp(t), world.config().world_frame));
-  if (command.kind == WorldCommand::Kind::Spawn || command.kind == WorldCommand::Kind::Delete ||
-      command.kind == WorldCommand::Kind::Reconfigure) {
-    rebuild(world.bodies(), t);
-  }
-}
-
-void BagRecorder::writeCommand(const rigid_body_sim::Command& command) {
+  const ros::Time stamp = simStamp(world.time());
+  const bool new_look = command.kind == WorldCommand::Kind::Spawn ||
+                        command.kind == WorldCommand::Kind::Delete ||
+                        command.kind == WorldCommand::Kind::Reconfigure;
   guarded([&](rosbag::Bag& bag) {
-    bag.write(node_namespace_ + "/" + node_interface::kCommands, simStamp(command.t), command,
+    bag.write(node_namespace_ + "/" + node_interface::kCommands, stamp,
+              toMessage(command, static_cast<std::uint32_t>(index), world.time(), stamp,
+                        world.config().world_frame),
               latchedHeader<rigid_body_sim::Command>(node_namespace_));
-  });
-}
-
-void BagRecorder::rebuild(const std::vector<Body>& bodies, double t) {
-  const ros::Time stamp = simStamp(t);
-  guarded([&](rosbag::Bag& bag) {
-    if (snapshots_.scene().rebuild(bodies)) {
+    if (!new_look) return;
+    if (snapshots_.scene().rebuild(world.bodies())) {
       bag.write(nodeTopic(node_namespace_, node_interface::kScene), stamp, snapshots_.scene().sceneMarkers(),
                 latchedHeader<visualization_msgs::MarkerArray>(node_namespace_));
     }
@@ -183,9 +174,10 @@ void BagRecorder::commit() {
   }
 }
 
-std::unique_ptr<SampleSink> openBag(const std::string& path, const WorldConfig& config,
-                                    const std::vector<Body>& bodies) {
-  return std::make_unique<BagRecorder>(path, config, bodies);
+SinkOpener bagOpener(BagOptions options) {
+  return [options](const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies) {
+    return std::make_unique<BagRecorder>(path, config, bodies, options);
+  };
 }
 
 }  // namespace rigid_body_sim

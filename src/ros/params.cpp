@@ -135,6 +135,10 @@ double markerRate(const NodeOptions& options, double publish_rate) {
   return *options.marker_rate;
 }
 
+MarkerOptions markerOptions(const NodeOptions& options, double publish_rate) {
+  return {options.trail_length, markerRate(options, publish_rate), options.label_critical_angles};
+}
+
 WorldConfig parseNodeConfig(XmlRpc::XmlRpcValue& private_namespace) {
   YAML::Node config(YAML::NodeType::Map);
   if (!isMap(private_namespace)) return parseWorldConfig(config);

@@ -9,7 +9,7 @@
 
 int main(int argc, char** argv) {
   const int status =
-      rigid_body_sim::runSimulate(argc, argv, rigid_body_sim::openBag, rigid_body_sim::readRecordedRun);
+      rigid_body_sim::runSimulate(argc, argv, rigid_body_sim::bagOpener(), rigid_body_sim::readRecordedRun);
   if (rigid_body_sim::anyBagKeptUnclosed()) {
     // Its one line is said: end without the static destructors, in which class_loader would add a warning
     // about the failed bag's plugin (the bag cannot be destroyed: its destructor writes and throws again).

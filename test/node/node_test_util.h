@@ -336,6 +336,16 @@ inline double doubleOf(const dynamic_reconfigure::Config& config, const std::str
   return std::numeric_limits<double>::quiet_NaN();
 }
 
+// Waits until `holds` (looked at every 10 ms), at most `timeout` wall seconds.
+inline bool waitUntil(const std::function<bool()>& holds, double timeout) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (!holds()) {
+    if (ros::WallTime::now() > end) return false;
+    ros::WallDuration(0.01).sleep();
+  }
+  return true;
+}
+
 // main() for a rostest gtest node: ros::init, an AsyncSpinner, then the tests.
 #define RBS_ROSTEST_MAIN(node_name)       \
   int main(int argc, char** argv) {       \

@@ -1,44 +1,32 @@
 // sim_node: a ROS adapter around a Session (run/session.h) of the core World; physics and validation stay in
-// the core and the config loader, the order of steps, samples and commands in the Session.
+// the core and the config loader, the order of steps, samples and commands in the Session. Its parts: the
+// topics (ros/node_publisher.h) and the ~bag recording (ros/node_recorder.h) are the Session's sinks; the
+// services (ros/node_services.h), the reconfigure servers (ros/reconfigure_servers.h), the master watch
+// (ros/master_watch.h). The node holds the stepping thread and the one path for every change.
 //
-// Threads. The stepping thread owns the session, the publishers of what it hands out and the recorder: it
-// steps at the pace, publishes, and between two publishing instants runs the work handed to it. Every
-// callback (services, reconfigure servers, interactive markers, timers) runs on the one spinner thread: it
-// hands its change of the world to the stepping thread (onStepper) and waits for the answer; then, on the
-// spinner thread, the reconfigure servers and the interactive markers follow (the stepping thread never
-// touches them). No lock guards the world, so no lock order exists (run/task_queue.h).
+// Threads. The stepping thread owns the session and its sinks: it steps at the pace, publishes, and between
+// two publishing instants runs the work handed to it. Every callback (services, reconfigure servers,
+// interactive markers, timers) runs on the one spinner thread: it hands its change of the world to the
+// stepping thread (onStepper) and waits for the answer; then, on the spinner thread, the reconfigure servers
+// and the interactive markers follow. No lock guards the world, so no lock order exists (run/task_queue.h).
 #pragma once
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
-#include <vector>
 
-#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
-#include <std_srvs/Empty.h>
-#include <tf2_msgs/TFMessage.h>
-#include <tf2_ros/static_transform_broadcaster.h>
 
-#include "rigid_body_sim/Delete.h"
-#include "rigid_body_sim/GetConfig.h"
-#include "rigid_body_sim/RodReconfigureConfig.h"
-#include "rigid_body_sim/RollerReconfigureConfig.h"
-#include "rigid_body_sim/SetState.h"
-#include "rigid_body_sim/Spawn.h"
-#include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/interactive_controls.h"
+#include "rigid_body_sim/ros/master_watch.h"
+#include "rigid_body_sim/ros/node_publisher.h"
+#include "rigid_body_sim/ros/node_recorder.h"
+#include "rigid_body_sim/ros/node_services.h"
 #include "rigid_body_sim/ros/params.h"
-#include "rigid_body_sim/ros/snapshot.h"
+#include "rigid_body_sim/ros/reconfigure_servers.h"
 #include "rigid_body_sim/run/finite_guard.h"
 #include "rigid_body_sim/run/session.h"
 #include "rigid_body_sim/run/step_pacer.h"
@@ -62,85 +50,20 @@ class SimNode {
   int run();
 
  private:
-  // A change of the world as the stepping thread answers it.
-  struct Answer {
-    bool accepted = false;
-    std::string why;  // "ok", or the one refusal line
-    double t = 0.0;   // the simulated time it applied at (its ~commands entry's t), or then
-    std::optional<WorldCommand> command;  // as applied; none for a request that changes nothing
-    WorldConfig config;                   // the world's after it
-  };
-  // Makes the command of a change from the running world: none if it changes nothing; a ConfigError is its
-  // refusal.
-  using BuildCommand = std::function<std::optional<WorldCommand>(const World& world)>;
-
-  // A publisher whose subscribers are counted as they come and go (the count shared with its callbacks: a
-  // deleted body's may still run). Publisher::getNumSubscribers looks the topic up among all of the node's
-  // publications, and once per body per publication that was most of the node's work with 1000 bodies.
-  struct CountedPublisher {
-    ros::Publisher publisher;
-    std::shared_ptr<std::atomic<int>> subscribers;
-    bool watched() const { return subscribers && *subscribers > 0; }
-  };
-  template <class Message>
-  CountedPublisher advertiseCounted(ros::NodeHandle& node, const std::string& topic, std::uint32_t queue);
-
-  using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
-  using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
-  struct BodyServer {  // one of the two, by the body's type
-    std::unique_ptr<RodServer> rod;
-    std::unique_ptr<RollerServer> roller;
-  };
-
-  void advertise();
-  void advertiseState(const Body& body);  // its publisher and subscriber count, at the end of the lists
-  template <class Config, class Request>
-  void onReconfigure(const std::string& name, Request& request);
-  // The node's side of the Session, called by it on the stepping thread: write publishes the states of a
-  // count (publishStates), applied logs a command and publishes it on ~commands (publishCommand).
-  class Publication : public SampleSink {
-   public:
-    explicit Publication(SimNode& node) : node_(node) {}
-    void write(const World& world) override;
-    void applied(const WorldCommand& command, std::size_t index, const World& world) override;
-
-   private:
-    SimNode& node_;
-  };
-
-  // --- The one way to change the running world, from any callback: the services, the reconfigure servers,
-  // the interactive markers. On the stepping thread: `build` makes the command from the running world and
-  // Session::apply applies it (a publishing instant not yet published first, then the command at the current
-  // step, logged (INFO) and published on ~commands); what depends on the world follows (state topics, the
-  // guard, static TF, markers, the recorder). Then, on the caller's thread: the reconfigure servers and the
-  // interactive markers. A refusal: one WARN line, the same line in the answer; nothing changes and nothing
-  // is published on ~commands.
-  Answer change(const std::string& kind, const std::string& body, const BuildCommand& build);
-  Answer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
-  // On ~commands as number `index` (header.seq; 0: the config at the start); recorded after the config.
-  void publishCommand(const WorldCommand& command, std::size_t index);
-  // After an accepted command, on the stepping thread: publishers, the guard and the scene follow the world.
-  // `index` is the command's body's place in the world before it.
+  // --- The one way to change the running world, from any callback (services, reconfigure servers,
+  // interactive markers). On the stepping thread (applyHere): `build` makes the command from the running
+  // world, Session::apply applies it and its sinks follow, then the guard. Then, on the caller's thread: the
+  // reconfigure servers and the interactive markers. A refusal: one WARN line, the same in the answer.
+  ChangeAnswer change(const std::string& kind, const std::string& body, const BuildCommand& build);
+  ChangeAnswer applyHere(const std::string& kind, const std::string& body, const BuildCommand& build);
+  // After an accepted command: the guard follows the world. `index`: the body's place before it.
   void followWorld(const WorldCommand& command, std::size_t index);
-  // After an accepted command, on the spinner thread: the reconfigure servers and the interactive markers.
-  void followWorldServers(const Answer& answer);
-  // A service's change of one body: `fill` puts in what the request brings (a ConfigError refuses it); the
-  // response says whether it applied, the one line if not, and (~spawn) the time it applied at.
-  using FillCommand = std::function<void(WorldCommand& command)>;
-  template <class Response>
-  bool answerService(WorldCommand::Kind kind, const std::string& body, const FillCommand& fill,
-                     Response& response);
-  bool onSpawn(Spawn::Request& request, Spawn::Response& response);
-  bool onDelete(Delete::Request& request, Delete::Response& response);
-  bool onSetState(SetState::Request& request, SetState::Response& response);
-  bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
-  // Initial conditions dropped in rviz: a reconfigure of those keys, a change like any other.
+  // A reconfigure of body `name` from its server (`unchanged_is_none`: a request that changes nothing is
+  // no command) or from a drop in rviz.
+  ChangeAnswer reconfigure(const std::string& name, const ReconfigureServers::Reconfigured& reconfigured,
+                           bool unchanged_is_none);
   bool onDrop(const std::string& body, const std::map<std::string, double>& initial, std::string* why);
-  bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  void publishPaused(bool paused);  // on ~paused
-  bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onStep(Step::Request& request, Step::Response& response);
+  void setPaused(bool paused);  // ~pause and ~unpause, on the stepping thread
   void stepPaused(std::uint64_t steps, Step::Response& response);  // on the stepping thread
 
   // Runs `work` on the stepping thread between two publishing instants and returns its result.
@@ -150,105 +73,45 @@ class SimNode {
   }
   void serveTasksFor(std::chrono::milliseconds wait);  // on the stepping thread: runs what comes meanwhile
 
-  // --- On the spinner thread: one body's reconfigure server at a time, each a callback of its own behind
-  // those waiting (a server takes some 40 calls to the master: a thousand at once would hold the services
-  // for seconds), after stepping has started. A body spawned meanwhile has its own already; one deleted
-  // meanwhile gets none.
-  void startReconfigureServers();
-  void startNextReconfigureServer();
-  void startReconfigureServer(const BodyConfig& body);
-  void defer(std::function<void()> work);  // behind the callbacks waiting on the spinner thread
-
   // --- The stepping thread
   void stepLoop();
-  // The step hook, after every step: holds a body that became non-finite at its last finite state (the
-  // one error about it), then the step's events (DEBUG).
+  // The step hook: the NaN guard (one ERROR line per body it holds), then the step's events (DEBUG).
   void afterStep(World& world);
-  // The states, TF, markers and /clock of the current count; the same into the recorder.
-  void publishStates();
-  void publishClock();
-  // Trail pieces and labels on ~markers at marker instants, built only while someone subscribes.
-  void publishMarkers(const ros::Time& stamp);
-  void publishMarkersNow();
-  // The fixed frames on /tf_static (and <ns>/tf_static).
-  void publishStaticTransforms();
-  // The fixed frames and the latched ~scene.
-  void publishScene();
-  // After the set of bodies or a body's look changed: new placements; the fixed frames and, if it changed,
-  // the scene are sent again. Trails go on by body name.
-  void rebuildScene();
   void waitForStart();
-  // Every write of the node's own recorder: a write error ends the recording and the run with one ERROR
-  // line (kRecordingFailedStatus), never the process.
-  void record(const std::function<void(BagRecorder&)>& write);
-  ros::Time stampOf(double t) const;
+  // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
+  void stopRecording(double t, const std::string& what);
   const World& world() const { return session_.world(); }  // on the stepping thread
   void anchor();  // the pace and the wall-clock stamps start from now and the current step
-  double wallNow() const;
 
-  // --- Other threads
-  // Every second: does the master still know this node? When a restarted master does not, puts the
-  // parameters this node started from back on it (for the respawned node) and shuts down.
-  void watchMaster();
-  void warnIfNoClock();
-  void stopThreads();  // stops and joins the stepper and the watcher
-  void restoreParameters();
+  void stopThreads();  // stops and joins the stepper and the master watch
 
   ros::NodeHandle node_;
   ros::NodeHandle private_node_;
   XmlRpc::XmlRpcValue start_params_;  // the private namespace as it was at the start
   NodeOptions options_;
 
+  TaskQueue stepper_tasks_;  // the work handed to the stepping thread
+
   // Owned by the stepping thread (set up before it starts):
   // The world (also the running config, what ~get_config returns), sampled at every publishing instant.
   Session session_;
-  Publication publication_{*this};  // the session's one sink
-  StepHook after_step_;             // afterStep
+  StepHook after_step_;  // afterStep
   FiniteGuard guard_;
-  std::int64_t steps_per_markers_;  // a whole number of publishing intervals
-  bool markers_watched_ = false;    // whether ~markers had a subscriber at the last publication
-  ros::Time last_clock_;            // the last /clock published (zero: none yet)
-  ros::Time last_tf_stamp_;         // the stamp of the last transforms on /tf
   bool paused_ = false;
   StepPacer pacer_;
-  std::unique_ptr<SnapshotBuilder> snapshots_;
-  std::unique_ptr<BagRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
-  ros::Time stamp_anchor_;    // the wall-clock stamp of simulated time time_anchor_ (without use_sim_time)
-  double time_anchor_ = 0.0;  // s
-  bool use_sim_time_ = false;
-
-  TaskQueue stepper_tasks_;  // the work handed to the stepping thread
-
-  // Published on the stepping thread (the scene resend timer hands its publication over too).
-  ros::Publisher command_publisher_;
-  ros::Publisher paused_publisher_;  // ~paused: true from ~pause (or start_paused) until ~unpause
-  CountedPublisher marker_publisher_;
-  ros::Publisher scene_publisher_;
-  ros::WallTimer scene_resend_timer_;             // once a second: the scene again for a viewer that joined
-  std::atomic<bool> scene_viewer_joined_{false};  // since the last tick
-  std::atomic<bool> scene_resend_due_{false};     // a viewer joined before the last tick
-  ros::Publisher clock_publisher_;
-  CountedPublisher tf_publisher_;       // /tf, as tf2_ros::TransformBroadcaster sends it
-  CountedPublisher namespace_tf_;       // in a namespace: <ns>/tf, a copy of what goes to /tf
-  ros::Publisher namespace_tf_static_;  // and <ns>/tf_static
-  std::vector<CountedPublisher> state_publishers_;
-  tf2_ros::StaticTransformBroadcaster static_broadcaster_;
-  std::vector<ros::ServiceServer> services_;
+  bool use_sim_time_;
+  NodePublisher publisher_;                 // the session's first sink: the node's topics
+  std::unique_ptr<NodeRecorder> recorder_;  // the ~bag option: every publication, lossless by construction
 
   // Owned by the spinner thread:
-  // The servers' mutex, held while they call back (dynamic_reconfigure warns of deadlocks when updateConfig
-  // is called on a server that has its own).
-  boost::recursive_mutex servers_mutex_;
-  std::map<std::string, BodyServer> servers_;         // by body name
-  std::deque<std::string> bodies_without_server_;     // startReconfigureServers' list
+  ReconfigureServers servers_;                        // ~<body>: each body's keys
   std::unique_ptr<InteractiveControls> interactive_;  // ~interactive: place and throw bodies in rviz
 
   std::atomic<bool> stopping_{false};
   std::atomic<int> exit_status_{0};
   std::thread stepper_;
-  std::thread watcher_;
-  std::mutex watch_mutex_;  // the watcher's wait, cut short by stopThreads
-  std::condition_variable watch_wake_;
+  MasterWatch watch_;      // a thread of its own
+  NodeServices services_;  // their callbacks on the spinner thread
 };
 
 }  // namespace rigid_body_sim

@@ -1,8 +1,8 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
 // the node's (launch files name it `sim`): /tf, /tf_static, /sim/scene (latched, once), /sim/markers (trail
-// pieces and labels at the default marker rate), /sim/<body>/state, and /sim/commands with the config (so
-// that `simulate --replay` takes the bag). A SampleSink (run/session.h): the bag of `simulate --bag` and
-// `--replay --bag`, and the node's own recorder, stamped in simulated time.
+// pieces and labels at the marker rate), /sim/<body>/state, and /sim/commands with the config (so that
+// `simulate --replay` takes the bag). A SampleSink (run/session.h): the bag of `simulate --bag` and
+// `--replay --bag`, and the node's own recorder (ros/node_recorder.h), stamped in simulated time.
 #pragma once
 
 #include <memory>
@@ -13,9 +13,18 @@
 
 #include "rigid_body_sim/Command.h"
 #include "rigid_body_sim/ros/snapshot.h"
+#include "rigid_body_sim/run/offline_run.h"
 #include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
+
+// The names and looks of a bag: `simulate --bag` takes the defaults; the node's own recorder its private
+// namespace, frame_prefix and marker options (trail length, marker rate, labels).
+struct BagOptions {
+  std::string node_namespace = "/sim";
+  std::string frame_prefix;
+  MarkerOptions markers;
+};
 
 class BagRecorder : public SampleSink {
  public:
@@ -25,7 +34,7 @@ class BagRecorder : public SampleSink {
   // `path`.active left unindexed (`rosbag reindex` recovers what reached the disk), and every later call
   // throws too.
   BagRecorder(const std::string& path, const WorldConfig& config, const std::vector<Body>& bodies,
-              std::string node_namespace = "/sim", std::string frame_prefix = "");
+              BagOptions options = {});
   ~BagRecorder() override;
   BagRecorder(const BagRecorder&) = delete;
   BagRecorder& operator=(const BagRecorder&) = delete;
@@ -34,10 +43,6 @@ class BagRecorder : public SampleSink {
       const World& world) override;  // TF, every state and (at marker instants) markers at world.time()
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
   void commit() override;
-  // The node's own recorder: a change of the world (written as the node publishes it) and the scene and
-  // fixed frames of the bodies there are now, at simulated time t.
-  void writeCommand(const rigid_body_sim::Command& command);
-  void rebuild(const std::vector<Body>& bodies, double t);
 
  private:
   std::string path_;
@@ -61,8 +66,8 @@ std::unique_ptr<rosbag::Bag> newBag();
 // plugin, and class_loader (Debian 13) warns on stderr when the process' static destructors unload it.
 bool anyBagKeptUnclosed();
 
-// The SinkOpener of `simulate --bag`.
-std::unique_ptr<SampleSink> openBag(const std::string& path, const WorldConfig& config,
-                                    const std::vector<Body>& bodies);
+// Opens a BagRecorder with `options`: `simulate --bag`'s opener is bagOpener(), the node's own recorder's
+// the same with the node's options.
+SinkOpener bagOpener(BagOptions options = {});
 
 }  // namespace rigid_body_sim

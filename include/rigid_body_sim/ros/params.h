@@ -35,6 +35,8 @@ struct NodeOptions {
 // ~markers' rate: the option, at most publish_rate (refused above it in one line, as any bad option);
 // unset: MarkerOptions' pieces_rate (10 Hz), or publish_rate if that is lower.
 double markerRate(const NodeOptions& options, double publish_rate);
+// The markers of the options (trail length, markerRate, labels): those of ~markers and of the node's bag.
+MarkerOptions markerOptions(const NodeOptions& options, double publish_rate);
 
 // The node's private namespace from the parameter server; throws ConfigError when it holds nothing.
 XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node);
