@@ -320,7 +320,7 @@ TEST_F(KeyRoundTrips, ReplayFromTheCommandLogIsTheSameRun) {
     options.out_dir = (dir_ / "run").string();
     options.bag = (dir_ / "run.bag").string();
     std::filesystem::create_directories(options.out_dir);
-    replayRun(commands, options, openBag);
+    replayRun(commands, options, bagOpener());
     const RecordedRun recorded = readRecordedRun(options.bag);
     ASSERT_EQ(recorded.commands.size(), commands.size());
     OfflineOptions again = options;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -190,4 +191,41 @@ TEST(Docs, DesignsExampleConfigIsTheDefaults) {
     }
   }
   EXPECT_GT(checked, 20);
+}
+
+// DESIGN.md's "Where to add a key, a topic, a service, a body type" against the tree: every file it names
+// exists (a header or source by its path under include/rigid_body_sim/ or src/, others from the package's
+// root), and every type it names (a class, a struct or an alias) is declared in a header.
+TEST(Docs, WhereToAddNamesWhatIsThere) {
+  const std::string design = slurp(packageFile("docs/DESIGN.md"));
+  const std::size_t start = design.find("## Where to add a key, a topic, a service, a body type");
+  ASSERT_NE(start, std::string::npos);
+  const std::string section = design.substr(start, design.find("\n## ", start + 1) - start);
+  std::string headers;
+  for (const auto& entry : fs::recursive_directory_iterator(packageFile("include/rigid_body_sim"))) {
+    if (entry.path().extension() == ".h") headers += slurp(entry.path());
+  }
+  int files = 0;
+  int classes = 0;
+  const std::vector<std::string> quoted = split(section, '`');
+  for (std::size_t i = 1; i < quoted.size(); i += 2) {  // the odd pieces are between backquotes
+    const std::string& name = quoted[i];
+    const std::string ext = fs::path(name).extension().string();
+    if (ext == ".h" || ext == ".cpp" || ext == ".cfg" || ext == ".md" || ext == ".py") {
+      ++files;
+      const bool there = fs::exists(packageFile(name)) || fs::exists(packageFile("src/" + name)) ||
+                         fs::exists(packageFile("include/rigid_body_sim/" + name));
+      EXPECT_TRUE(there) << name;
+    } else if (!name.empty() && std::isupper(static_cast<unsigned char>(name[0])) &&
+               name.find_first_of(" (/.") == std::string::npos) {
+      ++classes;
+      const std::string type = name.substr(name.rfind(':') == std::string::npos ? 0 : name.rfind(':') + 1);
+      const bool declared = headers.find("class " + type) != std::string::npos ||
+                            headers.find("struct " + type) != std::string::npos ||
+                            headers.find("using " + type + " =") != std::string::npos;
+      EXPECT_TRUE(declared) << name << " is declared in no header";
+    }
+  }
+  EXPECT_GT(files, 8);
+  EXPECT_GT(classes, 3);
 }
