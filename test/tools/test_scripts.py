@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
-per topic, each checked on its own), scripts/bag_summary.py (a body with a single state) and
+per topic, each checked on its own), scripts/bag_summary.py (a body with a single state; a missing bag: one line) and
 bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
 import importlib.abc
@@ -86,6 +86,14 @@ class BagSummary(Case):
         self.assertIn("ball: t 0 .. 0 s", result.stdout)
         self.assertIn("a single sample", result.stdout)
         self.assertIn("rod: t 0 .. 0 s", result.stdout)
+
+    def test_a_missing_bag_is_one_line(self) -> None:
+        config = self.write_config({"bodies": {"rod": {"type": "rod"}}})
+        result = run_script(os.path.join(SCRIPTS, "bag_summary.py"), self.path("missing.bag"), config)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertEqual(result.stderr.splitlines(),
+                         [f"bag_summary.py: bag {self.path('missing.bag')}: No such file or directory"])
+        self.assertEqual(result.stdout, "")
 
 
 def load_run_bench() -> Any:
