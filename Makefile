@@ -51,7 +51,7 @@ PYTHON_SCRIPTS = $(shell git ls-files | grep -v '\.[^/]*$$' | xargs -r awk 'FNR 
 lint: deps
 	catkin_lint -W2 --strict --ignore package_path_name . examples/sim_fixture_example
 	git ls-files '*.cpp' '*.h' | xargs clang-format --dry-run -Werror
-	flake8 scripts bench test examples $(PYTHON_SCRIPTS)
+	flake8 scripts bench test examples src/rigid_body_sim setup.py $(PYTHON_SCRIPTS)
 	mypy
 	mypy examples/sim_fixture_example/test  # alone: its `rostest` is ROS's, not test/rostest/
 	$(if $(PYTHON_SCRIPTS),mypy $(PYTHON_SCRIPTS))
