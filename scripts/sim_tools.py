@@ -14,7 +14,7 @@ import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Tuple, Union
+from typing import Any, Callable, Dict, List, Set, Tuple, Union
 
 import yaml
 
@@ -223,6 +223,21 @@ def node_pid(node: str, caller: str) -> int:
     uri = rosgraph.Master(caller).lookupNode(node)
     reply: Any = xmlrpc.client.ServerProxy(uri).getPid(caller)  # (code, message, pid)
     return int(reply[2])
+
+
+def subscribers(node: str, caller: str) -> Dict[str, Set[str]]:
+    """{topic: the subscribers connected to it} of the topics a running ROS node publishes, from the node's
+    own bus information (the master forgets an unsubscription at once; the node, once the connection has
+    closed)."""
+    import rosgraph
+
+    uri = rosgraph.Master(caller).lookupNode(node)
+    reply: Any = xmlrpc.client.ServerProxy(uri).getBusInfo(caller)  # (code, message, connections)
+    connected: Dict[str, Set[str]] = {}
+    for connection in reply[2]:  # [id, destination, direction, transport, topic, connected, ...]
+        if connection[2] == "o":
+            connected.setdefault(connection[4], set()).add(connection[1])
+    return connected
 
 
 def resident_kib(pid: int) -> int:
