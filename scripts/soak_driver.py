@@ -15,10 +15,9 @@ import rospy
 from dynamic_reconfigure.client import Client
 from rigid_body_sim.msg import RodState, RollerState
 from rigid_body_sim.srv import Step
-from std_srvs.srv import Empty
 
-from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, wait_for,
-                       world_value)
+from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, subscribers,
+                       wait_for, world_value)
 
 
 class Body:
@@ -98,15 +97,22 @@ class Driver:
         self.max_speed = max_speed
         self.lock = threading.Lock()
         self.subscribers = [self.subscribe(body) for body in self.bodies]
-        rospy.wait_for_service("/sim/pause", timeout=60)
-        rospy.ServiceProxy("/sim/pause", Empty)()
+        rospy.wait_for_service("/sim/step", timeout=60)
         self.step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         self.clients = {b.name: Client(f"/sim/{b.name}", timeout=30) for b in self.bodies}
-        # The node publishes t = 0 once its start_delay is over; the run starts from there.
+        # start_paused holds the node at t = 0 (its state then went out before anyone could subscribe):
+        # the first step waits until this driver and the recorder take every state topic and /tf.
+        states = [f"/sim/{b.name}/state" for b in self.bodies]
+
+        def subscribed() -> bool:
+            connected = subscribers("/sim", "/soak")
+            return (all({"/soak", "/record"} <= connected.get(topic, set()) for topic in states)
+                    and "/record" in connected.get("/tf", set()))
         try:
-            self.wait_until_every_body_at(0.0, exactly=True)
-        except TimeoutError:
-            sys.exit("soak: no state at t = 0 (the driver subscribed too late, or the node did not start)")
+            wait_for("the driver's and the recorder's subscriptions to the states and /tf", subscribed, 60.0,
+                     period=0.1)
+        except TimeoutError as error:
+            sys.exit(f"soak: {error}")
 
     def subscribe(self, body: Body) -> Any:
         def on_state(msg: Any) -> None:
@@ -115,11 +121,11 @@ class Driver:
         return rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, on_state,
                                 queue_size=None, tcp_nodelay=True)
 
-    def wait_until_every_body_at(self, t: float, exactly: bool = False) -> None:
+    def wait_until_every_body_at(self, t: float) -> None:
         """Until every body's state at t has arrived (a segment's drift is measured before the next change)."""
         def arrived() -> bool:
             with self.lock:
-                return all(b.last_t == t if exactly else b.last_t >= t for b in self.bodies)
+                return all(b.last_t >= t for b in self.bodies)
         wait_for(f"the states of t = {t}", arrived, 60.0, period=0.0005)
 
     def second(self, second: int, wall0: float) -> None:
@@ -140,11 +146,11 @@ class Driver:
             if self.max_speed > 0:
                 time.sleep(max(0.0, wall0 + reply.t / self.max_speed - time.time()))
         if reply.t != second + 1:
-            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
-                     "paused it (raise start_delay in scripts/soak.launch)")
+            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it was not held at t = 0 "
+                     "(scripts/soak.launch sets start_paused)")
 
     def report(self, duration: int, seed: int, wall: float, rss: List[Tuple[int, int, int]]) -> None:
-        expected = 1 + duration * self.samples
+        expected = duration * self.samples  # every sample after t = 0
         print(f"\nsoak: seed {seed}, {duration} simulated s, {len(self.bodies)} bodies, reconfigured every "
               f"simulated second; {wall:.1f} s wall ({duration / wall:.1f} x real time)")
         print(f"RSS sim_node: {rss[0][1]} kB at t = {rss[0][0]} s, {rss[-1][1]} kB at t = {rss[-1][0]} s "
