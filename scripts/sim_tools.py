@@ -14,7 +14,7 @@ import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Set, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Optional, Set, Tuple, Union
 
 import yaml
 
@@ -148,6 +148,19 @@ def read_states(bag_path: str) -> Dict[str, List[Any]]:
             if body is not None:
                 states.setdefault(body, []).append(msg)
     return states
+
+
+def subscribe_to_the_rest(bag_path: str, taken: Iterable[str], played_as: Optional[Dict[str, str]] = None) -> List[Any]:
+    """Subscriptions (rospy.AnyMsg, the messages dropped) to every topic of a bag but the caller's own
+    (`taken`), named as the player publishes them (`played_as`: its remaps): playback.launch plays nothing
+    until every topic of the bag has a subscriber (rosbag play --wait-for-subscribers)."""
+    import rosbag
+    import rospy
+
+    with rosbag.Bag(bag_path) as bag:
+        topics = bag.get_type_and_topic_info().topics
+    rest = {(played_as or {}).get(topic, topic) for topic in topics} - set(taken)
+    return [rospy.Subscriber(topic, rospy.AnyMsg, lambda _: None) for topic in sorted(rest)]
 
 
 def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
