@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
-per topic, each checked on its own), scripts/bag_summary.py (a body with a single state; a missing bag: one line) and
-bench/run_bench.py's 1 kHz config.
+per topic, each checked on its own), scripts/bag_summary.py (a body with a single state; a missing bag: one line),
+test/pictures' reading of rviz's log (none there: a finding) and bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
 import importlib.abc
 import importlib.util
@@ -95,6 +95,34 @@ class BagSummary(Case):
         self.assertEqual(result.stderr.splitlines(),
                          [f"bag_summary.py: bag {self.path('missing.bag')}: No such file or directory"])
         self.assertEqual(result.stdout, "")
+
+
+class RvizLog(Case):
+    """The pictures' "no ERROR line in rviz's log" reads rviz's output where roslaunch keeps it: a log folder
+    without it is a finding, never a clean log."""
+
+    def error_lines(self) -> List[str]:
+        sys.path.insert(0, os.path.join(ROOT, "test", "pictures"))
+        import rviz_screenshot
+        os.environ["ROS_LOG_DIR"] = self.tmp.name
+        try:
+            lines: List[str] = rviz_screenshot.rviz_error_lines()
+        finally:
+            del os.environ["ROS_LOG_DIR"]
+        return lines
+
+    def test_no_output_of_rviz_is_a_line(self) -> None:
+        self.assertEqual(self.error_lines(), [f"no output of rviz in {self.path('latest')}"])
+
+    def test_its_error_lines_or_none(self) -> None:
+        os.mkdir(self.path("run"))
+        os.symlink(self.path("run"), self.path("latest"))
+        with open(self.path("run/rviz-2-stdout.log"), "w") as f:
+            f.write("[ INFO] loaded\n[ERROR] PluginlibFactory: failed\n")
+        self.assertEqual(self.error_lines(), ["[ERROR] PluginlibFactory: failed"])
+        with open(self.path("run/rviz-2-stdout.log"), "w") as f:
+            f.write("[ INFO] loaded\n")
+        self.assertEqual(self.error_lines(), [])
 
 
 def load_run_bench() -> Any:
