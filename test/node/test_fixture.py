@@ -48,4 +48,5 @@ class Fixture(unittest.TestCase):
 
 if __name__ == "__main__":
     rospy.init_node("test_fixture")
-    rostest.rosrun("rigid_body_sim", "test_fixture", Fixture)
+    # mypy, given test/, takes the folder test/rostest/ for ROS's rostest module
+    rostest.rosrun("rigid_body_sim", "test_fixture", Fixture)  # type: ignore[attr-defined]
