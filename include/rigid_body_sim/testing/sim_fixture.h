@@ -11,7 +11,8 @@
 //   rigid_body_sim::RollerState state;
 //   ASSERT_TRUE(sphere.waitFor(1.0, &state));                       // the first state at t >= 1 s
 //
-// Header-only; the states arrive on a spinner thread of the log's own, whatever the test's main spins.
+// Header-only; the states arrive on a spinner thread of the log's own, whatever the test's main spins. The
+// test's main keeps a ros::NodeHandle for as long as the tests run (roscpp ends the node with the last one).
 #pragma once
 
 #include <chrono>
@@ -157,9 +158,8 @@ class StateLog {
  public:
   StateLog(const SimFixture& sim, const std::string& body)
       : topic_(sim.name() + "/" + body + "/state"), deadline_(sim.deadline()), spinner_(1, &queue_) {
-    ros::NodeHandle nh;
-    nh.setCallbackQueue(&queue_);
-    subscriber_ = nh.subscribe<State>(topic_, 10000, [this](const typename State::ConstPtr& state) {
+    nh_.setCallbackQueue(&queue_);
+    subscriber_ = nh_.subscribe<State>(topic_, 10000, [this](const typename State::ConstPtr& state) {
       const std::lock_guard<std::mutex> lock(mutex_);
       states_.push_back(*state);
       arrived_.notify_all();
@@ -225,6 +225,7 @@ class StateLog {
   std::vector<State> states_;
   ros::CallbackQueue queue_;
   ros::AsyncSpinner spinner_;
+  ros::NodeHandle nh_;  // its own: the subscription lives as long as the log
   ros::Subscriber subscriber_;
 };
 
