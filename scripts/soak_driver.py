@@ -77,7 +77,9 @@ class Body:
 def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
     """A random, valid reconfigure of one body: k or mu, and new initial conditions."""
     if isinstance(spec, RodSpec):
-        return {"k": 10 ** rng.uniform(2, 5), "x0": rng.uniform(-1, 1), "y0": rng.uniform(0.5, 5),
+        # On a bounded floor (floor_length > 0) x0 must lie on it: from 0, as far as 2 m.
+        x0 = rng.uniform(0, min(2.0, spec.floor_length)) if spec.floor_length > 0 else rng.uniform(-1, 1)
+        return {"k": 10 ** rng.uniform(2, 5), "x0": x0, "y0": rng.uniform(0.5, 5),
                 "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
                 "omega0": rng.uniform(-10, 10)}
     mu_s = rng.uniform(0, 1)
@@ -134,7 +136,12 @@ class Driver:
             for body in self.bodies:
                 body.new_segment()
         for body in self.bodies:
-            self.clients[body.name].update_configuration(random_change(self.rng, body.spec))
+            change = random_change(self.rng, body.spec)
+            shown = self.clients[body.name].update_configuration(change)
+            refused = {key: shown.get(key) for key, value in change.items() if shown.get(key) != value}
+            if refused:  # the run would go on unchanged, and no longer be the seed's
+                sys.exit(f"soak: the node refused {body.name}'s reconfigure at t = {second}: {change} shows {refused} "
+                         "(its WARN line in roslaunch.log says why)")
         # A tenth of a second per ~step call, each time until this driver has the last sample: bursts of
         # 5 samples a topic, well inside the recorder's subscriber queue of 100 messages.
         calls = 10 if self.steps % 10 == 0 and self.samples % 10 == 0 else 1

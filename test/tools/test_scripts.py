@@ -51,12 +51,12 @@ class Case(unittest.TestCase):
 
 class SoakBagcheck(Case):
     """A soak of 2 s at publish_rate 1: 2 states of the rod and 2 /tf (t = 1 and 2: the node, started paused,
-    sent t = 0 before the recorder subscribed), 1 /tf_static."""
+    sent t = 0 before the recorder subscribed), 3 /tf_static (at the start and at each reconfigure)."""
 
     def check(self, states: int, tfs: int) -> "subprocess.CompletedProcess[str]":
         config = self.write_config({"publish_rate": 1.0, "rate": 1000.0, "bodies": {"rod": {"type": "rod"}}})
         write_bag(self.path("soak.bag"), {"/sim/rod/state": [RodState()] * states, "/tf": [TFMessage()] * tfs,
-                                          "/tf_static": [TFMessage()]})
+                                          "/tf_static": [TFMessage()] * 3})
         return run_script(os.path.join(SCRIPTS, "soak_bagcheck.py"), self.path("soak.bag"), config, "2")
 
     def test_every_count_as_expected_passes(self) -> None:
