@@ -12,7 +12,7 @@ wall seconds; one that passes fails the test (AssertionError, unittest's failure
 """
 import threading
 import time
-from typing import Any, Callable, Dict, List
+from typing import Any, Callable, Dict, List, Optional
 
 import rospy
 import yaml
@@ -106,10 +106,11 @@ class SimNode:
         return rospy.get_param(name)
 
     # --- its topics
-    def states(self, body: str, deadline: float = 0.0) -> States:
+    def states(self, body: str, deadline: float = 0.0, message: Optional[type] = None) -> States:
         """A subscription to `body`'s states, waited for until the node's publisher has connected (every
-        state it publishes from then on arrives). The body's type comes from the parameter server."""
-        message = STATE_TYPES[self.body_param(body, "type")]
+        state it publishes from then on arrives). `message`, RodState or RollerState, by default from the
+        body's type on the parameter server (a spawned body is not there: give it)."""
+        message = message or STATE_TYPES[self.body_param(body, "type")]
         return States(f"{self.name}/{body}/state", message, deadline or self.deadline)
 
     # --- its services

@@ -7,6 +7,8 @@ import unittest
 import rospy
 import rostest
 import yaml
+from rigid_body_sim.msg import RollerState
+from rigid_body_sim.srv import Spawn
 from rigid_body_sim.testing import SimNode
 
 
@@ -44,6 +46,15 @@ class Fixture(unittest.TestCase):
         sim.unpause()
         self.assertGreater(rod.wait_for(t + 0.2).t, t)
         sim.pause()
+
+        # A spawned body is not on the parameter server: its states by the message type given.
+        answer = rospy.ServiceProxy("/sim/spawn", Spawn)("hoop", "{type: roller, shape: ring}")
+        self.assertTrue(answer.success, answer.message)
+        with self.assertRaisesRegex(AssertionError, "no parameter /sim/bodies/hoop/type"):
+            sim.states("hoop")
+        hoop = sim.states("hoop", message=RollerState)
+        t = sim.step(100)
+        self.assertEqual(hoop.wait_for(t).t, t)
 
 
 if __name__ == "__main__":
