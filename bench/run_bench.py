@@ -21,7 +21,8 @@ import yaml
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, wait_for  # noqa: E402  (the path first)
+from sim_tools import (free_port, node_pid, resident_kib, rospy_on_python39, subscribers,  # noqa: E402
+                       wait_for)
 
 DOC = os.path.join(ROOT, "docs", "performance.md")
 BEGIN = "<!-- make bench writes from here: do not edit by hand -->"
@@ -246,6 +247,28 @@ def cpu_shares(pid: int, seconds: float, windows: int) -> List[float]:
     return shares
 
 
+def settle(report: Report, pid: int, what: str, window: float = 0.5, deadline: float = 30.0) -> None:
+    """Until two windows of `window` s in a row give the process's CPU share within a point (or a fifth) of each
+    other: its start-up, or a change of subscribers, is over and what comes next measures the steady state.
+    Past the deadline a note says so, with the last two shares, and the measurement goes on."""
+    end = time.monotonic() + deadline
+    last, share = cpu_shares(pid, window, 1)[0], -1.0
+    while time.monotonic() < end:
+        share = cpu_shares(pid, window, 1)[0]
+        if abs(share - last) <= max(1.0, 0.2 * last):
+            return
+        last = share
+    report.note(f"{what}: the CPU share had not settled within {deadline:g} s ({last:.2f} then {share:.2f} % in "
+                f"{window:g} s windows); measured anyway")
+
+
+def unsubscribe_and_settle(report: Report, ros: Ros, node: str, topic: str, pid: int, what: str) -> None:
+    """The bench's subscription ends; once the node has dropped the connection, its CPU settles."""
+    ros.unsubscribe()
+    wait_for(f"{node} to drop its connection on {topic}", lambda: not subscribers(node, "/bench").get(topic), 10.0)
+    settle(report, pid, what)
+
+
 def roscpp_floor(report: Report, ros: Ros, build: str, seconds: float, windows: int) -> None:
     """floor_node (bench/floor_node.cpp): sim_node's threads and one RodState at 50 Hz to the same subscriber,
     nothing else. What any roscpp node publishing at that rate costs on this machine."""
@@ -256,10 +279,9 @@ def roscpp_floor(report: Report, ros: Ros, build: str, seconds: float, windows: 
                                 "_rate:=50"], stdout=ros.log, stderr=ros.log, start_new_session=True)
     try:
         ros.wait_for_messages()
-        time.sleep(2.0)
+        settle(report, process.pid, "roscpp's floor at start-up")
         shares = cpu_shares(process.pid, seconds, windows)
-        ros.unsubscribe()
-        time.sleep(1.0)
+        unsubscribe_and_settle(report, ros, "/floor", "/floor/state", process.pid, "roscpp's floor, unsubscribed")
         alone = cpu_shares(process.pid, seconds, windows)
     finally:
         ros.unsubscribe()
@@ -279,7 +301,7 @@ def node_at_rate(report: Report, ros: Ros, label: str, config: str, seconds: flo
     try:
         pid = ros.sim_pid()
         ros.wait_for_messages()
-        time.sleep(2.0)  # start-up (servers, first TF) is not the steady state
+        settle(report, pid, f"{label} at start-up")  # start-up (servers, first TF) is not the steady state
         rss_start = resident_kib(pid) / 1024.0
         shares, windows_received = [], []
         for _ in range(windows):
@@ -287,8 +309,7 @@ def node_at_rate(report: Report, ros: Ros, label: str, config: str, seconds: flo
             shares += cpu_shares(pid, seconds / windows, 1)
             windows_received.append(ros.received[first:])
         rss_end = resident_kib(pid) / 1024.0
-        ros.unsubscribe()
-        time.sleep(1.0)  # the node hears of it
+        unsubscribe_and_settle(report, ros, "/sim", "/sim/rod/state", pid, f"{label}, unsubscribed")
         alone = cpu_shares(pid, seconds / 2, windows // 2)
     finally:
         ros.unsubscribe()
@@ -393,8 +414,7 @@ def many_bodies(report: Report, ros: Ros, out: str, bodies: int, seconds: float,
         report.row("7 scale", f"{label}: start-up to the first state (roslaunch included)", [first_state], "s",
                    "< 5" if bodies >= 1000 else "")
         report.row("7 scale", f"{label}: start-up to every reconfigure server", [time.time() - start], "s")
-        ros.unsubscribe()
-        time.sleep(2.0)
+        unsubscribe_and_settle(report, ros, "/sim", "/sim/rod0/state", pid, f"{label}, unsubscribed")
         rss_start = resident_kib(pid) / 1024.0
         report.row("7 scale", f"{label}: CPU, no subscriber at all (3 windows of {seconds / 3:g} s)",
                    cpu_shares(pid, seconds, 3), "%", "<= 5" if bodies >= 1000 else "")
@@ -408,7 +428,9 @@ def many_bodies(report: Report, ros: Ros, out: str, bodies: int, seconds: float,
             sizes: List[int] = []
             sub = rospy.Subscriber("/sim/markers", rospy.AnyMsg, lambda m: sizes.append(len(m._buff)),
                                    queue_size=1000)
-            time.sleep(2.0)
+            # The node builds markers only for a subscriber: from its first message on, they flow.
+            wait_for("the first /sim/markers message", lambda: len(sizes) > 0, 30.0)
+            settle(report, pid, f"{label}, /sim/markers subscribed")
             rates = []
             for _ in range(3):
                 wall0, first = time.time(), len(sizes)
@@ -431,9 +453,9 @@ def faster_than_real_time(report: Report, ros: Ros, build: str, out: str, second
     process = ros.launch("real_time_factor:=0")
     speeds = []
     try:
-        ros.sim_pid()
+        pid = ros.sim_pid()
         ros.wait_for_messages()
-        time.sleep(1.0)
+        settle(report, pid, "real_time_factor 0 at start-up")
         for _ in range(3):
             wall0, t0 = time.time(), ros.received[-1][2]
             time.sleep(seconds / 3.0)

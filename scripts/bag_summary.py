@@ -4,9 +4,10 @@ energy drift. The config gives each rod's length."""
 import argparse
 import os
 import sys
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Tuple
 
 import rosbag
+import yaml
 
 # sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
 # runs this file from elsewhere.
@@ -28,20 +29,40 @@ def rod_line(msgs: List[Any], rod: RodSpec) -> str:
     return f", {bounces} bounces seen, largest energy swing {100 * drift:.2f} %"
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("bag", help="a bag of sim_node (sim.launch record:=true) or of simulate --bag")
-    parser.add_argument("config", help="the run's YAML config")
-    args = parser.parse_args()
-    config = load_config(args.config)
+def read_bag(path: str) -> Tuple[Dict[str, int], Dict[str, List[Any]]]:
+    """Messages per topic, and each body's states in order."""
     counts: Dict[str, int] = {}
     states: Dict[str, List[Any]] = {}
-    with rosbag.Bag(args.bag) as bag:
+    with rosbag.Bag(path) as bag:
         for topic, msg, _ in bag.read_messages():
             counts[topic] = counts.get(topic, 0) + 1
             body = body_of_state_topic(topic)
             if body is not None:
                 states.setdefault(body, []).append(msg)
+    return counts, states
+
+
+def reason(error: Exception) -> str:
+    """Why a file could not be read, on one line (an OSError without its errno; YAML's mark joined up)."""
+    return getattr(error, "strerror", None) or " ".join(str(error).split())
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("bag", help="a bag of sim_node (sim.launch record:=true) or of simulate --bag")
+    parser.add_argument("config", help="the run's YAML config")
+    args = parser.parse_args()
+    # A file that cannot be read is the caller's mistake: one line naming it, not a traceback.
+    try:
+        config = load_config(args.config)
+    except (OSError, yaml.YAMLError) as error:
+        print(f"bag_summary.py: config {args.config}: {reason(error)}", file=sys.stderr)
+        return 1
+    try:
+        counts, states = read_bag(args.bag)
+    except (OSError, rosbag.ROSBagException) as error:
+        print(f"bag_summary.py: bag {args.bag}: {reason(error)}", file=sys.stderr)
+        return 1
     print("messages per topic:")
     for topic in sorted(counts):
         print(f"  {topic:24s} {counts[topic]}")

@@ -65,7 +65,10 @@ def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
                        cwd=build, env=env, stdout=log, stderr=subprocess.STDOUT)
     if not junit.exists():
         raise SystemExit(f"flaky: ctest wrote no {junit}; see {folder / 'ctest.log'}")
-    return read_junit(junit)
+    outcomes = read_junit(junit)
+    if not outcomes:  # a round of nothing would count as "every test passed"
+        raise SystemExit(f"flaky: no test has a label of {labels!r}; see {folder / 'ctest.log'}")
+    return outcomes
 
 
 @contextmanager

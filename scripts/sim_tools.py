@@ -14,7 +14,7 @@ import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Optional, Set, Tuple, Union
 
 import yaml
 
@@ -151,6 +151,19 @@ def read_states(bag_path: str) -> Dict[str, List[Any]]:
     return states
 
 
+def subscribe_to_the_rest(bag_path: str, taken: Iterable[str], played_as: Optional[Dict[str, str]] = None) -> List[Any]:
+    """Subscriptions (rospy.AnyMsg, the messages dropped) to every topic of a bag but the caller's own
+    (`taken`), named as the player publishes them (`played_as`: its remaps): playback.launch plays nothing
+    until every topic of the bag has a subscriber (rosbag play --wait-for-subscribers)."""
+    import rosbag
+    import rospy
+
+    with rosbag.Bag(bag_path) as bag:
+        topics = bag.get_type_and_topic_info().topics
+    rest = {(played_as or {}).get(topic, topic) for topic in topics} - set(taken)
+    return [rospy.Subscriber(topic, rospy.AnyMsg, lambda _: None) for topic in sorted(rest)]
+
+
 def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
     """An end of the rod below the floor (the floor's spring pushes it)."""
     half = 0.5 * length * math.sin(theta)
@@ -224,6 +237,21 @@ def node_pid(node: str, caller: str) -> int:
     uri = rosgraph.Master(caller).lookupNode(node)
     reply: Any = xmlrpc.client.ServerProxy(uri).getPid(caller)  # (code, message, pid)
     return int(reply[2])
+
+
+def subscribers(node: str, caller: str) -> Dict[str, Set[str]]:
+    """{topic: the subscribers connected to it} of the topics a running ROS node publishes, from the node's
+    own bus information (the master forgets an unsubscription at once; the node, once the connection has
+    closed)."""
+    import rosgraph
+
+    uri = rosgraph.Master(caller).lookupNode(node)
+    reply: Any = xmlrpc.client.ServerProxy(uri).getBusInfo(caller)  # (code, message, connections)
+    connected: Dict[str, Set[str]] = {}
+    for connection in reply[2]:  # [id, destination, direction, transport, topic, connected, ...]
+        if connection[2] == "o":
+            connected.setdefault(connection[4], set()).add(connection[1])
+    return connected
 
 
 def resident_kib(pid: int) -> int:

@@ -15,10 +15,9 @@ import rospy
 from dynamic_reconfigure.client import Client
 from rigid_body_sim.msg import RodState, RollerState
 from rigid_body_sim.srv import Step
-from std_srvs.srv import Empty
 
-from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, wait_for,
-                       world_value)
+from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, subscribers,
+                       wait_for, world_value)
 
 
 class Body:
@@ -78,7 +77,9 @@ class Body:
 def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
     """A random, valid reconfigure of one body: k or mu, and new initial conditions."""
     if isinstance(spec, RodSpec):
-        return {"k": 10 ** rng.uniform(2, 5), "x0": rng.uniform(-1, 1), "y0": rng.uniform(0.5, 5),
+        # On a bounded floor (floor_length > 0) x0 must lie on it: from 0, as far as 2 m.
+        x0 = rng.uniform(0, min(2.0, spec.floor_length)) if spec.floor_length > 0 else rng.uniform(-1, 1)
+        return {"k": 10 ** rng.uniform(2, 5), "x0": x0, "y0": rng.uniform(0.5, 5),
                 "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
                 "omega0": rng.uniform(-10, 10)}
     mu_s = rng.uniform(0, 1)
@@ -98,15 +99,22 @@ class Driver:
         self.max_speed = max_speed
         self.lock = threading.Lock()
         self.subscribers = [self.subscribe(body) for body in self.bodies]
-        rospy.wait_for_service("/sim/pause", timeout=60)
-        rospy.ServiceProxy("/sim/pause", Empty)()
+        rospy.wait_for_service("/sim/step", timeout=60)
         self.step = rospy.ServiceProxy("/sim/step", Step, persistent=True)
         self.clients = {b.name: Client(f"/sim/{b.name}", timeout=30) for b in self.bodies}
-        # The node publishes t = 0 once its start_delay is over; the run starts from there.
+        # start_paused holds the node at t = 0 (its state then went out before anyone could subscribe):
+        # the first step waits until this driver and the recorder take every state topic and /tf.
+        states = [f"/sim/{b.name}/state" for b in self.bodies]
+
+        def subscribed() -> bool:
+            connected = subscribers("/sim", "/soak")
+            return (all({"/soak", "/record"} <= connected.get(topic, set()) for topic in states)
+                    and "/record" in connected.get("/tf", set()))
         try:
-            self.wait_until_every_body_at(0.0, exactly=True)
-        except TimeoutError:
-            sys.exit("soak: no state at t = 0 (the driver subscribed too late, or the node did not start)")
+            wait_for("the driver's and the recorder's subscriptions to the states and /tf", subscribed, 60.0,
+                     period=0.1)
+        except TimeoutError as error:
+            sys.exit(f"soak: {error}")
 
     def subscribe(self, body: Body) -> Any:
         def on_state(msg: Any) -> None:
@@ -115,11 +123,11 @@ class Driver:
         return rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, on_state,
                                 queue_size=None, tcp_nodelay=True)
 
-    def wait_until_every_body_at(self, t: float, exactly: bool = False) -> None:
+    def wait_until_every_body_at(self, t: float) -> None:
         """Until every body's state at t has arrived (a segment's drift is measured before the next change)."""
         def arrived() -> bool:
             with self.lock:
-                return all(b.last_t == t if exactly else b.last_t >= t for b in self.bodies)
+                return all(b.last_t >= t for b in self.bodies)
         wait_for(f"the states of t = {t}", arrived, 60.0, period=0.0005)
 
     def second(self, second: int, wall0: float) -> None:
@@ -128,7 +136,12 @@ class Driver:
             for body in self.bodies:
                 body.new_segment()
         for body in self.bodies:
-            self.clients[body.name].update_configuration(random_change(self.rng, body.spec))
+            change = random_change(self.rng, body.spec)
+            shown = self.clients[body.name].update_configuration(change)
+            refused = {key: shown.get(key) for key, value in change.items() if shown.get(key) != value}
+            if refused:  # the run would go on unchanged, and no longer be the seed's
+                sys.exit(f"soak: the node refused {body.name}'s reconfigure at t = {second}: {change} shows {refused} "
+                         "(its WARN line in roslaunch.log says why)")
         # A tenth of a second per ~step call, each time until this driver has the last sample: bursts of
         # 5 samples a topic, well inside the recorder's subscriber queue of 100 messages.
         calls = 10 if self.steps % 10 == 0 and self.samples % 10 == 0 else 1
@@ -140,11 +153,11 @@ class Driver:
             if self.max_speed > 0:
                 time.sleep(max(0.0, wall0 + reply.t / self.max_speed - time.time()))
         if reply.t != second + 1:
-            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it stepped before the driver "
-                     "paused it (raise start_delay in scripts/soak.launch)")
+            sys.exit(f"soak: the node is at t = {reply.t}, expected {second + 1}: it was not held at t = 0 "
+                     "(scripts/soak.launch sets start_paused)")
 
     def report(self, duration: int, seed: int, wall: float, rss: List[Tuple[int, int, int]]) -> None:
-        expected = 1 + duration * self.samples
+        expected = duration * self.samples  # every sample after t = 0
         print(f"\nsoak: seed {seed}, {duration} simulated s, {len(self.bodies)} bodies, reconfigured every "
               f"simulated second; {wall:.1f} s wall ({duration / wall:.1f} x real time)")
         print(f"RSS sim_node: {rss[0][1]} kB at t = {rss[0][0]} s, {rss[-1][1]} kB at t = {rss[-1][0]} s "

@@ -3,6 +3,8 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -33,7 +35,15 @@ bool endParentRoslaunch() {
     return false;
   }
   ROS_INFO("ending the roslaunch that started this node (pid %d), as Ctrl-C would", static_cast<int>(parent));
-  return kill(parent, SIGINT) == 0;
+  return interruptRoslaunch(parent);
+}
+
+bool interruptRoslaunch(pid_t process) {
+  if (kill(process, SIGINT) == 0) return true;
+  const int error = errno;
+  ROS_ERROR("could not send SIGINT to the roslaunch that started this node (pid %d): %s; end it by hand",
+            static_cast<int>(process), std::strerror(error));
+  return false;
 }
 
 }  // namespace rigid_body_sim

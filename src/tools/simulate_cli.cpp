@@ -203,6 +203,7 @@ int run(const CommandLine& line, char** argv, const SinkOpener& open_bag, const 
   }
   const auto config = loadWorldConfigFile(line.config_path);
   if (line.check) {
+    validate(options, config);  // --check answers for the run this line asks for, options included
     std::cout << line.config_path << ": accepted, bodies:";
     for (const auto& body : config.bodies) std::cout << ' ' << body.name;
     std::cout << "\n";

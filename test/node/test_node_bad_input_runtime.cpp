@@ -1,15 +1,16 @@
 // sim_node at run time on bad input: a table of reconfigure requests (values out of the core's ranges, which
 // the servers pass on unclamped: the .cfg has no ranges; 0 where > 0 is needed, NaN, relations between
-// keys, names outside an enum), `rosparam set` + `dynparam set_from_parameters`, and ~step with absurd
-// counts. Each one must be refused with exactly one line on /rosout at WARN (the caller's mistake, which
-// the caller is told), naming the value asked for; the server must keep showing the values in use, the
-// node must stay alive, and afterwards the states must equal the core World's, as if nothing had been
-// asked.
+// keys, names outside an enum), `rosparam set` + `dynparam set_from_parameters`, ~step with absurd counts,
+// and ~spawn of a name that is no ASCII. Each one must be refused with exactly one line on /rosout at WARN
+// (the caller's mistake, which the caller is told), naming the value asked for; the server must keep
+// showing the values in use, the node must stay alive, and afterwards the states must equal the core
+// World's, as if nothing had been asked.
 #include <cstdlib>
 
 #include <dynamic_reconfigure/Reconfigure.h>
 
 #include "node_test_util.h"
+#include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/core/constants.h"
 #include "test_util.h"
 
@@ -213,6 +214,21 @@ TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
     ASSERT_EQ(lines.size(), 1u) << ::testing::PrintToString(lines);
     EXPECT_EQ(lines[0].rfind("WARN: ", 0), 0u) << lines[0];
     EXPECT_NE(lines[0].find(std::to_string(steps)), std::string::npos) << lines[0];
+  }
+
+  // --- a body name that is no ASCII: refused, and named as written in the answer and on /rosout
+  {
+    const std::string name = "\xc3\xbcn\xc3\xaf";  // "ünï" in UTF-8
+    Spawn spawn;
+    spawn.request.name = name;
+    spawn.request.body = "{type: rod}";
+    ASSERT_TRUE(ros::service::call("/sim/spawn", spawn)) << "the node no longer answers";
+    EXPECT_FALSE(spawn.response.success);
+    EXPECT_NE(spawn.response.message.find("'" + name + "'"), std::string::npos) << spawn.response.message;
+    const auto lines = errors.take();
+    ASSERT_EQ(lines.size(), 1u) << ::testing::PrintToString(lines);
+    EXPECT_NE(lines[0].find("'" + name + "'"), std::string::npos) << lines[0];
+    EXPECT_EQ(lines[0].find('?'), std::string::npos) << lines[0];
   }
 
   // --- nothing changed: 500 steps later every body is where the core World, never reconfigured, is

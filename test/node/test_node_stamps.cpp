@@ -1,7 +1,8 @@
 // Stamps are current (wall-clock stamps, the default): through sim.launch, with and without record:=true
-// (whose start_delay holds stepping back 2 s), a tf2 listener finds every body's transform at
-// ros::Time::now() within a short timeout, and a state arrives within one publishing period (plus a margin)
-// of its stamp. After a pause the stamps are current again, and they never go back.
+// (where stepping waits until the recorder has subscribed: start_on_subscribers), a tf2 listener finds
+// every body's transform at ros::Time::now() within a short timeout, and a state arrives within one
+// publishing period (plus a margin) of its stamp. After a pause the stamps are current again, and they
+// never go back.
 #include <algorithm>
 
 #include <tf2_ros/transform_listener.h>

@@ -71,7 +71,7 @@ def main() -> int:
     layout = os.path.join(folder, "panel_layout.txt")
     os.environ["RBS_PANEL_LAYOUT"] = layout
     try:
-        findings = run_launched(["playback.launch", f"bag:={bag}", "start_paused:=true", "delay:=1"], args.out,
+        findings = run_launched(["playback.launch", f"bag:={bag}", "start_paused:=true"], args.out,
                                 lambda launch, findings: run(args, stem, Panel(layout), launch, findings))
     finally:
         subprocess.run(["rm", "-rf", folder], check=False)

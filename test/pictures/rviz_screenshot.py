@@ -21,6 +21,7 @@ import xmlrpc.client
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+import rospkg
 import yaml
 
 import picture_check as pc
@@ -671,13 +672,16 @@ def flag(what: str, ok: bool) -> Finding:
 
 
 def rviz_error_lines() -> List[str]:
-    """ERROR lines of rviz's own output (roslaunch keeps it under $ROS_HOME/log/latest)."""
-    folder = os.path.join(os.environ.get("ROS_HOME", os.path.expanduser("~/.ros")), "log", "latest")
+    """ERROR lines of rviz's own output (roslaunch keeps it in the log folder's latest/: $ROS_LOG_DIR, or
+    $ROS_HOME/log), or one line saying that there is no such output: an absent log is no clean one."""
+    folder = os.path.join(rospkg.get_log_dir(), "latest")
+    names = [name for name in sorted(os.listdir(folder)) if name.startswith("rviz")] if os.path.isdir(folder) else []
+    if not names:
+        return [f"no output of rviz in {folder}"]
     lines: List[str] = []
-    for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
-        if name.startswith("rviz"):
-            with open(os.path.join(folder, name), errors="replace") as f:
-                lines += [line.strip() for line in f if re.search(r"\bERROR\b", line)]
+    for name in names:
+        with open(os.path.join(folder, name), errors="replace") as f:
+            lines += [line.strip() for line in f if re.search(r"\bERROR\b", line)]
     return lines
 
 

@@ -8,7 +8,7 @@ ns:=a frame_prefix:=a/ and ns:=b frame_prefix:=b/.
 - /use_sim_time is left unset (use_sim_time:=false).
 - Each bag holds only its own instance's topics (<ns>/tf, <ns>/tf_static, <ns>/sim/markers,
   <ns>/sim/<body>/state for every body of the config), its own frames, and states from t = 0 to duration.
-- playback.launch ns:=a plays bag a's transforms on /tf and /tf_static.
+- playback.launch ns:=a plays bag a's transforms on /tf and /tf_static, every message of them.
 
 Usage: test_namespaces.py CONFIG.yaml   (with the package's devel space sourced)
 """
@@ -30,12 +30,12 @@ from tf2_msgs.msg import TFMessage
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from sim_tools import (Config, body_of_state_topic, free_port, load_config, rospy_on_python39,  # noqa: E402
-                       wait_for, world_value)
+                       subscribe_to_the_rest, wait_for, world_value)
 
 rospy_on_python39()
 
 INSTANCES = ("a", "b")
-DURATION = 4.0  # simulated (= wall) seconds of each run, after the recorder's 2 s start delay
+DURATION = 4.0  # simulated (= wall) seconds of each run, from when its recorder has subscribed
 
 
 class StampOrder:
@@ -141,16 +141,28 @@ class TwoInstances(unittest.TestCase):
 
     def test_3_playback_in_the_namespace(self) -> None:
         seen: Set[str] = set()
-        collect = [rospy.Subscriber(topic, TFMessage, lambda msg: seen.update(t.child_frame_id for t in msg.transforms))
-                   for topic in ("/tf", "/tf_static")]
+        received: Dict[str, int] = {"/tf": 0, "/tf_static": 0}
+
+        def on_tf(topic: str, msg: TFMessage) -> None:
+            received[topic] += 1
+            seen.update(t.child_frame_id for t in msg.transforms)
+
+        collect = [rospy.Subscriber(topic, TFMessage, lambda msg, topic=topic: on_tf(topic, msg), queue_size=None)
+                   for topic in received]
+        # The player starts once every topic has a subscriber: the transforms here, the rest dropped.
+        collect += subscribe_to_the_rest(self.bag("a"), received, {"/a/tf": "/tf", "/a/tf_static": "/tf_static"})
         try:
             play = subprocess.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={self.bag('a')}", "ns:=a",
-                                   "rviz:=false", "delay:=1", "rate:=4"], env=self.env, stdout=subprocess.PIPE,
+                                   "rviz:=false", "rate:=4"], env=self.env, stdout=subprocess.PIPE,
                                   stderr=subprocess.STDOUT, text=True, timeout=120)
+            self.assertEqual(play.returncode, 0, play.stdout[-3000:])
+            with rosbag.Bag(self.bag("a")) as bag:
+                recorded = {"/tf": bag.get_message_count("/a/tf"), "/tf_static": bag.get_message_count("/a/tf_static")}
+            # The player has ended; its last messages may still be on their way here.
+            wait_for(f"every transform message of the bag ({recorded})", lambda: received == recorded, 30.0)
         finally:
             for subscriber in collect:
                 subscriber.unregister()
-        self.assertEqual(play.returncode, 0, play.stdout[-3000:])
         self.assertEqual({frame.split("/")[0] for frame in seen}, {"a"}, sorted(seen))
         self.assertLessEqual({f"a/{body}" for body in self.bodies} | {"a/rod_floor"}, seen)
 

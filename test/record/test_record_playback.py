@@ -6,7 +6,8 @@
   each equal to `simulate`'s CSV row at that t, bit for bit; /clock never 0, never back, to 60 s.
 - Through sim.launch record:=true use_sim_time:=true: the bag is closed, has every topic, each body's states
   at every publishing instant exactly once, stamped in simulated time (t + 1 ns), equal to the CSV.
-- playback.launch (rosbag play --clock) delivers the recorded states to a listener, in order.
+- playback.launch (rosbag play --clock, once every topic has a subscriber) delivers every recorded state to a
+  listener, in order.
 
 Usage: test_record_playback.py SIMULATE_EXE SIM_NODE_EXE CONFIG.yaml   (with the package's devel space sourced)
 """
@@ -30,7 +31,8 @@ from std_srvs.srv import Empty
 from rigid_body_sim.msg import RodState, RollerState
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import Config, free_port, load_config, state_fields, wait_for, world_value  # noqa: E402
+from sim_tools import (Config, free_port, load_config, state_fields, subscribe_to_the_rest, wait_for,  # noqa: E402
+                       world_value)
 
 States = Dict[str, List[Any]]
 
@@ -201,9 +203,13 @@ class NodeOutput(unittest.TestCase):
                 self.assertEqual(m.header.stamp, sim_stamp(m.t), f"{name} at t = {m.t}")
 
         listener = Listener(self.config)
+        # The player starts once every topic has a subscriber: the listener's states, and the rest here.
+        rest = subscribe_to_the_rest(bag_path, [sub.name for sub in listener.subs])
         play = self.master.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={bag_path}",
-                                "rviz:=false", "rate:=5", "delay:=1"])
+                                "rviz:=false", "rate:=5"])
         listener.close(duration)
+        for sub in rest:
+            sub.unregister()
         for name in self.config["bodies"]:
             self.assertEqual([as_row(m) for m in listener.states[name]], [as_row(m) for m in states[name]],
                              f"{name} played back; rosbag play said:\n" + play.stdout[-2000:])

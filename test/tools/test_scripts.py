@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
-per topic, each checked on its own), scripts/bag_summary.py (a body with a single state) and
-bench/run_bench.py's 1 kHz config.
+per topic, each checked on its own), scripts/bag_summary.py (a body with a single state; a missing bag: one line),
+test/pictures' reading of rviz's log (none there: a finding) and bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
 import importlib.abc
 import importlib.util
@@ -50,26 +50,27 @@ class Case(unittest.TestCase):
 
 
 class SoakBagcheck(Case):
-    """A soak of 2 s at publish_rate 1: 3 states of the rod and 3 /tf, 1 /tf_static."""
+    """A soak of 2 s at publish_rate 1: 2 states of the rod and 2 /tf (t = 1 and 2: the node, started paused,
+    sent t = 0 before the recorder subscribed), 3 /tf_static (at the start and at each reconfigure)."""
 
     def check(self, states: int, tfs: int) -> "subprocess.CompletedProcess[str]":
         config = self.write_config({"publish_rate": 1.0, "rate": 1000.0, "bodies": {"rod": {"type": "rod"}}})
         write_bag(self.path("soak.bag"), {"/sim/rod/state": [RodState()] * states, "/tf": [TFMessage()] * tfs,
-                                          "/tf_static": [TFMessage()]})
+                                          "/tf_static": [TFMessage()] * 3})
         return run_script(os.path.join(SCRIPTS, "soak_bagcheck.py"), self.path("soak.bag"), config, "2")
 
     def test_every_count_as_expected_passes(self) -> None:
-        result = self.check(3, 3)
+        result = self.check(2, 2)
         self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
         self.assertNotIn("MISMATCH", result.stdout)
 
     def test_an_extra_message_does_not_hide_a_missing_one(self) -> None:
-        result = self.check(4, 2)
+        result = self.check(3, 1)
         self.assertEqual(result.stdout.count("MISMATCH"), 2, result.stdout)
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
 
     def test_extra_messages_alone_fail(self) -> None:
-        result = self.check(4, 3)
+        result = self.check(3, 2)
         self.assertIn("MISMATCH", result.stdout)
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
 
@@ -86,6 +87,42 @@ class BagSummary(Case):
         self.assertIn("ball: t 0 .. 0 s", result.stdout)
         self.assertIn("a single sample", result.stdout)
         self.assertIn("rod: t 0 .. 0 s", result.stdout)
+
+    def test_a_missing_bag_is_one_line(self) -> None:
+        config = self.write_config({"bodies": {"rod": {"type": "rod"}}})
+        result = run_script(os.path.join(SCRIPTS, "bag_summary.py"), self.path("missing.bag"), config)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertEqual(result.stderr.splitlines(),
+                         [f"bag_summary.py: bag {self.path('missing.bag')}: No such file or directory"])
+        self.assertEqual(result.stdout, "")
+
+
+class RvizLog(Case):
+    """The pictures' "no ERROR line in rviz's log" reads rviz's output where roslaunch keeps it: a log folder
+    without it is a finding, never a clean log."""
+
+    def error_lines(self) -> List[str]:
+        sys.path.insert(0, os.path.join(ROOT, "test", "pictures"))
+        import rviz_screenshot
+        os.environ["ROS_LOG_DIR"] = self.tmp.name
+        try:
+            lines: List[str] = rviz_screenshot.rviz_error_lines()
+        finally:
+            del os.environ["ROS_LOG_DIR"]
+        return lines
+
+    def test_no_output_of_rviz_is_a_line(self) -> None:
+        self.assertEqual(self.error_lines(), [f"no output of rviz in {self.path('latest')}"])
+
+    def test_its_error_lines_or_none(self) -> None:
+        os.mkdir(self.path("run"))
+        os.symlink(self.path("run"), self.path("latest"))
+        with open(self.path("run/rviz-2-stdout.log"), "w") as f:
+            f.write("[ INFO] loaded\n[ERROR] PluginlibFactory: failed\n")
+        self.assertEqual(self.error_lines(), ["[ERROR] PluginlibFactory: failed"])
+        with open(self.path("run/rviz-2-stdout.log"), "w") as f:
+            f.write("[ INFO] loaded\n")
+        self.assertEqual(self.error_lines(), [])
 
 
 def load_run_bench() -> Any:

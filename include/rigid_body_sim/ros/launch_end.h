@@ -5,10 +5,17 @@
 // and exits 0, as on Ctrl-C.
 #pragma once
 
+#include <sys/types.h>
+
 namespace rigid_body_sim {
 
 // Sends SIGINT to the parent process if it is roslaunch; never to rostest (whose tests decide when its
-// launch ends) or a shell. True if it did; logs (INFO) which.
+// launch ends) or a shell. True if it did; logs which (INFO), and a failure to send (ERROR): a caller
+// needs to do nothing more.
 bool endParentRoslaunch();
+
+// SIGINT to `process`, as endParentRoslaunch sends it; a failure is logged in one ERROR line naming the
+// pid and the reason. True if sent.
+bool interruptRoslaunch(pid_t process);
 
 }  // namespace rigid_body_sim

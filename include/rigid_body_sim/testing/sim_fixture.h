@@ -1,0 +1,232 @@
+// Helpers for another package's rostests (gtest nodes) against rigid_body_sim's node, the C++ twin of the
+// Python module rigid_body_sim.testing. They start nothing: the .test file's sim.launch starts the node, and
+// these only subscribe to it, call its services and read its parameters, by the names of the node's
+// interface (docs/DESIGN.md). Every wait has a deadline in wall seconds; each helper answers an
+// AssertionResult that says, on failure, what it saw:
+//
+//   rigid_body_sim::SimFixture sim;                                 // the node sim.launch starts: /sim
+//   rigid_body_sim::StateLog<rigid_body_sim::RollerState> sphere(sim, "sphere");
+//   ASSERT_TRUE(sphere.waitConnected());
+//   ASSERT_TRUE(sim.step(1000));                                    // start_paused:=true held it at t = 0
+//   rigid_body_sim::RollerState state;
+//   ASSERT_TRUE(sphere.waitFor(1.0, &state));                       // the first state at t >= 1 s
+//
+// Header-only; the states arrive on a spinner thread of the log's own, whatever the test's main spins. The
+// test's main keeps a ros::NodeHandle for as long as the tests run (roscpp ends the node with the last one).
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <gtest/gtest.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+
+#include "rigid_body_sim/GetConfig.h"
+#include "rigid_body_sim/RodState.h"
+#include "rigid_body_sim/RollerState.h"
+#include "rigid_body_sim/Step.h"
+
+// In rigid_body_sim itself, not in a namespace `testing`: a test's `using namespace rigid_body_sim` would
+// make gtest's `testing::` ambiguous.
+namespace rigid_body_sim {
+
+constexpr double kFixtureDeadline = 10.0;  // wall seconds of every wait unless told otherwise
+// A state's t is a step count over rate: the one meant at t may come out a rounding below it.
+constexpr double kStateTimeTolerance = 1e-9;
+
+// The running node `name` (sim.launch's: /sim; with ns:=left, /left/sim).
+class SimFixture {
+ public:
+  explicit SimFixture(std::string name = "/sim", double deadline = kFixtureDeadline)
+      : name_(std::move(name)), deadline_(deadline) {}
+
+  const std::string& name() const { return name_; }
+  double deadline() const { return deadline_; }
+
+  // A world key of the config (gravity, rate, publish_rate, world_frame) or a node option, as the launch
+  // loaded it: <node>/<key>.
+  template <class T>
+  ::testing::AssertionResult param(const std::string& key, T* value) const {
+    return get(name_ + "/" + key, value);
+  }
+  // A body's key as the config gave it: <node>/bodies/<body>/<key>. A key the config leaves out is not
+  // there (its default applies; getConfig has every key in use); `set` does not change it.
+  template <class T>
+  ::testing::AssertionResult bodyParam(const std::string& body, const std::string& key, T* value) const {
+    return get(name_ + "/bodies/" + body + "/" + key, value);
+  }
+
+  // The world as it runs now, every key with its value in use, as a config file (~get_config).
+  ::testing::AssertionResult getConfig(std::string* yaml) const {
+    GetConfig srv;
+    auto called = call("get_config", srv);
+    if (called) *yaml = srv.response.yaml;
+    return called;
+  }
+
+  ::testing::AssertionResult pause() const { return callEmpty("pause"); }
+  ::testing::AssertionResult unpause() const { return callEmpty("unpause"); }
+  // Every body back to its initial conditions; simulated time goes on.
+  ::testing::AssertionResult reset() const { return callEmpty("reset"); }
+
+  // `steps` physics steps while paused; `t`: the simulated time after them. A refusal is a failure.
+  ::testing::AssertionResult step(std::uint32_t steps, double* t = nullptr) const {
+    Step srv;
+    srv.request.steps = steps;
+    auto called = call("step", srv);
+    if (!called) return called;
+    if (!srv.response.success) {
+      return ::testing::AssertionFailure()
+             << name_ << "/step " << steps << " refused: " << srv.response.message;
+    }
+    if (t) *t = srv.response.t;
+    return ::testing::AssertionSuccess();
+  }
+
+  // A body's key through its reconfigure server, as `dynparam set` does (the one path of every change): a
+  // number key takes `value`, a text key (shape, integrator, substeps) the text overload. A value the node
+  // refused (the server then shows the one in use) is a failure.
+  ::testing::AssertionResult set(const std::string& body, const std::string& key, double value) const {
+    return setKey(body, key, value, &dynamic_reconfigure::Config::doubles, "number");
+  }
+  ::testing::AssertionResult set(const std::string& body, const std::string& key,
+                                 const std::string& value) const {
+    return setKey(body, key, value, &dynamic_reconfigure::Config::strs, "text");
+  }
+
+ private:
+  template <class T>
+  static ::testing::AssertionResult get(const std::string& name, T* value) {
+    if (ros::param::get(name, *value)) return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure() << "no parameter " << name << " of that type (a key the config "
+                                         << "leaves out is not there: getConfig has every key in use)";
+  }
+
+  template <class Service>
+  ::testing::AssertionResult call(const std::string& service, Service& srv) const {
+    const std::string full = name_ + "/" + service;
+    if (!ros::service::waitForService(full, static_cast<int>(deadline_ * 1000))) {
+      return ::testing::AssertionFailure() << "no service " << full << " within " << deadline_ << " s";
+    }
+    if (!ros::service::call(full, srv)) return ::testing::AssertionFailure() << full << " did not answer";
+    return ::testing::AssertionSuccess();
+  }
+
+  ::testing::AssertionResult callEmpty(const std::string& service) const {
+    std_srvs::Empty srv;
+    return call(service, srv);
+  }
+
+  // `value` into the request's list of its kind (doubles, strs); then the server must show it in that list.
+  template <class List, class Value>
+  ::testing::AssertionResult setKey(const std::string& body, const std::string& key, const Value& value,
+                                    List dynamic_reconfigure::Config::*list, const char* kind) const {
+    typename List::value_type parameter;
+    parameter.name = key;
+    parameter.value = value;
+    dynamic_reconfigure::Reconfigure srv;
+    (srv.request.config.*list).push_back(parameter);
+    auto called = call(body + "/set_parameters", srv);
+    if (!called) return called;
+    for (const auto& shown : srv.response.config.*list) {
+      if (shown.name != key) continue;
+      if (shown.value == value) return ::testing::AssertionSuccess();
+      return ::testing::AssertionFailure()
+             << name_ << "/" << body << " refused " << key << " = " << value << ": it shows " << key << " = "
+             << shown.value << " (the node's WARN line says why)";
+    }
+    return ::testing::AssertionFailure() << name_ << "/" << body << " has no " << kind << " key " << key;
+  }
+
+  std::string name_;
+  double deadline_;
+};
+
+// Every state of one body from the subscription on, in the order they came. State: RodState or RollerState,
+// as the body's type.
+template <class State>
+class StateLog {
+ public:
+  StateLog(const SimFixture& sim, const std::string& body)
+      : topic_(sim.name() + "/" + body + "/state"), deadline_(sim.deadline()), spinner_(1, &queue_) {
+    nh_.setCallbackQueue(&queue_);
+    subscriber_ = nh_.subscribe<State>(topic_, 10000, [this](const typename State::ConstPtr& state) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      states_.push_back(*state);
+      arrived_.notify_all();
+    });
+    spinner_.start();
+  }
+  ~StateLog() {
+    subscriber_.shutdown();
+    spinner_.stop();
+  }
+  StateLog(const StateLog&) = delete;
+  StateLog& operator=(const StateLog&) = delete;
+
+  // Until the node's publisher has connected: every state it publishes from then on arrives.
+  ::testing::AssertionResult waitConnected() {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(deadline_);
+    while (subscriber_.getNumPublishers() == 0) {
+      if (std::chrono::steady_clock::now() > end || !ros::ok()) {
+        return ::testing::AssertionFailure() << "no publisher of " << topic_ << " connected within "
+                                             << deadline_ << " s (is the node running?)";
+      }
+      std::unique_lock<std::mutex> lock(mutex_);
+      arrived_.wait_for(lock, std::chrono::milliseconds(10));
+    }
+    return ::testing::AssertionSuccess();
+  }
+
+  // The first state at or after simulated time t, into `state`; a failure, saying the last state's t, if
+  // none comes within the deadline (the simulation ended, died or is paused).
+  ::testing::AssertionResult waitFor(double t, State* state) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const auto reached = [&] { return !states_.empty() && states_.back().t >= t - kStateTimeTolerance; };
+    if (!arrived_.wait_for(lock, std::chrono::duration<double>(deadline_), reached)) {
+      std::ostringstream last;
+      if (states_.empty()) {
+        last << "none at all";
+      } else {
+        last << "the last at t = " << states_.back().t << " s of " << states_.size();
+      }
+      return ::testing::AssertionFailure()
+             << "no state on " << topic_ << " at t >= " << t << " s within " << deadline_ << " s ("
+             << last.str() << "): the simulation ended or died early, or is paused";
+    }
+    for (const State& s : states_) {
+      if (s.t >= t - kStateTimeTolerance) {
+        *state = s;
+        break;
+      }
+    }
+    return ::testing::AssertionSuccess();
+  }
+
+  std::vector<State> states() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return states_;
+  }
+
+ private:
+  std::string topic_;
+  double deadline_;
+  mutable std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::vector<State> states_;
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_;
+  ros::NodeHandle nh_;  // its own: the subscription lives as long as the log
+  ros::Subscriber subscriber_;
+};
+
+}  // namespace rigid_body_sim
