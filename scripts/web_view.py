@@ -129,8 +129,8 @@ class Page(tornado.websocket.WebSocketHandler):
 
         def close_noting_size(code: Optional[int] = None, reason: Optional[str] = None) -> None:
             if code == 1009:
-                self.note_refusal(Refusal("size", f"refused: a message of more than {MAX_REQUEST_BYTES} bytes "
-                                                  "(connection closed)"))
+                self.note_refusal(Refusal("too big", f"refused: a message of more than {64 * MAX_REQUEST_BYTES} "
+                                                     "bytes (connection closed)"))
             close(code, reason)
         connection.close = close_noting_size
         self.view.pages.add(self)
@@ -420,8 +420,8 @@ class WebView:
             [(r"/ws", Page, {"view": self}),
              (r"/()", File, {"path": root, "default_filename": "index.html"}),
              (r"/(view\.js|view\.css)", File, {"path": root})],
-            websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5,
-            websocket_ping_timeout=20)
+            # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
+            websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20)
 
     def urls(self) -> Tuple[str, str]:
         host = "127.0.0.1" if self.host in ("127.0.0.1", "0.0.0.0", "") else self.host

@@ -232,21 +232,18 @@ function slopeBox(b) {
 }
 
 function drawScene(names) {
-  // The rollers two to a row on a wide screen, one on a narrow one; each rod a row of its own.
+  // The rollers two to a row on a wide screen, one on a narrow one; then each rod in a row of its own.
   const canvas = $("scene-canvas");
   const width = canvas.clientWidth;
   const cols = width >= 880 ? 2 : 1;
   const rows = [];
   let row = [];
-  for (const name of names) {
-    if (rbs.world.bodies[name].type === "rod") {
-      rows.push([name]);
-    } else {
-      row.push(name);
-      if (row.length === cols) { rows.push(row); row = []; }
-    }
+  for (const name of names.filter((n) => rbs.world.bodies[n].type !== "rod")) {
+    row.push(name);
+    if (row.length === cols) { rows.push(row); row = []; }
   }
   if (row.length) rows.push(row);
+  for (const name of names.filter((n) => rbs.world.bodies[n].type === "rod")) rows.push([name]);
   const colWidth = (width - (cols - 1) * 10) / cols;
   const wide = (row) => rbs.world.bodies[row[0]].type === "rod";
   const heights = rows.map((r) => Math.max(...r.map((n) => panelSize(rbs.world.bodies[n], wide(r) ? width : colWidth))));
@@ -288,8 +285,8 @@ function drawRoller(ctx, rect, name, b, s) {
   const scale = Math.min(area.w / box.w, area.h / box.h);
   // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its label says so.
   const r = Math.max(R * scale, MIN_RADIUS);
-  const enlarged = r > R * scale ? ` \u00b7 drawn \u00d7${(r / (R * scale)).toFixed(1)}` : "";
-  panelFrame(ctx, rect, [`${name} (${b.shape}): ${mode}${enlarged}`,
+  const title = name === b.shape ? name : `${name} (${b.shape})`;
+  panelFrame(ctx, rect, [`${title}: ${mode}`,
                          `${energy} \u00b7 \u03c6c = ${deg(phiC)} (slope ${deg(phi)}: ${verdict})`]);
   // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards.
   const ox = area.x - box.x0 * scale;
@@ -314,6 +311,11 @@ function drawRoller(ctx, rect, name, b, s) {
   ctx.font = "14px 'DejaVu Sans', sans-serif";
   ctx.fillText(deg(phi), X(bottom.x) - 80, Y(bottom.y) - 6);
   rbs.panels[name] = { scale, ox, oy, phi };
+  if (r > R * scale) {
+    ctx.fillStyle = "#c9ced6";
+    const note = `body drawn \u00d7${(r / (R * scale)).toFixed(1)}`;
+    ctx.fillText(note, rect.x + rect.w - 10 - ctx.measureText(note).width, rect.y + rect.h - 10);
+  }
   if (!s) return;
   // The centre: x along the slope, r above it (R to scale); the spoke at the rotation theta about the slope's z.
   const cx = X(s.x * Math.cos(phi)) + r * Math.sin(phi);
@@ -344,7 +346,7 @@ function drawRoller(ctx, rect, name, b, s) {
 function drawRod(ctx, rect, name, b, s) {
   const mode = s ? modeOf(b, s) : "\u2013";
   const energy = s ? `E = ${s.energy.toFixed(3)} J` : "E = \u2013";
-  panelFrame(ctx, rect, [`${name} (rod): ${mode}`, `${energy} \u00b7 k = ${b.k} N/m \u00b7 L = ${b.length} m`]);
+  panelFrame(ctx, rect, [`${name === "rod" ? name : name + " (rod)"}: ${mode}`, `${energy} \u00b7 k = ${b.k} N/m \u00b7 L = ${b.length} m`]);
   const area = { x: rect.x + 8, y: rect.y + 46, w: rect.w - 16, h: rect.h - 54 };
   const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
   const floorPx = 30; // the floor's band, with the metre marks
