@@ -18,8 +18,11 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
 - Run: ~paused says false again. Nothing was thrown or logged as an error in the page.
 
-Usage: test_web_view.py CONFIG.yaml OUT_DIR   (with the package's devel space sourced; OUT_DIR gets the
-screenshots)"""
+And playback.launch web:=true of a bag `simulate` wrote, started paused: the page finds the recording's bodies and
+their keys (the played config), draws the played states exactly, plots them, and refuses Pause in one line.
+
+Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
+(with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
 import argparse
 import json
 import math
@@ -42,6 +45,7 @@ from rigid_body_sim.msg import Command, RodState, RollerState
 from rigid_body_sim.srv import GetConfig
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
+from std_srvs.srv import SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -101,28 +105,34 @@ class WebView(unittest.TestCase):
         self.bodies = {name: ({**ROD_DEFAULTS, **b} if self.kinds[name] == "rod"
                               else {**ROLLER_DEFAULTS, **b, "c": INERTIA_FACTORS[b.get("shape", "sphere")]})
                        for name, b in self.config["bodies"].items()}
-        port, self.web_port = free_port(), free_port()
+        self.web_port = free_port()
+        self.log: List[str] = []
+        self.launch: Optional["subprocess.Popen[str]"] = None
+        self.browser: Optional[Browser] = None
+
+    def start(self, *words: str) -> None:
+        """roslaunch rigid_body_sim WORDS... with the web view (control on) on a port of its own, and a master
+        of its own; this process joins that master (one test per process: rospy joins one master)."""
+        port = free_port()
         env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
                    PATH="/usr/bin:" + os.environ.get("PATH", ""))
         env.pop("ROS_HOSTNAME", None)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
-        self.log: List[str] = []
         self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(port), "rigid_body_sim", "sim.launch", f"config:={ARGS.config}", "web:=true",
-             f"web_port:={self.web_port}", "web_control:=true"],
-            env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            ["roslaunch", "-p", str(port), "rigid_body_sim", *words, "web:=true", f"web_port:={self.web_port}",
+             "web_control:=true"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         threading.Thread(target=self.read_log, daemon=True).start()
-        self.browser: Optional[Browser] = None
 
     def read_log(self) -> None:
-        assert self.launch.stdout is not None
+        assert self.launch is not None and self.launch.stdout is not None
         for line in self.launch.stdout:
             self.log.append(line)
 
     def tearDown(self) -> None:
         if self.browser:
             self.browser.close()
-        end(self.launch, signal.SIGINT, 60)
+        if self.launch:
+            end(self.launch, signal.SIGINT, 60)
         shutil.rmtree(self.tmp, ignore_errors=True)
 
     def log_lines(self, words: str) -> List[str]:
@@ -138,7 +148,9 @@ class WebView(unittest.TestCase):
         wait_for("the web view's control link in the launch's log", printed, DEADLINE)
         return found[0]
 
-    def test_the_page_follows_and_drives_the_node(self) -> None:
+    def test_node(self) -> None:
+        """The page follows and drives sim_node (the module's docstring)."""
+        self.start("sim.launch", f"config:={ARGS.config}")
         url = self.control_url()
         rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
         node = Listener(self.kinds)
@@ -183,6 +195,39 @@ class WebView(unittest.TestCase):
         own = f"http://127.0.0.1:{self.web_port}/"
         self.assertEqual({u for u in asked if not u.startswith(own)}, set())
         self.assertTrue({own + "view.js", own + "view.css"} <= {u.split("?")[0] for u in asked}, asked)
+
+    def test_replay(self) -> None:
+        """playback.launch of a bag simulate wrote: the page finds the bodies from the played state topics,
+        their keys from the played config, draws what the player plays, and refuses any change."""
+        bag = os.path.join(self.tmp, "run.bag")
+        subprocess.run([ARGS.simulate, ARGS.config, "--duration", "20", "--bag", bag, "--out-dir", self.tmp],
+                       check=True, timeout=120, stdout=subprocess.DEVNULL)
+        self.start("playback.launch", f"bag:={bag}", "rviz:=false", "start_paused:=true")
+        url = self.control_url()
+        rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
+        node = Listener(self.kinds)
+        self.browser = browser = Browser(1600, 900)
+        browser.navigate(url)
+        browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
+                     f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
+        rospy.wait_for_service("/player/pause_playback", timeout=DEADLINE)
+        play = rospy.ServiceProxy("/player/pause_playback", SetBool)
+        play(False)
+        wait_for("2 s of the recording", lambda: node.last("rod") is not None and node.last("rod").t >= 2.0,
+                 DEADLINE)
+        play(True)
+        world = browser.evaluate("rbs.world.bodies")  # from the config the player played at t = 0
+        for body, keys in self.config["bodies"].items():
+            for key, value in keys.items():
+                self.assertEqual(world[body][key], value, f"{body}.{key}: the played config's")
+        self.check_drawn_is_the_node(browser, node)
+        self.check_plots(browser, node)
+        self.assertEqual(browser.evaluate("document.getElementById('status').textContent"), "replay of a recording")
+        browser.click("pause")
+        browser.wait("the answer to Pause", "rbs.replies.length > 0", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[0].line"),
+                         "refused: a recording cannot be changed (no node serves /sim/pause)")
+        self.assertEqual(browser.console_errors(), [])
 
     def check_drawn_is_the_node(self, browser: Browser, node: Listener) -> None:
         """Once the page has drawn the last state the test received of every body (paused: none comes after)."""
@@ -357,5 +402,6 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("config")
     parser.add_argument("out_dir")
+    parser.add_argument("simulate")
     ARGS, rest = parser.parse_known_args()
     unittest.main(argv=[sys.argv[0]] + rest)
