@@ -25,6 +25,7 @@ import os
 import re
 import secrets
 import signal
+import socket
 import sys
 import threading
 import time
@@ -57,6 +58,7 @@ NODE_LINE_WAIT = 2.0  # s: the node logs a refusal before it answers, but /rosou
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
 WEB_FILES = ("index.html", "view.js", "view.css")
+SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
 
 
 def body_with_defaults(body: Dict[str, Any]) -> Dict[str, Any]:
@@ -133,6 +135,10 @@ class Page(tornado.websocket.WebSocketHandler):
                                                      "bytes (connection closed)"))
             close(code, reason)
         connection.close = close_noting_size
+        # The kernel's buffer for a page that reads nothing: a few seconds of frames, then its queue drops them.
+        stream: Any = self.ws_connection.stream if self.ws_connection else None
+        if stream is not None and stream.socket is not None:
+            stream.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER)
         self.view.pages.add(self)
         rospy.loginfo(f"web view: page {self.number} opened from {self.request.remote_ip}"
                       f"{' with control' if self.control else ''} ({len(self.view.pages)} open)")
@@ -350,7 +356,8 @@ class WebView:
 
     def flush(self) -> None:
         """One frame of every state since the last, serialised once for every page."""
-        if not self.pending:
+        if not self.pending or not self.pages:
+            self.pending = {}
             return
         self.seq += 1
         frame = frame_message(self.seq, self.pending)
