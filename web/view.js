@@ -34,6 +34,8 @@ const $ = (id) => document.getElementById(id);
 // --- physics the labels and plots show (docs/rviz.md: the panel's) -----------------------------------------
 function criticalAngle(b) { return Math.atan(b.mu_s * (1 + b.inertia_factor) / b.inertia_factor); }
 function deg(rad) { return (rad * 180 / Math.PI).toFixed(1) + "\u00b0"; }
+// Three decimals, without the "-0.000" of a tiny negative number.
+function fixed3(x) { return Math.abs(x) < 0.0005 ? "0.000" : x.toFixed(3); }
 function kinetic(b, s) {
   if (b.type === "rod") {
     return 0.5 * b.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (b.mass * b.length * b.length / 12) * s.omega * s.omega;
@@ -279,12 +281,12 @@ function drawRoller(ctx, rect, name, b, s) {
   const phiC = criticalAngle(b);
   const verdict = Math.tan(phi) <= b.mu_s * (1 + c) / c ? "can roll" : "slips";
   const mode = s ? s.mode : "\u2013";
-  const energy = s ? `E = ${s.energy.toFixed(3)} J` : "E = \u2013";
+  const energy = s ? `E = ${fixed3(s.energy)} J` : "E = \u2013";
   const box = slopeBox(b);
   const area = { x: rect.x + 8, y: rect.y + 46, w: rect.w - 16, h: rect.h - 54 };
   const scale = Math.min(area.w / box.w, area.h / box.h);
-  // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its label says so.
-  const r = Math.max(R * scale, MIN_RADIUS);
+  // A body much smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so.
+  const r = R * scale < 0.9 * MIN_RADIUS ? MIN_RADIUS : R * scale;
   const title = name === b.shape ? name : `${name} (${b.shape})`;
   panelFrame(ctx, rect, [`${title}: ${mode}`,
                          `${energy} \u00b7 \u03c6c = ${deg(phiC)} (slope ${deg(phi)}: ${verdict})`]);
@@ -345,7 +347,7 @@ function drawRoller(ctx, rect, name, b, s) {
 
 function drawRod(ctx, rect, name, b, s) {
   const mode = s ? modeOf(b, s) : "\u2013";
-  const energy = s ? `E = ${s.energy.toFixed(3)} J` : "E = \u2013";
+  const energy = s ? `E = ${fixed3(s.energy)} J` : "E = \u2013";
   panelFrame(ctx, rect, [`${name === "rod" ? name : name + " (rod)"}: ${mode}`, `${energy} \u00b7 k = ${b.k} N/m \u00b7 L = ${b.length} m`]);
   const area = { x: rect.x + 8, y: rect.y + 46, w: rect.w - 16, h: rect.h - 54 };
   const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
@@ -416,20 +418,20 @@ function drawPlots(name) {
   const series = (key) => shown.map((p) => [p.t, p[key]]);
   let motion;
   if (!b) {
-    motion = { title: "", unit: "", lines: [] };
+    motion = { title: "", lines: [] };
   } else if (b.type === "rod") {
-    motion = { title: "height of each end", unit: "m",
+    motion = { title: "height of each end (m)",
                lines: [{ key: "end_a", name: "end A (orange)", colour: "#ff8a3d", pts: series("end_a") },
                        { key: "end_b", name: "end B", colour: "#4f8cff", pts: series("end_b") }] };
   } else {
-    motion = { title: "v and \u2212\u03c9R (equal while rolling); \u25cf slip \u2192 roll", unit: "m/s",
+    motion = { title: "v and \u2212\u03c9R (m/s), \u25cf slip \u2192 roll",
                lines: [{ key: "v", name: "v", colour: "#f0a030", pts: series("v") },
                        { key: "minus_omega_r", name: "\u2212\u03c9R", colour: "#7fd4ff", dash: [8, 6],
                          pts: series("minus_omega_r") }],
                marks: (marks[name] || []).filter((m) => m[0] >= t0) };
   }
   const zero = b && b.type === "rod" ? "floor level" : "the slope's top";
-  const energy = { title: `energy (potential 0 at ${zero})`, unit: "J",
+  const energy = { title: `energy (J), potential 0 at ${zero}`,
                    lines: [{ key: "energy", name: "total", colour: "#f2f2f2", pts: series("energy") },
                            { key: "kinetic", name: "kinetic", colour: "#6bd06b", pts: series("kinetic") },
                            { key: "potential", name: "potential", colour: "#e05080", pts: series("potential") }] };
@@ -468,7 +470,7 @@ function chart(canvas, height, spec, t0) {
   const Y = (v) => area.y + (1 - (v - lo) / (hi - lo)) * area.h;
   ctx.font = "bold 15px 'DejaVu Sans', sans-serif";
   ctx.fillStyle = "#f2f2f2";
-  ctx.fillText(`${spec.title} (${spec.unit})`, 8, 18);
+  ctx.fillText(spec.title, 8, 18);
   ctx.font = "14px 'DejaVu Sans', sans-serif";
   let lx = 8;
   for (const line of spec.lines) {

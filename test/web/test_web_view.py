@@ -16,7 +16,8 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
 - A WebSocket client without the token: its requests, malformed, oversized and unexpected messages are each
   refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log.
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
-- Run: ~paused says false again. Nothing was thrown or logged as an error in the page.
+- Run: ~paused says false again. The page without the token shows the world and no control. Nothing was
+  thrown or logged as an error in the page, and it asked nothing of any server but its own.
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page finds the recording's bodies and
 their keys (the played config), draws the played states exactly, plots them, and refuses Pause in one line.
@@ -189,6 +190,13 @@ class WebView(unittest.TestCase):
 
         browser.click("run")
         wait_for("~paused false after Run", lambda: node.paused is False, DEADLINE)
+        # The class's page (no token): the world, and no control in sight.
+        browser.navigate(url.split("?")[0])
+        browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
+                     DEADLINE)
+        self.assertFalse(browser.evaluate("rbs.control"))
+        for control in ("controls", "pause", "run", "step", "reset", "set"):
+            self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
         self.assertEqual(browser.console_errors(), [])
         # Nothing from the internet: every request the page made went to its own server.
         asked = {e["params"]["request"]["url"] for e in browser.events if e["method"] == "Network.requestWillBeSent"}
@@ -258,7 +266,8 @@ class WebView(unittest.TestCase):
             self.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
             return
         phi = b["incline_angle"]
-        r = max(b["radius"] * scale, 9.0)  # the page's smallest drawn radius, said on its label
+        # to scale, or 9 px (the page's smallest, said on its panel) when that is under 8.1 px
+        r = 9.0 if b["radius"] * scale < 0.9 * 9.0 else b["radius"] * scale
         self.assertAlmostEqual(d["r"], r, delta=1e-9)
         self.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
         self.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
