@@ -220,7 +220,7 @@ function panelSize(b, width) {
   const label = 46;
   if (b.type === "rod") return label + Math.min(Math.max(0.42 * width, 260), 420);
   const box = slopeBox(b);
-  const s = Math.min((width - 16) / box.w, (0.3 * width) / box.h);
+  const s = Math.min((width - 16) / box.w, (0.4 * width) / box.h);
   return label + box.h * s + 8;
 }
 
@@ -316,7 +316,7 @@ function drawRoller(ctx, rect, name, b, s) {
   if (r > R * scale) {
     ctx.fillStyle = "#c9ced6";
     const note = `body drawn \u00d7${(r / (R * scale)).toFixed(1)}`;
-    ctx.fillText(note, rect.x + rect.w - 10 - ctx.measureText(note).width, rect.y + rect.h - 10);
+    ctx.fillText(note, rect.x + rect.w - 10 - ctx.measureText(note).width, rect.y + 64);
   }
   if (!s) return;
   // The centre: x along the slope, r above it (R to scale); the spoke at the rotation theta about the slope's z.
