@@ -112,6 +112,9 @@ class Page(tornado.websocket.WebSocketHandler):
     def initialize(self, view: "WebView") -> None:
         self.view = view
 
+    def prepare(self) -> None:
+        refuse_foreign_host(self, self.view)
+
     def open(self, *args: str, **kwargs: str) -> None:
         Page.pages_opened += 1
         self.number = Page.pages_opened
@@ -233,17 +236,20 @@ class WebView:
             raise ValueError(f"frame_rate {self.frame_rate} not in (0, 1000] or queue {self.queue_bound} "
                              "not in [1, 1000]")
         self.token = secrets.token_urlsafe(18) if self.control else ""
+        # On the loopback only these names reach it; on a network any (its names are not known here).
+        self.local_hosts = ({f"127.0.0.1:{self.port}", f"localhost:{self.port}"}
+                            if self.host in ("127.0.0.1", "localhost") else set())
         self.world = World()
         self.pages: Set[Page] = set()
         self.pending: Dict[str, List[Dict[str, Any]]] = {}  # states since the last frame, by body
         self.latest: Dict[str, Dict[str, Any]] = {}  # each body's last state
         self.seq = 0
         self.node_lines: List[Tuple[float, str]] = []  # (arrival, the node's WARN or ERROR line)
-        self.line_came = asyncio.Event()
+        self.line_came: asyncio.Event  # made on the server's loop (serve)
         self.subscribers: Dict[str, Any] = {}
         self.need_config = threading.Event()
         self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
-        self.loop = tornado.ioloop.IOLoop.current()
+        self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
         state_topic = re.escape(self.node) + r"/([A-Za-z][A-Za-z0-9_]*)/state"
         self.state_topic = re.compile(state_topic + "$")
 
@@ -425,8 +431,8 @@ class WebView:
             raise FileNotFoundError(f"web view: {', '.join(missing)} not in {root}")
         return tornado.web.Application(
             [(r"/ws", Page, {"view": self}),
-             (r"/()", File, {"path": root, "default_filename": "index.html"}),
-             (r"/(view\.js|view\.css)", File, {"path": root})],
+             (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
+             (r"/(view\.js|view\.css)", File, {"path": root, "view": self})],
             # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
             websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20)
 
@@ -436,9 +442,25 @@ class WebView:
         return base, f"{base}?token={self.token}"
 
 
+def refuse_foreign_host(handler: tornado.web.RequestHandler, view: "WebView") -> None:
+    """On the loopback, a request must name this machine (127.0.0.1 or localhost) as its host: a site whose name
+    was made to point at 127.0.0.1 (DNS rebinding) gets neither the page nor a connection."""
+    if view.local_hosts and handler.request.host not in view.local_hosts:
+        raise tornado.web.HTTPError(403, "host %s is not this web view's", handler.request.host)
+
+
 class File(tornado.web.StaticFileHandler):
     """The page's three files, never cached (a rebuilt package serves its new page), with nothing but this
     server allowed to the page (no script, style or connection from anywhere else)."""
+
+    def initialize(self, path: str, default_filename: Optional[str] = None,
+                   view: Optional["WebView"] = None) -> None:
+        super().initialize(path, default_filename)
+        self.view = view
+
+    def prepare(self) -> None:
+        if self.view:
+            refuse_foreign_host(self, self.view)
 
     def set_extra_headers(self, path: str) -> None:
         self.set_header("Cache-Control", "no-store")
@@ -448,12 +470,13 @@ class File(tornado.web.StaticFileHandler):
                         "img-src 'self'; frame-ancestors 'none'")
 
 
-def main() -> None:
-    rospy.init_node("web", disable_signals=True)
-    view = WebView()
-    app = view.application()
+async def serve(view: WebView) -> None:
+    """Runs the server on this thread's event loop until ROS shuts down."""
+    view.loop = tornado.ioloop.IOLoop.current()
+    view.line_came = asyncio.Event()
+    done = asyncio.Event()
     try:
-        app.listen(view.port, address=view.host, xheaders=False)
+        view.application().listen(view.port, address=view.host, xheaders=False)
     except OSError as error:
         rospy.logfatal(f"web view: cannot listen on {view.host}:{view.port}: {error}")
         sys.exit(1)
@@ -463,12 +486,16 @@ def main() -> None:
     rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
     if view.control:
         rospy.loginfo(f"web view: control (keep it to the teacher): {control}")
-    loop = tornado.ioloop.IOLoop.current()
-    rospy.on_shutdown(lambda: loop.add_callback(loop.stop))
-    # disable_signals: rospy's own handlers would not stop tornado's loop.
+    rospy.on_shutdown(lambda: view.loop.add_callback(done.set))
+    await done.wait()
+
+
+def main() -> None:
+    rospy.init_node("web", disable_signals=True)
+    # disable_signals: rospy's own handlers would not end the server's loop; these end ROS, which ends it.
     signal.signal(signal.SIGINT, lambda *_: rospy.signal_shutdown("SIGINT"))
     signal.signal(signal.SIGTERM, lambda *_: rospy.signal_shutdown("SIGTERM"))
-    loop.start()
+    asyncio.run(serve(WebView()))
 
 
 if __name__ == "__main__":

@@ -14,7 +14,8 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
 - A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
   is the node's own WARN line from /rosout, and k stays 2000.
 - A WebSocket client without the token: its requests, malformed, oversized and unexpected messages are each
-  refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log.
+  refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log;
+  another Origin, or another Host (DNS rebinding), gets no connection and no page.
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
 - Run: ~paused says false again. The page without the token shows the world and no control. Nothing was
   thrown or logged as an error in the page, and it asked nothing of any server but its own.
@@ -37,6 +38,8 @@ import tempfile
 import threading
 import time
 import unittest
+import urllib.error
+import urllib.request
 from typing import Any, Dict, List, Optional
 
 import rospy
@@ -373,6 +376,15 @@ class WebView(unittest.TestCase):
         with self.assertRaises(websocket.WebSocketBadStatusException):
             websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
                                         origin="http://example.invalid")
+        # nor does a site whose name was pointed at 127.0.0.1 (DNS rebinding: same origin, foreign host)
+        rebound = f"rebound.invalid:{self.web_port}"
+        with self.assertRaises(websocket.WebSocketBadStatusException):
+            websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE, host=rebound,
+                                        origin=f"http://{rebound}")
+        with self.assertRaises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(urllib.request.Request(f"http://127.0.0.1:{self.web_port}/",
+                                                          headers={"Host": rebound}), timeout=DEADLINE)
+        self.assertEqual(refused.exception.code, 403)
         wait_for("the refusals in the log", lambda: len(self.log_lines("bytes (connection closed)")) == 1, DEADLINE)
         self.assertEqual(len(self.log_lines("refused: not JSON")), 1, "logged once per page")
         self.assertEqual(len(self.log_lines("refused: this page only shows")), 1)
