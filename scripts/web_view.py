@@ -54,7 +54,7 @@ from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, R
                           parse_request)
 
 STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState)}
-NODE_LINE_WAIT = 2.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
+NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
 WEB_FILES = ("index.html", "view.js", "view.css")
