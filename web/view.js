@@ -215,10 +215,11 @@ function draw() {
   drawPlots($("plot-body").value);
 }
 
-function panelSize(b, width) {
-  // A panel's height for its width: the slope or the floor to scale; a rod's panel spans the whole width.
+function panelSize(b, width, alone) {
+  // A panel's height for its width: the slope or the floor to scale; a rod's panel spans the whole width, and
+  // a rod alone (lesson.launch part:=rod) may take more of the screen's height.
   const label = 46;
-  if (b.type === "rod") return label + Math.min(Math.max(0.42 * width, 260), 420);
+  if (b.type === "rod") return label + Math.min(Math.max((alone ? 0.6 : 0.42) * width, 260), alone ? 600 : 420);
   const box = slopeBox(b);
   const s = Math.min((width - 16) / box.w, (0.4 * width) / box.h);
   return label + box.h * s + 8;
@@ -248,7 +249,8 @@ function drawScene(names) {
   for (const name of names.filter((n) => rbs.world.bodies[n].type === "rod")) rows.push([name]);
   const colWidth = (width - (cols - 1) * 10) / cols;
   const wide = (row) => rbs.world.bodies[row[0]].type === "rod";
-  const heights = rows.map((r) => Math.max(...r.map((n) => panelSize(rbs.world.bodies[n], wide(r) ? width : colWidth))));
+  const heights = rows.map((r) => Math.max(...r.map((n) => panelSize(rbs.world.bodies[n], wide(r) ? width : colWidth,
+                                                                      names.length === 1))));
   const ctx = fitCanvas(canvas, heights.reduce((a, h) => a + h + 10, 0));
   let top = 0;
   rows.forEach((r, i) => {
