@@ -126,8 +126,11 @@ class Page(tornado.websocket.WebSocketHandler):
         self.refused: Dict[str, int] = {}
         token = self.get_query_argument("token", "") or ""
         self.control = bool(self.view.token) and bool(token) and hmac.compare_digest(token, self.view.token)
-        if token and not self.control:
-            self.note_refusal(Refusal("token", "refused control: the token is not this view's"))
+        refused_token = None
+        if token and not self.control:  # a link from before a restart (a new token each start), or a guess
+            refused_token = Refusal("token", "refused control: the token is not this view's (a link from before "
+                                             "it restarted?): this page only shows")
+            self.note_refusal(refused_token)
         # tornado closes the connection on a message over its limit without a word to the handler.
         connection: Any = self.ws_connection
         close = connection.close
@@ -148,6 +151,8 @@ class Page(tornado.websocket.WebSocketHandler):
         self.reply({"type": "hello", "control": self.control, "node": self.view.node,
                     "frame_rate": self.view.frame_rate, "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS})
         self.reply_text(self.view.world.message())
+        if refused_token:
+            self.reply({"type": "reply", "id": None, "ok": False, "line": str(refused_token)})
         latest = self.view.latest_frame()
         if latest:
             self.frames.offer(latest)

@@ -17,7 +17,8 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log;
   another Origin, or another Host (DNS rebinding), gets no connection and no page.
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
-- Run: ~paused says false again. The page without the token shows the world and no control. Nothing was
+- Run: ~paused says false again. The page without the token shows the world and no control; with a wrong one
+  it also says that the token is not this view's. Nothing was
   thrown or logged as an error in the page, and it asked nothing of any server but its own.
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page finds the recording's bodies and
@@ -200,6 +201,12 @@ class WebView(unittest.TestCase):
         self.assertFalse(browser.evaluate("rbs.control"))
         for control in ("controls", "pause", "run", "step", "reset", "set"):
             self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
+        # A wrong token (a link from before a restart): the page only shows, and says why.
+        browser.navigate(url.split("?")[0] + "?token=" + "x" * 24)
+        browser.wait("the page's line about the token", "window.rbs && rbs.line.includes('token')", DEADLINE)
+        self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertIsNone(browser.centre("controls"))
+        self.assertEqual(len(self.log_lines("refused control: the token is not this view's")), 1)
         self.assertEqual(browser.console_errors(), [])
         # Nothing from the internet: every request the page made went to its own server.
         asked = {e["params"]["request"]["url"] for e in browser.events if e["method"] == "Network.requestWillBeSent"}
