@@ -15,6 +15,7 @@ const rbs = {
   drawn: {}, plotLast: {}, panels: {}, replies: [],
 };
 window.rbs = rbs;
+rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
 
 const token = new URLSearchParams(location.search).get("token") || "";
 if (token) history.replaceState(null, "", location.pathname); // the token off a projected address bar
@@ -23,6 +24,7 @@ const latest = {}; // body -> its last state
 const points = {}; // body -> [{t, ...the plotted values}]
 const marks = {}; // body -> [[t, v]] slip -> roll instants
 const lastMode = {}; // body -> the mode of its previous state
+let resetT = -Infinity; // the latest reset's t: no point at or before it is plotted
 let socket = null;
 let nextId = 1;
 let drawPending = false;
@@ -81,6 +83,7 @@ function receive(m) {
   } else if (m.type === "paused") {
     rbs.paused = m.paused;
   } else if (m.type === "reset") {
+    resetT = Math.max(resetT, m.t);
     for (const body of Object.keys(points)) {
       points[body] = points[body].filter((p) => p.t > m.t);
       marks[body] = (marks[body] || []).filter((p) => p[0] > m.t);
@@ -98,7 +101,8 @@ function receive(m) {
 function addState(body, s) {
   latest[body] = s;
   const b = rbs.world && rbs.world.bodies[body];
-  if (!b) return;
+  // The reset comes on its own topic, and may overtake states from before it: those are not plotted.
+  if (!b || s.t <= resetT) return;
   const K = kinetic(b, s);
   const p = { t: s.t, energy: s.energy, kinetic: K, potential: s.energy - K };
   if (b.type === "rod") {

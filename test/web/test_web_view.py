@@ -9,7 +9,8 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
   (v, -omega R, the total energy and a rod's end heights exactly; the kinetic and potential energies to 1e-12).
 - Reset, then Pause 1.5 s later: the bowler, launched sliding with backspin, is marked once at its slip-to-roll
-  instant, the first rolling state after a slipping one among the states the test received since the reset.
+  instant, the first rolling state after a slipping one among the states the test received since the reset;
+  every body's plot holds every state since the reset, once, while a page that reads nothing is open too.
 - Step (a count of 100 typed in) moves every body to the node's state 0.1 s on.
 - A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
   is the node's own WARN line from /rosout, and k stays 2000.
@@ -33,6 +34,7 @@ import os
 import re
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -169,7 +171,11 @@ class WebView(unittest.TestCase):
         self.assertEqual(browser.evaluate("location.search"), "", "the token stays on the address bar")
         self.assertTrue(browser.evaluate("rbs.control && !document.getElementById('controls').hidden"))
 
-        # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.80 s after its launch).
+        # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.80 s after its launch). Meanwhile a page
+        # that reads nothing is open: the browser's page gets every state all the same.
+        frozen = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                             origin=f"http://127.0.0.1:{self.web_port}",
+                                             sockopt=((socket.SOL_SOCKET, socket.SO_RCVBUF, 4096),))
         browser.click("reset")
         wait_for("the reset on ~commands", lambda: any(c.kind == "reset" for c in node.commands), DEADLINE)
         reset_t = next(c.t for c in node.commands if c.kind == "reset")
@@ -179,6 +185,12 @@ class WebView(unittest.TestCase):
         self.check_drawn_is_the_node(browser, node)
         self.check_plots(browser, node)
         self.check_slip_to_roll(browser, node, reset_t)
+        for body in self.kinds:
+            with node.lock:
+                sent = [m.t for m in node.states[body] if m.t > reset_t]
+            self.assertEqual(browser.evaluate(f"rbs.times({json.dumps(body)})"), sent, f"{body}: states plotted")
+        frozen.close()
+        print(f"every state since the reset plotted once ({len(sent)} a body), a frozen page open", file=sys.stderr)
 
         # Step 100 (typed): every body where the node's next state is.
         before = node.last("rod").t
