@@ -18,9 +18,9 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log;
   another Origin, or another Host (DNS rebinding), gets no connection and no page.
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
-- Run: ~paused says false again. The page without the token shows the world and no control; with a wrong one
-  it also says that the token is not this view's. Nothing was
-  thrown or logged as an error in the page, and it asked nothing of any server but its own.
+- Run: ~paused says false again; Step then is refused, and the page shows the node's own line. The page
+  without the token shows the world and no control; with a wrong one it also says that the token is not this
+  view's. Nothing was thrown or logged as an error in the page, and it asked nothing of any server but its own.
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page finds the recording's bodies and
 their keys (the played config), draws the played states exactly, plots them, and refuses Pause in one line.
@@ -206,6 +206,15 @@ class WebView(unittest.TestCase):
 
         browser.click("run")
         wait_for("~paused false after Run", lambda: node.paused is False, DEADLINE)
+        # Step while running: the node refuses it, and the page shows the node's line.
+        warnings, replies = len(node.warnings), browser.evaluate("rbs.replies.length")
+        browser.click("step")
+        browser.wait("the answer to Step", f"rbs.replies.length > {replies}", DEADLINE)
+        wait_for("the node's WARN line about ~step", lambda: len(node.warnings) > warnings, DEADLINE)
+        reply = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
+        self.assertFalse(reply["ok"])
+        self.assertEqual([reply["line"]], node.warnings[warnings:])
+        self.assertTrue(reply["line"].startswith("~step refused"), reply)
         # The class's page (no token): the world, and no control in sight.
         browser.navigate(url.split("?")[0])
         browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
