@@ -91,6 +91,7 @@ function receive(m) {
     }
   } else if (m.type === "reply") {
     rbs.replies.push(m);
+    if (!m.ok) showKeyValue(); // a refused value: the field shows the one that runs again
     showLine(m.line, m.ok);
   } else if (m.type === "line") {
     showLine(m.line, false);
@@ -164,10 +165,11 @@ function fillKeys() {
 }
 
 function showKeyValue() {
+  // The value that runs, unless the teacher is typing one (a world update comes whenever anything changes).
   const b = rbs.world && rbs.world.bodies[$("set-body").value];
   const key = $("set-key").value;
   if (!b || !key) return;
-  $("set-value").value = String(b[key]);
+  if (document.activeElement !== $("set-value")) $("set-value").value = String(b[key]);
   const unit = (keyUnits[b.type] || {})[key] || "";
   $("set-unit").textContent = unit === "rad" ? `rad (${deg(Number(b[key]))})` : unit;
 }

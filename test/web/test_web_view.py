@@ -374,6 +374,8 @@ class WebView(unittest.TestCase):
         self.assertEqual(browser.evaluate("document.getElementById('line').textContent"), reply["line"])
         self.assertEqual(browser.evaluate("document.getElementById('line').className"), "refused")
         self.assertEqual(self.rod_k(), 2000.0)
+        self.assertEqual(browser.evaluate("document.getElementById('set-value').value"), "2000",
+                         "the field shows the value that runs after a refusal")
         print(f"k = 2000 set; k = -5 refused with the node's line: {reply['line']}", file=sys.stderr)
 
     def check_refusals(self, node: Listener) -> None:
