@@ -49,7 +49,8 @@ from std_srvs.srv import Empty
 # sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
 # devel-space relay runs it from its source path.
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS  # noqa: E402
+from sim_tools import (INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS,  # noqa: E402
+                       rospy_on_python39)
 from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request, frame_message,  # noqa: E402
                           parse_request)
 
@@ -496,6 +497,7 @@ async def serve(view: WebView) -> None:
 
 
 def main() -> None:
+    rospy_on_python39()  # Debian 11: rospy.signal_shutdown (the handlers below) calls Thread.isAlive
     rospy.init_node("web", disable_signals=True)
     # disable_signals: rospy's own handlers would not end the server's loop; these end ROS, which ends it.
     signal.signal(signal.SIGINT, lambda *_: rospy.signal_shutdown("SIGINT"))
