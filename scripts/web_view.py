@@ -44,7 +44,7 @@ from rigid_body_sim.msg import Command, RodState, RollerState
 from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
-from std_srvs.srv import Empty
+from std_srvs.srv import Empty, SetBool
 
 # sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
 # devel-space relay runs it from its source path.
@@ -84,7 +84,9 @@ class World:
         self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
         self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
         self.source = "none"  # node (a live node), replay (a played bag), none (nothing yet)
+        self.player = ""  # in a replay: the node that plays the state topics (rosbag play: pause_playback)
         self.paused = False
+        self.paused_at = 0.0  # when a page paused the player (monotonic s)
         self.last_seq = -1
 
     def set_config(self, config: Dict[str, Any]) -> None:
@@ -178,9 +180,12 @@ class Page(tornado.websocket.WebSocketHandler):
         try:
             request = parse_request(message, self.control, self.view.world.kinds())
             request_id = request.id
-            if self.view.world.source != "node":
-                raise Refusal("replay", "refused: a recording cannot be changed (no node serves "
-                                        f"{self.view.node}/pause)")
+            source = self.view.world.source
+            if source == "replay" and request.op not in ("pause", "run"):
+                raise Refusal("replay", "refused: a recording cannot be changed, only paused and run (no node "
+                                        f"serves {self.view.node}/pause)")
+            if source == "none":
+                raise Refusal("none", f"refused: no simulation found ({self.view.node})")
             if self.pending >= MAX_PENDING_REQUESTS:
                 raise Refusal("busy", f"refused: {MAX_PENDING_REQUESTS} requests already wait for the node")
         except Refusal as refusal:
@@ -294,10 +299,18 @@ class WebView:
                 for body in set(self.subscribers) - set(bodies):
                     self.subscribers.pop(body).unregister()
                 kinds = {body: STATE_TYPES[kind][0] for body, kind in bodies.items()}
-                self.loop.add_callback(self.on_discovered, kinds, "node" if live else "replay" if kinds else "none")
+                player = "" if live or not bodies else self.player_of(master, sorted(bodies)[0])
+                self.loop.add_callback(self.on_discovered, kinds, "node" if live else "replay" if kinds else "none",
+                                       player)
             except (OSError, rosgraph.MasterError) as error:
                 rospy.logwarn_throttle(10, f"web view: the master: {error}")
             time.sleep(1.0)
+
+    def player_of(self, master: rosgraph.Master, body: str) -> str:
+        """The node that publishes a body's states in a replay (as the rviz panel finds it), or ""."""
+        topic = f"{self.node}/{body}/state"
+        publishers = dict((name, nodes) for name, nodes in master.getSystemState()[0])
+        return next((n for n in publishers.get(topic, []) if n != rospy.get_name()), "")
 
     def fetch_config(self) -> None:
         try:
@@ -322,7 +335,8 @@ class WebView:
         self.world.set_config(config)
         self.send_world()
 
-    def on_discovered(self, kinds: Dict[str, str], source: str) -> None:
+    def on_discovered(self, kinds: Dict[str, str], source: str, player: str) -> None:
+        self.world.player = player
         if kinds != self.world.topics or source != self.world.source:
             self.world.topics = kinds
             self.world.source = source
@@ -362,6 +376,10 @@ class WebView:
             return  # the node's NaN guard holds such a body: nothing a page could draw
         self.pending.setdefault(body, []).append(state)
         self.latest[body] = state
+        # A replay that a page paused plays again when states come (run by someone else, rviz's panel), once
+        # those already on their way at the pause are in.
+        if self.world.source == "replay" and self.world.paused and time.monotonic() > self.world.paused_at + 0.5:
+            self.on_paused(False)
 
     def latest_frame(self) -> Optional[str]:
         return frame_message(self.seq, {b: [s] for b, s in self.latest.items()}) if self.latest else None
@@ -412,6 +430,13 @@ class WebView:
     def call(self, request: Request) -> Tuple[bool, str]:
         """On the calls thread: the service call. (accepted, what to show)."""
         try:
+            if self.world.source == "replay":  # pause or run: the player's pause_playback, as rviz's panel does
+                player = self.world.player
+                answer = rospy.ServiceProxy(f"{player}/pause_playback", SetBool)(request.op == "pause")
+                if answer.success:
+                    self.world.paused_at = time.monotonic()
+                    self.loop.add_callback(self.on_paused, request.op == "pause")
+                return bool(answer.success), f"{player}: {answer.message}"
             if request.op in ("pause", "run", "reset"):
                 name = {"pause": "pause", "run": "unpause", "reset": "reset"}[request.op]
                 rospy.ServiceProxy(f"{self.node}/{name}", Empty)()

@@ -215,8 +215,9 @@ function draw() {
   const t = ts.length ? Math.max(...ts) : null;
   $("clock").textContent = t === null ? "t = \u2013" : `t = ${t.toFixed(2)} s`;
   const source = rbs.world.source;
-  setStatus(source === "replay" ? "replay of a recording" : source === "none" ? "no simulation found"
-            : rbs.paused ? "paused" : "running", source === "none");
+  const paused = rbs.paused ? "paused" : "running";
+  setStatus(source === "replay" ? `replay of a recording, ${paused}` : source === "none" ? "no simulation found"
+            : paused, source === "none");
   drawScene(names);
   drawPlots($("plot-body").value);
 }

@@ -22,8 +22,9 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   without the token shows the world and no control; with a wrong one it also says that the token is not this
   view's. Nothing was thrown or logged as an error in the page, and it asked nothing of any server but its own.
 
-And playback.launch web:=true of a bag `simulate` wrote, started paused: the page finds the recording's bodies and
-their keys (the played config), draws the played states exactly, plots them, and refuses Pause in one line.
+And playback.launch web:=true of a bag `simulate` wrote, started paused: the page's Run and Pause drive the player
+(its pause_playback); the page finds the recording's bodies and their keys (the played config), draws the played
+states exactly, plots them, and refuses Step in one line.
 
 Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
 (with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
@@ -52,7 +53,6 @@ from rigid_body_sim.msg import Command, RodState, RollerState
 from rigid_body_sim.srv import GetConfig
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
-from std_srvs.srv import SetBool
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -237,7 +237,8 @@ class WebView(unittest.TestCase):
 
     def test_replay(self) -> None:
         """playback.launch of a bag simulate wrote: the page finds the bodies from the played state topics,
-        their keys from the played config, draws what the player plays, and refuses any change."""
+        their keys from the played config, runs and pauses the player, draws what it plays, and refuses any
+        change."""
         bag = os.path.join(self.tmp, "run.bag")
         subprocess.run([ARGS.simulate, ARGS.config, "--duration", "20", "--bag", bag, "--out-dir", self.tmp],
                        check=True, timeout=120, stdout=subprocess.DEVNULL)
@@ -249,23 +250,28 @@ class WebView(unittest.TestCase):
         browser.navigate(url)
         browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
                      f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
-        rospy.wait_for_service("/player/pause_playback", timeout=DEADLINE)
-        play = rospy.ServiceProxy("/player/pause_playback", SetBool)
-        play(False)
+        # The page's Run and Pause drive the player (its pause_playback), as rviz's panel does.
+        browser.click("run")
+        browser.wait("the answer to Run", "rbs.replies.length === 1", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[0]"),
+                         {"type": "reply", "id": 1, "ok": True, "line": "/player: Playback is now resumed"})
         wait_for("2 s of the recording", lambda: node.last("rod") is not None and node.last("rod").t >= 2.0,
                  DEADLINE)
-        play(True)
+        browser.click("pause")
+        browser.wait("the answer to Pause", "rbs.replies.length === 2", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[1].line"), "/player: Playback is now paused")
         world = browser.evaluate("rbs.world.bodies")  # from the config the player played at t = 0
         for body, keys in self.config["bodies"].items():
             for key, value in keys.items():
                 self.assertEqual(world[body][key], value, f"{body}.{key}: the played config's")
         self.check_drawn_is_the_node(browser, node)
         self.check_plots(browser, node)
-        self.assertEqual(browser.evaluate("document.getElementById('status').textContent"), "replay of a recording")
-        browser.click("pause")
-        browser.wait("the answer to Pause", "rbs.replies.length > 0", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[0].line"),
-                         "refused: a recording cannot be changed (no node serves /sim/pause)")
+        self.assertEqual(browser.evaluate("document.getElementById('status').textContent"),
+                         "replay of a recording, paused")
+        browser.click("step")
+        browser.wait("the answer to Step", "rbs.replies.length === 3", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[2].line"),
+                         "refused: a recording cannot be changed, only paused and run (no node serves /sim/pause)")
         self.assertEqual(browser.console_errors(), [])
 
     def check_drawn_is_the_node(self, browser: Browser, node: Listener) -> None:
