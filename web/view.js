@@ -318,13 +318,15 @@ function drawRoller(ctx, rect, name, b, s) {
   ctx.moveTo(X(0), Y(0));
   ctx.lineTo(X(bottom.x), Y(bottom.y));
   ctx.stroke();
-  ctx.fillStyle = "#c8a27a";
   ctx.font = "14px 'DejaVu Sans', sans-serif";
-  ctx.fillText(deg(phi), X(bottom.x) - 80, Y(bottom.y) - 6);
+  if (-bottom.y * scale >= 30) { // inside the slope's foot; a flatter one has it in its label alone
+    ctx.fillStyle = "#c8a27a";
+    ctx.fillText(deg(phi), X(bottom.x) - 80, Y(bottom.y) - 6);
+  }
   rbs.panels[name] = { scale, ox, oy, phi };
   if (r > R * scale) {
-    ctx.fillStyle = "#c9ced6";
     const note = `body drawn \u00d7${(r / (R * scale)).toFixed(1)}`;
+    ctx.fillStyle = "#c9ced6";
     ctx.fillText(note, rect.x + rect.w - 10 - ctx.measureText(note).width, rect.y + 64);
   }
   if (!s) return;
