@@ -515,6 +515,9 @@ async def serve(view: WebView) -> None:
     tornado.ioloop.PeriodicCallback(view.flush, 1000.0 / view.frame_rate).start()
     watch, control = view.urls()
     rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
+    if view.host not in ("127.0.0.1", "localhost"):
+        rospy.logwarn(f"web view: open to the network on {view.host}:{view.port} (plain HTTP): the class watches "
+                      f"at http://{socket.gethostname()}:{view.port}/ or this machine's address")
     if view.control:
         rospy.loginfo(f"web view: control (keep it to the teacher): {control}")
     rospy.on_shutdown(lambda: view.loop.add_callback(done.set))
