@@ -427,10 +427,11 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
         marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
     label.text = labelText(body, marker_options_.critical_angles);
     // A roller's label starts above it and runs downhill (world +x): centred, its uphill half would cut
-    // into the slope that rises behind the body.
-    const double downhill = std::holds_alternative<Roller>(body.model)
-                                ? 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size())
-                                : 0.0;
+    // into the slope that rises behind the body. A racer at the end of its slope has no slope below it: its
+    // label ends above it and runs uphill, over the slope, so that it stays in a view of the slope.
+    const double half_width = 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size());
+    const double downhill =
+        std::holds_alternative<Roller>(body.model) ? (body.finish ? -half_width : half_width) : 0.0;
     label.pose.position = toPoint(worldPosition(placements_[i], body) +
                                   Eigen::Vector3d(downhill, 0, reachOf(body) + placements_[i].label_above));
     label.scale.z = kLabelHeight;

@@ -4,7 +4,8 @@
 #   rosrun rigid_body_sim simulate       writes the CSV of config/demo.yaml
 #   rosrun rigid_body_sim plot_run.py    plots that CSV, with rosbag made unimportable (CSV needs no ROS)
 #   roslaunch rigid_body_sim sim.launch  duration:=3 record:=true on a master of its own: exit 0, the bag
-#                                        in ROS_HOME; with bag:=run.bag, run.bag in the current folder
+#                                        in ROS_HOME; with bag:=run.bag (and web:=true: the web view starts,
+#                                        its page found), run.bag in the current folder
 #   rosrun rigid_body_sim bag_summary.py summarises that bag; plot_run.py plots it
 #   rospack plugins --attrib=plugin rviz lists the installed plugin_description.xml (the rviz panel), and its
 #                                        library is installed with every library it needs found
@@ -48,8 +49,11 @@ launch() {  # sim.launch duration:=3 record:=true ARGS...
 }
 launch  # the default bag: in ROS_HOME
 [ -s "$ROS_HOME/rigid_body_sim.bag" ] || fail "no bag in ROS_HOME ($ROS_HOME)"
-cd "$work" && launch bag:=run.bag  # a relative bag: from the folder roslaunch was started in
+web=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+cd "$work" && launch bag:=run.bag web:=true web_port:="$web"  # a relative bag: from the folder roslaunch was started in
 [ -s "$work/run.bag" ] || fail "bag:=run.bag did not write $work/run.bag"
+# the web view found its page in the install space (it refuses to start without it)
+grep -q "web view of /sim on 127.0.0.1:$web" "$work/launch.log" || fail "no web view: $(grep web "$work/launch.log")"
 rosrun rigid_body_sim bag_summary.py "$work/run.bag" "$config" >"$work/summary.txt" || fail "bag_summary.py"
 grep -q "/sim/rod/state" "$work/summary.txt" || fail "bag_summary.py: no rod states"
 rosrun rigid_body_sim plot_run.py "$config" "$work/run.bag" --out-dir "$work/plots_bag" >/dev/null \

@@ -1,0 +1,118 @@
+"""What the web view's server and its pages say to each other, without ROS or a network: the requests a page
+may send (each checked whole before anything is done with it), the frames the server sends, and the bounded
+queue of frames each page has.
+
+A request is one JSON object of at most MAX_REQUEST_BYTES, {"op": ..., "id": N, ...} with exactly the keys
+of its op:
+  {"op": "pause" | "run" | "reset", "id": N}
+  {"op": "step", "id": N, "steps": S}                    S a whole number in [1, MAX_STEPS]
+  {"op": "set", "id": N, "body": B, "key": K, "value": V} B a body the view knows, K one of LESSON_KEYS of its
+                                                           type, V a finite number
+Anything else is refused with one line (Refusal) and goes no further: the node's services and reconfigure
+servers see only well-formed requests from pages that hold the token, and judge the values themselves."""
+from __future__ import annotations
+
+import collections
+import json
+import math
+from dataclasses import dataclass
+from typing import Any, Deque, Dict, List, Mapping, Optional, Set, Tuple
+
+MAX_REQUEST_BYTES = 1024
+# The ~step service's own bound is 600 s of steps: this only keeps a number from being absurd on the wire.
+MAX_STEPS = 10_000_000
+# The keys a lesson changes, by body type: the slope, friction, the floor's spring and the initial conditions.
+LESSON_KEYS: Dict[str, Tuple[str, ...]] = {
+    "rod": ("k", "x0", "y0", "vx0", "vy0", "theta0", "omega0"),
+    "roller": ("incline_angle", "mu_s", "mu_d", "x0", "v0", "theta0", "omega0"),
+}
+OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
+                            "set": {"body", "key", "value"}}
+
+
+class Refusal(Exception):
+    """A request that goes no further; str() is the one line the page and the log show. `kind` groups
+    refusals of one sort, so that each is logged once per page."""
+
+    def __init__(self, kind: str, line: str) -> None:
+        super().__init__(line)
+        self.kind = kind
+
+
+@dataclass(frozen=True)
+class Request:
+    op: str
+    id: int
+    steps: int = 0
+    body: str = ""
+    key: str = ""
+    value: float = 0.0
+
+
+def _whole(value: Any) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def parse_request(text: Any, control: bool, bodies: Mapping[str, str]) -> Request:
+    """The request in `text` (a WebSocket message), or Refusal. `control`: the page holds the token;
+    `bodies`: {name: "rod" | "roller"} of the world the view knows."""
+    if not isinstance(text, str):
+        raise Refusal("binary", "refused: a binary message (requests are JSON text)")
+    if len(text.encode()) > MAX_REQUEST_BYTES:
+        raise Refusal("size", f"refused: a message of more than {MAX_REQUEST_BYTES} bytes")
+    try:
+        message = json.loads(text, parse_constant=lambda name: math.nan)
+    except (ValueError, RecursionError):  # RecursionError: nesting deeper than Python's stack allows
+        raise Refusal("json", "refused: not JSON") from None
+    if not isinstance(message, dict):
+        raise Refusal("shape", "refused: a request is a JSON object")
+    op = message.get("op")
+    if not isinstance(op, str) or op not in OPS:
+        raise Refusal("op", f"refused: unknown op {str(op)[:40]!r}")
+    expected = {"op", "id"} | OPS[op]
+    if set(message) != expected:
+        raise Refusal("keys", f"refused: {op} takes exactly {', '.join(sorted(expected))}")
+    if not _whole(message["id"]) or not 0 <= message["id"] < 2**53:
+        raise Refusal("id", "refused: id is a whole number in [0, 2^53)")
+    if not control:
+        raise Refusal("control", "refused: this page only shows (control needs the link with the token)")
+    request = Request(op, message["id"])
+    if op == "step":
+        steps = message["steps"]
+        if not _whole(steps) or not 1 <= steps <= MAX_STEPS:
+            raise Refusal("steps", f"refused: steps is a whole number in [1, {MAX_STEPS}]")
+        return Request(op, request.id, steps=steps)
+    if op == "set":
+        body, key, value = message["body"], message["key"], message["value"]
+        if not isinstance(body, str) or body not in bodies:
+            raise Refusal("body", f"refused: no body {str(body)[:40]!r}")
+        if not isinstance(key, str) or key not in LESSON_KEYS[bodies[body]]:
+            raise Refusal("key", f"refused: {bodies[body]} key {str(key)[:40]!r} is not one a lesson changes "
+                                 f"({', '.join(LESSON_KEYS[bodies[body]])})")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise Refusal("value", f"refused: {key} is a finite number")
+        return Request(op, request.id, body=body, key=key, value=float(value))
+    return request
+
+
+class FrameQueue:
+    """A page's frames not yet written: at most `bound`; a frame offered to a full queue pushes the oldest
+    out (a page that cannot keep up sees the latest state, with gaps), counted in `dropped`."""
+
+    def __init__(self, bound: int) -> None:
+        self.frames: Deque[str] = collections.deque(maxlen=bound)
+        self.dropped = 0
+
+    def offer(self, frame: str) -> None:
+        if len(self.frames) == self.frames.maxlen:
+            self.dropped += 1
+        self.frames.append(frame)
+
+    def take(self) -> Optional[str]:
+        return self.frames.popleft() if self.frames else None
+
+
+def frame_message(seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
+    """One frame: every state that came for each body since the last frame, in order, each with the state
+    message's fields (numbers in shortest round-trip form: JSON.parse gives the very doubles)."""
+    return json.dumps({"type": "frame", "seq": seq, "states": states}, separators=(",", ":"), allow_nan=False)

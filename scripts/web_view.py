@@ -1,0 +1,537 @@
+#!/usr/bin/env python3
+"""The web view: serves one page (web/) over HTTP and streams the running world to it over a WebSocket.
+
+It follows the simulation node `~node` (default `sim`: the launch's own) as the rviz panel does: the bodies
+from the master's `<node>/<body>/state` topics (a live node's or a played bag's), their keys from the
+config on `<node>/commands` (and `<node>/get_config` when it missed some), `<node>/paused`, and the node's
+WARN lines on /rosout. Every state goes to every page in frames at `~frame_rate`; a page that cannot keep up
+loses frames (a queue of `~queue` frames each), never slows the others or the simulation, which sees one
+subscriber per topic whatever the number of pages.
+
+With `~control` a page opened with `?token=<the token this node prints>` may pause, run, step, reset and
+change the keys a lesson changes, each through the node's own services and reconfigure servers; any other
+request, or any from a page without the token, is refused in one line (web_protocol.py).
+
+Parameters: ~host (127.0.0.1), ~port (8080), ~control (false), ~node (sim), ~web_root (the package's web/),
+~frame_rate (50 Hz), ~queue (4 frames)."""
+from __future__ import annotations
+
+import asyncio
+import concurrent.futures
+import hmac
+import json
+import math
+import os
+import re
+import secrets
+import signal
+import socket
+import sys
+import threading
+import time
+from typing import Any, Dict, List, Optional, Set, Tuple
+
+import rosgraph
+import rospy
+import tornado.ioloop
+import tornado.web
+import tornado.websocket
+import yaml
+from dynamic_reconfigure.msg import Config as ReconfigureConfig
+from dynamic_reconfigure.msg import DoubleParameter
+from dynamic_reconfigure.srv import Reconfigure
+from rigid_body_sim.msg import Command, RodState, RollerState
+from rigid_body_sim.srv import GetConfig, Step
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import Bool
+from std_srvs.srv import Empty, SetBool
+
+# sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
+# devel-space relay runs it from its source path.
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+from sim_tools import (INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS,  # noqa: E402
+                       rospy_on_python39)
+from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request, frame_message,  # noqa: E402
+                          parse_request)
+
+STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState)}
+NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
+MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
+MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
+WEB_FILES = ("index.html", "view.js", "view.css")
+SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
+
+
+def body_with_defaults(body: Dict[str, Any]) -> Dict[str, Any]:
+    """A body's config with the documented defaults filled in, and a roller's c."""
+    if body.get("type") == "rod":
+        return {**ROD_DEFAULTS, **body, "type": "rod"}
+    full: Dict[str, Any] = {**ROLLER_DEFAULTS, **body, "type": "roller"}
+    if "inertia_factor" not in body:
+        full["inertia_factor"] = INERTIA_FACTORS.get(str(full["shape"]), 0.4)
+    return full
+
+
+def state_dict(msg: Any) -> Dict[str, Any]:
+    return {field: getattr(msg, field) for field in msg.__slots__ if field != "header"}
+
+
+class World:
+    """What the view knows of the followed world, on the server's thread."""
+
+    def __init__(self) -> None:
+        self.settings: Dict[str, Any] = dict(WORLD_DEFAULTS)
+        self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
+        self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
+        self.source = "none"  # node (a live node), replay (a played bag), none (nothing yet)
+        self.player = ""  # in a replay: the node that plays the state topics (rosbag play: pause_playback)
+        self.paused = False
+        self.paused_at = 0.0  # when a page paused the player (monotonic s)
+        self.last_seq = -1
+
+    def set_config(self, config: Dict[str, Any]) -> None:
+        self.settings = {key: config.get(key, value) for key, value in WORLD_DEFAULTS.items()}
+        self.bodies = {name: body_with_defaults(body or {}) for name, body in (config.get("bodies") or {}).items()}
+
+    def kinds(self) -> Dict[str, str]:
+        """{body: rod | roller}: the bodies with a state topic."""
+        return dict(self.topics)
+
+    def message(self) -> str:
+        bodies = {}
+        for name, kind in sorted(self.topics.items()):
+            known = self.bodies.get(name)
+            bodies[name] = known if known and known["type"] == kind else body_with_defaults({"type": kind})
+        return json.dumps({"type": "world", "source": self.source, "paused": self.paused,
+                           "settings": self.settings, "bodies": bodies})
+
+
+class Page(tornado.websocket.WebSocketHandler):
+    """One open page."""
+
+    view: "WebView"
+    pages_opened = 0
+
+    def initialize(self, view: "WebView") -> None:
+        self.view = view
+
+    def prepare(self) -> None:
+        refuse_foreign_host(self, self.view)
+
+    def open(self, *args: str, **kwargs: str) -> None:
+        Page.pages_opened += 1
+        self.number = Page.pages_opened
+        self.frames = FrameQueue(self.view.queue_bound)
+        self.replies: List[str] = []
+        self.wake = asyncio.Event()
+        self.pending = 0
+        self.sent = 0
+        self.refused: Dict[str, int] = {}
+        token = self.get_query_argument("token", "") or ""
+        self.control = bool(self.view.token) and bool(token) and hmac.compare_digest(token, self.view.token)
+        refused_token = None
+        if token and not self.control:  # a link from before a restart (a new token each start), or a guess
+            refused_token = Refusal("token", "refused control: the token is not this view's (a link from before "
+                                             "it restarted?): this page only shows")
+            self.note_refusal(refused_token)
+        # tornado closes the connection on a message over its limit without a word to the handler.
+        connection: Any = self.ws_connection
+        close = connection.close
+
+        def close_noting_size(code: Optional[int] = None, reason: Optional[str] = None) -> None:
+            if code == 1009:
+                self.note_refusal(Refusal("too big", f"refused: a message of more than {64 * MAX_REQUEST_BYTES} "
+                                                     "bytes (connection closed)"))
+            close(code, reason)
+        connection.close = close_noting_size
+        # The kernel's buffer for a page that reads nothing: a few seconds of frames, then its queue drops them.
+        stream: Any = self.ws_connection.stream if self.ws_connection else None
+        if stream is not None and stream.socket is not None:
+            stream.socket.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SEND_BUFFER)
+        self.view.pages.add(self)
+        rospy.loginfo(f"web view: page {self.number} opened from {self.request.remote_ip}"
+                      f"{' with control' if self.control else ''} ({len(self.view.pages)} open)")
+        self.reply({"type": "hello", "control": self.control, "node": self.view.node,
+                    "frame_rate": self.view.frame_rate, "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS})
+        self.reply_text(self.view.world.message())
+        if refused_token:
+            self.reply({"type": "reply", "id": None, "ok": False, "line": str(refused_token)})
+        latest = self.view.latest_frame()
+        if latest:
+            self.frames.offer(latest)
+        asyncio.ensure_future(self.send_loop())
+
+    def on_close(self) -> None:
+        self.view.pages.discard(self)
+        self.wake.set()
+        more = sum(self.refused.values()) - len(self.refused)
+        rospy.loginfo(f"web view: page {self.number} closed: {self.sent} messages sent, {self.frames.dropped} "
+                      f"frames dropped, {sum(self.refused.values())} requests refused"
+                      f"{f' ({more} not logged)' if more else ''}")
+
+    def note_refusal(self, refusal: Refusal) -> None:
+        """The first refusal of each kind from a page is logged; the rest are counted (on_close)."""
+        if refusal.kind not in self.refused:
+            rospy.logwarn(f"web view: page {self.number} ({self.request.remote_ip}): {refusal}")
+        self.refused[refusal.kind] = self.refused.get(refusal.kind, 0) + 1
+
+    def on_message(self, message: Any) -> None:
+        request_id = None
+        try:
+            request = parse_request(message, self.control, self.view.world.kinds())
+            request_id = request.id
+            source = self.view.world.source
+            if source == "replay" and request.op not in ("pause", "run"):
+                raise Refusal("replay", "refused: a recording cannot be changed, only paused and run (no node "
+                                        f"serves {self.view.node}/pause)")
+            if source == "none":
+                raise Refusal("none", f"refused: no simulation found ({self.view.node})")
+            if self.pending >= MAX_PENDING_REQUESTS:
+                raise Refusal("busy", f"refused: {MAX_PENDING_REQUESTS} requests already wait for the node")
+        except Refusal as refusal:
+            self.note_refusal(refusal)
+            self.reply({"type": "reply", "id": request_id, "ok": False, "line": str(refusal)})
+            return
+        self.pending += 1
+        asyncio.ensure_future(self.carry_out(request))
+
+    async def carry_out(self, request: Request) -> None:
+        try:
+            ok, line = await self.view.carry_out(request)
+        finally:
+            self.pending -= 1
+        self.reply({"type": "reply", "id": request.id, "ok": ok, "line": line})
+
+    def reply(self, message: Dict[str, Any]) -> None:
+        self.reply_text(json.dumps(message))
+
+    def reply_text(self, text: str) -> None:
+        if len(self.replies) >= MAX_REPLIES:
+            self.note_refusal(Refusal("frozen", f"closed: {MAX_REPLIES} replies not taken"))
+            self.close(1008, "replies not taken")
+            return
+        self.replies.append(text)
+        self.wake.set()
+
+    def offer(self, frame: str) -> None:
+        self.frames.offer(frame)
+        self.wake.set()
+
+    async def send_loop(self) -> None:
+        """Writes one message at a time: a page whose socket is full holds one write here, its frames wait
+        in its bounded queue, and no other page waits for it."""
+        while self in self.view.pages:
+            text = self.replies.pop(0) if self.replies else self.frames.take()
+            if text is None:
+                self.wake.clear()
+                await self.wake.wait()
+                continue
+            try:
+                await self.write_message(text)
+            except tornado.websocket.WebSocketClosedError:
+                return
+            self.sent += 1
+
+
+class WebView:
+    def __init__(self) -> None:
+        self.host = str(rospy.get_param("~host", "127.0.0.1"))
+        self.port = int(rospy.get_param("~port", 8080))
+        self.control = bool(rospy.get_param("~control", False))
+        self.node = rospy.resolve_name(str(rospy.get_param("~node", "sim"))).rstrip("/")
+        here = os.path.dirname(os.path.realpath(__file__))
+        self.web_root = str(rospy.get_param("~web_root", os.path.join(here, "..", "web")))
+        self.frame_rate = float(rospy.get_param("~frame_rate", 50.0))
+        self.queue_bound = int(rospy.get_param("~queue", 4))
+        if not 0 < self.frame_rate <= 1000 or not 1 <= self.queue_bound <= 1000:
+            raise ValueError(f"frame_rate {self.frame_rate} not in (0, 1000] or queue {self.queue_bound} "
+                             "not in [1, 1000]")
+        self.token = secrets.token_urlsafe(18) if self.control else ""
+        # On the loopback only these names reach it; on a network any (its names are not known here).
+        self.local_hosts = ({f"127.0.0.1:{self.port}", f"localhost:{self.port}"}
+                            if self.host in ("127.0.0.1", "localhost") else set())
+        self.world = World()
+        self.pages: Set[Page] = set()
+        self.pending: Dict[str, List[Dict[str, Any]]] = {}  # states since the last frame, by body
+        self.latest: Dict[str, Dict[str, Any]] = {}  # each body's last state
+        self.seq = 0
+        self.node_lines: List[Tuple[float, str]] = []  # (arrival, the node's WARN or ERROR line)
+        self.line_came: asyncio.Event  # made on the server's loop (serve)
+        self.subscribers: Dict[str, Any] = {}
+        self.need_config = threading.Event()
+        self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
+        self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
+        state_topic = re.escape(self.node) + r"/([A-Za-z][A-Za-z0-9_]*)/state"
+        self.state_topic = re.compile(state_topic + "$")
+
+    # --- ROS: every callback hands its news to the server's thread ------------------------------------------
+    def start_ros(self) -> None:
+        rospy.Subscriber(self.node + "/paused", Bool, lambda m: self.loop.add_callback(self.on_paused, m.data))
+        rospy.Subscriber(self.node + "/commands", Command, lambda m: self.loop.add_callback(self.on_command, m),
+                         queue_size=1000)
+        rospy.Subscriber("/rosout", Log, self.on_log, queue_size=100)
+        threading.Thread(target=self.discover, daemon=True).start()
+
+    def discover(self) -> None:
+        """Every second: the state topics and whether a node serves them (else a player does)."""
+        master = rosgraph.Master(rospy.get_name())
+        while not rospy.is_shutdown():
+            try:
+                topics = {topic: kind for topic, kind in master.getPublishedTopics(self.node)}
+                try:
+                    master.lookupService(self.node + "/pause")
+                    live = True
+                except rosgraph.MasterError:
+                    live = False
+                if live and (self.world.source != "node" or self.need_config.is_set()):
+                    self.need_config.clear()
+                    self.fetch_config()
+                bodies = {}
+                for topic, kind in topics.items():
+                    match = self.state_topic.match(topic)
+                    if match and kind in STATE_TYPES:
+                        bodies[match.group(1)] = kind
+                for body, kind in bodies.items():
+                    if body not in self.subscribers:
+                        self.subscribers[body] = rospy.Subscriber(
+                            f"{self.node}/{body}/state", STATE_TYPES[kind][1],
+                            lambda m, b=body: self.loop.add_callback(self.on_state, b, m), queue_size=100)
+                for body in set(self.subscribers) - set(bodies):
+                    self.subscribers.pop(body).unregister()
+                kinds = {body: STATE_TYPES[kind][0] for body, kind in bodies.items()}
+                player = "" if live or not bodies else self.player_of(master, sorted(bodies)[0])
+                self.loop.add_callback(self.on_discovered, kinds, "node" if live else "replay" if kinds else "none",
+                                       player)
+            except (OSError, rosgraph.MasterError) as error:
+                rospy.logwarn_throttle(10, f"web view: the master: {error}")
+            time.sleep(1.0)
+
+    def player_of(self, master: rosgraph.Master, body: str) -> str:
+        """The node that publishes a body's states in a replay (as the rviz panel finds it), or ""."""
+        topic = f"{self.node}/{body}/state"
+        publishers = dict((name, nodes) for name, nodes in master.getSystemState()[0])
+        return next((n for n in publishers.get(topic, []) if n != rospy.get_name()), "")
+
+    def fetch_config(self) -> None:
+        try:
+            rospy.wait_for_service(self.node + "/get_config", timeout=5.0)
+            config = yaml.safe_load(rospy.ServiceProxy(self.node + "/get_config", GetConfig)().yaml)
+        except (rospy.ROSException, rospy.ServiceException, yaml.YAMLError) as error:
+            rospy.logwarn(f"web view: {self.node}/get_config: {error}")
+            return
+        self.loop.add_callback(self.on_config, config)
+
+    def on_log(self, line: Log) -> None:
+        if line.name == self.node and line.level >= Log.WARN:
+            self.loop.add_callback(self.on_node_line, line.msg)
+
+    # --- on the server's thread ---------------------------------------------------------------------------
+    def on_node_line(self, text: str) -> None:
+        self.node_lines = self.node_lines[-49:] + [(time.monotonic(), text)]
+        self.line_came.set()
+        self.broadcast({"type": "line", "line": text})
+
+    def on_config(self, config: Dict[str, Any]) -> None:
+        self.world.set_config(config)
+        self.send_world()
+
+    def on_discovered(self, kinds: Dict[str, str], source: str, player: str) -> None:
+        self.world.player = player
+        if kinds != self.world.topics or source != self.world.source:
+            self.world.topics = kinds
+            self.world.source = source
+            for body in set(self.latest) - set(kinds):
+                del self.latest[body]
+            self.send_world()
+
+    def on_paused(self, paused: bool) -> None:
+        self.world.paused = paused
+        self.broadcast({"type": "paused", "paused": paused})
+
+    def on_command(self, msg: Command) -> None:
+        seq = msg.header.seq
+        if msg.kind != "config" and seq != self.world.last_seq + 1:
+            self.need_config.set()  # joined late, or a command lost: the node's whole config
+        self.world.last_seq = seq
+        try:
+            payload = yaml.safe_load(msg.yaml) if msg.yaml else None
+        except yaml.YAMLError:
+            payload = None
+        if msg.kind == "config" and isinstance(payload, dict):
+            self.world.set_config(payload)
+        elif msg.kind in ("reconfigure", "spawn") and isinstance(payload, dict):
+            self.world.bodies[msg.body] = body_with_defaults(payload)
+        elif msg.kind == "delete":
+            self.world.bodies.pop(msg.body, None)
+        elif msg.kind == "reset":
+            self.broadcast({"type": "reset", "t": msg.t})
+            return
+        else:
+            return
+        self.send_world()
+
+    def on_state(self, body: str, msg: Any) -> None:
+        state = state_dict(msg)
+        if not all(math.isfinite(v) for v in state.values() if isinstance(v, float)):
+            return  # the node's NaN guard holds such a body: nothing a page could draw
+        self.pending.setdefault(body, []).append(state)
+        self.latest[body] = state
+        # A replay that a page paused plays again when states come (run by someone else, rviz's panel), once
+        # those already on their way at the pause are in.
+        if self.world.source == "replay" and self.world.paused and time.monotonic() > self.world.paused_at + 0.5:
+            self.on_paused(False)
+
+    def latest_frame(self) -> Optional[str]:
+        return frame_message(self.seq, {b: [s] for b, s in self.latest.items()}) if self.latest else None
+
+    def flush(self) -> None:
+        """One frame of every state since the last, serialised once for every page."""
+        if not self.pending or not self.pages:
+            self.pending = {}
+            return
+        self.seq += 1
+        frame = frame_message(self.seq, self.pending)
+        self.pending = {}
+        for page in list(self.pages):
+            page.offer(frame)
+
+    def send_world(self) -> None:
+        text = self.world.message()
+        for page in list(self.pages):
+            page.reply_text(text)
+
+    def broadcast(self, message: Dict[str, Any]) -> None:
+        text = json.dumps(message)
+        for page in list(self.pages):
+            page.reply_text(text)
+
+    async def carry_out(self, request: Request) -> Tuple[bool, str]:
+        """One request through the node's own services or the body's reconfigure server: (accepted, the line
+        to show: the node's own WARN line for a refusal)."""
+        asked_at = time.monotonic()
+        ok, fallback = await asyncio.get_running_loop().run_in_executor(self.calls, self.call, request)
+        if ok:
+            return True, fallback
+        words = f"'{request.body}'" if request.op == "set" else "~step" if request.op == "step" else ""
+        deadline = asked_at + NODE_LINE_WAIT
+        while True:
+            for arrival, text in reversed(self.node_lines):
+                if arrival >= asked_at and words in text:
+                    return False, text
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return False, fallback
+            self.line_came.clear()
+            try:
+                await asyncio.wait_for(self.line_came.wait(), left)
+            except asyncio.TimeoutError:
+                pass
+
+    def call(self, request: Request) -> Tuple[bool, str]:
+        """On the calls thread: the service call. (accepted, what to show)."""
+        try:
+            if self.world.source == "replay":  # pause or run: the player's pause_playback, as rviz's panel does
+                player = self.world.player
+                answer = rospy.ServiceProxy(f"{player}/pause_playback", SetBool)(request.op == "pause")
+                if answer.success:
+                    self.world.paused_at = time.monotonic()
+                    self.loop.add_callback(self.on_paused, request.op == "pause")
+                return bool(answer.success), f"{player}: {answer.message}"
+            if request.op in ("pause", "run", "reset"):
+                name = {"pause": "pause", "run": "unpause", "reset": "reset"}[request.op]
+                rospy.ServiceProxy(f"{self.node}/{name}", Empty)()
+                return True, f"{name}: done"
+            if request.op == "step":
+                answer = rospy.ServiceProxy(f"{self.node}/step", Step)(request.steps)
+                return bool(answer.success), (f"stepped to t = {answer.t:g} s" if answer.success
+                                              else f"~step {answer.message}")
+            asked = ReconfigureConfig(doubles=[DoubleParameter(name=request.key, value=request.value)])
+            shown = rospy.ServiceProxy(f"{self.node}/{request.body}/set_parameters", Reconfigure)(asked).config
+            now = next((p.value for p in shown.doubles if p.name == request.key), math.nan)
+            if now == request.value:
+                return True, f"{request.body}: {request.key} = {request.value:g}"
+            return False, f"refused {request.key} = {request.value:g}: snapped back to {now:g}"
+        except (rospy.ServiceException, rospy.ROSException, OSError) as error:
+            return False, f"no answer from {self.node}: {error}"
+
+    # --- HTTP -----------------------------------------------------------------------------------------------
+    def application(self) -> tornado.web.Application:
+        root = os.path.realpath(self.web_root)
+        missing = [name for name in WEB_FILES if not os.path.isfile(os.path.join(root, name))]
+        if missing:
+            raise FileNotFoundError(f"web view: {', '.join(missing)} not in {root}")
+        return tornado.web.Application(
+            [(r"/ws", Page, {"view": self}),
+             (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
+             (r"/(view\.js|view\.css)", File, {"path": root, "view": self})],
+            # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
+            websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20)
+
+    def urls(self) -> Tuple[str, str]:
+        host = "127.0.0.1" if self.host in ("127.0.0.1", "0.0.0.0", "") else self.host
+        base = f"http://{host}:{self.port}/"
+        return base, f"{base}?token={self.token}"
+
+
+def refuse_foreign_host(handler: tornado.web.RequestHandler, view: "WebView") -> None:
+    """On the loopback, a request must name this machine (127.0.0.1 or localhost) as its host: a site whose name
+    was made to point at 127.0.0.1 (DNS rebinding) gets neither the page nor a connection."""
+    if view.local_hosts and handler.request.host not in view.local_hosts:
+        raise tornado.web.HTTPError(403, "host %s is not this web view's", handler.request.host)
+
+
+class File(tornado.web.StaticFileHandler):
+    """The page's three files, never cached (a rebuilt package serves its new page), with nothing but this
+    server allowed to the page (no script, style or connection from anywhere else)."""
+
+    def initialize(self, path: str, default_filename: Optional[str] = None,
+                   view: Optional["WebView"] = None) -> None:
+        super().initialize(path, default_filename)
+        self.view = view
+
+    def prepare(self) -> None:
+        if self.view:
+            refuse_foreign_host(self, self.view)
+
+    def set_extra_headers(self, path: str) -> None:
+        self.set_header("Cache-Control", "no-store")
+        self.set_header("X-Content-Type-Options", "nosniff")
+        self.set_header("Content-Security-Policy",
+                        "default-src 'none'; script-src 'self'; style-src 'self'; connect-src 'self'; "
+                        "img-src 'self'; frame-ancestors 'none'")
+
+
+async def serve(view: WebView) -> None:
+    """Runs the server on this thread's event loop until ROS shuts down."""
+    view.loop = tornado.ioloop.IOLoop.current()
+    view.line_came = asyncio.Event()
+    done = asyncio.Event()
+    try:
+        view.application().listen(view.port, address=view.host, xheaders=False)
+    except OSError as error:
+        rospy.logfatal(f"web view: cannot listen on {view.host}:{view.port}: {error}")
+        sys.exit(1)
+    view.start_ros()
+    tornado.ioloop.PeriodicCallback(view.flush, 1000.0 / view.frame_rate).start()
+    watch, control = view.urls()
+    rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
+    if view.host not in ("127.0.0.1", "localhost"):
+        rospy.logwarn(f"web view: open to the network on {view.host}:{view.port} (plain HTTP): the class watches "
+                      f"at http://{socket.gethostname()}:{view.port}/ or this machine's address")
+    if view.control:
+        rospy.loginfo(f"web view: control (keep it to the teacher): {control}")
+    rospy.on_shutdown(lambda: view.loop.add_callback(done.set))
+    await done.wait()
+
+
+def main() -> None:
+    rospy_on_python39()  # Debian 11: rospy.signal_shutdown (the handlers below) calls Thread.isAlive
+    rospy.init_node("web", disable_signals=True)
+    # disable_signals: rospy's own handlers would not end the server's loop; these end ROS, which ends it.
+    signal.signal(signal.SIGINT, lambda *_: rospy.signal_shutdown("SIGINT"))
+    signal.signal(signal.SIGTERM, lambda *_: rospy.signal_shutdown("SIGTERM"))
+    asyncio.run(serve(WebView()))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,464 @@
+#!/usr/bin/env python3
+"""The web view in a real browser: sim.launch web:=true web_control:=true on config/demo.yaml (a rod and four
+rollers), its page loaded in Debian's headless Chromium over the DevTools protocol.
+
+- The log prints the control link with a random token; the page opened with it shows the controls and takes
+  the token off its address bar; a page opened without it shows no controls.
+- Pause clicked: the node's ~paused says true; the page's drawn state of every body is the last state the test
+  received from the node, field for field, exactly; each body is drawn where the page's own view puts that
+  state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
+  (v, -omega R, the total energy and a rod's end heights exactly; the kinetic and potential energies to 1e-12).
+- Reset, then Pause 1.5 s later: the bowler, launched sliding with backspin, is marked once at its slip-to-roll
+  instant, the first rolling state after a slipping one among the states the test received since the reset;
+  every body's plot holds every state since the reset, once, while a page that reads nothing is open too.
+- Step (a count of 100 typed in) moves every body to the node's state 0.1 s on.
+- A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
+  is the node's own WARN line from /rosout, and k stays 2000.
+- A WebSocket client without the token: its requests, malformed, oversized and unexpected messages are each
+  refused in one line, the world unchanged (no command on ~commands), each kind logged once in the launch's log;
+  another Origin, or another Host (DNS rebinding), gets no connection and no page.
+- Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
+- Run: ~paused says false again; Step then is refused, and the page shows the node's own line. The page
+  without the token shows the world and no control; with a wrong one it also says that the token is not this
+  view's. Nothing was thrown or logged as an error in the page, and it asked nothing of any server but its own.
+
+And playback.launch web:=true of a bag `simulate` wrote, started paused: the page's Run and Pause drive the player
+(its pause_playback); the page finds the recording's bodies and their keys (the played config), draws the played
+states exactly, plots them, and refuses Step in one line.
+
+Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
+(with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+import urllib.error
+import urllib.request
+from typing import Any, Dict, List, Optional
+
+import rospy
+import websocket
+import yaml
+from rigid_body_sim.msg import Command, RodState, RollerState
+from rigid_body_sim.srv import GetConfig
+from rosgraph_msgs.msg import Log
+from std_msgs.msg import Bool
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from browser import Browser, end  # noqa: E402
+from sim_tools import (INERTIA_FACTORS, ROD_DEFAULTS, ROLLER_DEFAULTS, free_port, load_config,  # noqa: E402
+                       rospy_on_python39, wait_for)
+
+rospy_on_python39()
+ARGS: Any = None
+DEADLINE = 60.0  # s for any one wait
+
+
+class Listener:
+    """What the node publishes, as the test receives it."""
+
+    def __init__(self, bodies: Dict[str, str]) -> None:
+        self.lock = threading.Lock()
+        self.states: Dict[str, List[Any]] = {body: [] for body in bodies}
+        self.paused: Optional[bool] = None
+        self.commands: List[Command] = []
+        self.warnings: List[str] = []
+        for body, kind in bodies.items():
+            rospy.Subscriber(f"/sim/{body}/state", RodState if kind == "rod" else RollerState,
+                             lambda m, b=body: self.on_state(b, m), queue_size=1000)
+        rospy.Subscriber("/sim/paused", Bool, self.on_paused)
+        rospy.Subscriber("/sim/commands", Command, self.on_command, queue_size=1000)
+        rospy.Subscriber("/rosout", Log, self.on_log, queue_size=1000)
+
+    def on_state(self, body: str, msg: Any) -> None:
+        with self.lock:
+            self.states[body].append(msg)
+
+    def on_paused(self, msg: Bool) -> None:
+        self.paused = msg.data
+
+    def on_command(self, msg: Command) -> None:
+        self.commands.append(msg)
+
+    def on_log(self, msg: Log) -> None:
+        if msg.name == "/sim" and msg.level >= Log.WARN:
+            self.warnings.append(msg.msg)
+
+    def last(self, body: str) -> Any:
+        with self.lock:
+            return self.states[body][-1] if self.states[body] else None
+
+
+def fields(msg: Any) -> Dict[str, Any]:
+    return {f: getattr(msg, f) for f in msg.__slots__ if f != "header"}
+
+
+class WebView(unittest.TestCase):
+    def setUp(self) -> None:
+        self.tmp = tempfile.mkdtemp(prefix="rbs_web_")
+        self.config = load_config(ARGS.config)
+        self.kinds = {name: "rod" if b.get("type") == "rod" else "roller" for name, b in self.config["bodies"].items()}
+        self.bodies = {name: ({**ROD_DEFAULTS, **b} if self.kinds[name] == "rod"
+                              else {**ROLLER_DEFAULTS, **b, "c": INERTIA_FACTORS[b.get("shape", "sphere")]})
+                       for name, b in self.config["bodies"].items()}
+        self.web_port = free_port()
+        self.log: List[str] = []
+        self.launch: Optional["subprocess.Popen[str]"] = None
+        self.browser: Optional[Browser] = None
+
+    def start(self, *words: str) -> None:
+        """roslaunch rigid_body_sim WORDS... with the web view (control on) on a port of its own, and a master
+        of its own; this process joins that master (one test per process: rospy joins one master)."""
+        port = free_port()
+        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
+                   PATH="/usr/bin:" + os.environ.get("PATH", ""))
+        env.pop("ROS_HOSTNAME", None)
+        os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
+        self.launch = subprocess.Popen(
+            ["roslaunch", "-p", str(port), "rigid_body_sim", *words, "web:=true", f"web_port:={self.web_port}",
+             "web_control:=true"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        threading.Thread(target=self.read_log, daemon=True).start()
+
+    def read_log(self) -> None:
+        assert self.launch is not None and self.launch.stdout is not None
+        for line in self.launch.stdout:
+            self.log.append(line)
+
+    def tearDown(self) -> None:
+        if self.browser:
+            self.browser.close()
+        if self.launch:
+            end(self.launch, signal.SIGINT, 60)
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def log_lines(self, words: str) -> List[str]:
+        return [line for line in list(self.log) if words in line]
+
+    def control_url(self) -> str:
+        pattern = re.compile(rf"(http://127\.0\.0\.1:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
+        found: List[str] = []
+
+        def printed() -> bool:
+            found[:] = [m.group(1) for m in (pattern.search(line) for line in list(self.log)) if m]
+            return bool(found)
+        wait_for("the web view's control link in the launch's log", printed, DEADLINE)
+        return found[0]
+
+    def test_node(self) -> None:
+        """The page follows and drives sim_node (the module's docstring)."""
+        self.start("sim.launch", f"config:={ARGS.config}")
+        url = self.control_url()
+        rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
+        node = Listener(self.kinds)
+        wait_for("a state of every body", lambda: all(node.last(b) for b in self.kinds), DEADLINE)
+        self.browser = browser = Browser(1600, 900)
+        browser.resize(1600, 900, 1, False)
+        browser.call("Network.enable")
+        browser.navigate(url)
+        browser.wait("every body drawn", "window.rbs && rbs.world && Object.keys(rbs.world.bodies).length === "
+                     f"{len(self.kinds)} && Object.keys(rbs.drawn).length === {len(self.kinds)}", DEADLINE)
+        self.assertEqual(browser.evaluate("location.search"), "", "the token stays on the address bar")
+        self.assertTrue(browser.evaluate("rbs.control && !document.getElementById('controls').hidden"))
+
+        # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.80 s after its launch). Meanwhile a page
+        # that reads nothing is open: the browser's page gets every state all the same.
+        frozen = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                             origin=f"http://127.0.0.1:{self.web_port}",
+                                             sockopt=((socket.SOL_SOCKET, socket.SO_RCVBUF, 4096),))
+        browser.click("reset")
+        wait_for("the reset on ~commands", lambda: any(c.kind == "reset" for c in node.commands), DEADLINE)
+        reset_t = next(c.t for c in node.commands if c.kind == "reset")
+        wait_for("1.5 s after the reset", lambda: node.last("rod").t >= reset_t + 1.5, DEADLINE)
+        browser.click("pause")
+        wait_for("~paused true", lambda: node.paused is True, DEADLINE)
+        self.check_drawn_is_the_node(browser, node)
+        self.check_plots(browser, node)
+        self.check_slip_to_roll(browser, node, reset_t)
+        for body in self.kinds:
+            with node.lock:
+                sent = [m.t for m in node.states[body] if m.t > reset_t]
+            self.assertEqual(browser.evaluate(f"rbs.times({json.dumps(body)})"), sent, f"{body}: states plotted")
+        frozen.close()
+        print(f"every state since the reset plotted once ({len(sent)} a body), a frozen page open", file=sys.stderr)
+
+        # Step 100 (typed): every body where the node's next state is.
+        before = node.last("rod").t
+        browser.type_into("steps", "100")
+        browser.click("step")
+        wait_for("the state after the step", lambda: node.last("rod").t > before, DEADLINE)
+        self.assertAlmostEqual(node.last("rod").t, before + 0.1, delta=1e-9)
+        self.check_drawn_is_the_node(browser, node)
+
+        self.check_keys(browser, node)
+        self.check_refusals(node)
+        self.take_screenshots(browser)
+
+        browser.click("run")
+        wait_for("~paused false after Run", lambda: node.paused is False, DEADLINE)
+        # Step while running: the node refuses it, and the page shows the node's line.
+        warnings, replies = len(node.warnings), browser.evaluate("rbs.replies.length")
+        browser.click("step")
+        browser.wait("the answer to Step", f"rbs.replies.length > {replies}", DEADLINE)
+        wait_for("the node's WARN line about ~step", lambda: len(node.warnings) > warnings, DEADLINE)
+        reply = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
+        self.assertFalse(reply["ok"])
+        self.assertEqual([reply["line"]], node.warnings[warnings:])
+        self.assertTrue(reply["line"].startswith("~step refused"), reply)
+        # The class's page (no token): the world, and no control in sight.
+        browser.navigate(url.split("?")[0])
+        browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
+                     DEADLINE)
+        self.assertFalse(browser.evaluate("rbs.control"))
+        for control in ("controls", "pause", "run", "step", "reset", "set"):
+            self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
+        # A wrong token (a link from before a restart): the page only shows, and says why.
+        browser.navigate(url.split("?")[0] + "?token=" + "x" * 24)
+        browser.wait("the page's line about the token", "window.rbs && rbs.line.includes('token')", DEADLINE)
+        self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertIsNone(browser.centre("controls"))
+        self.assertEqual(len(self.log_lines("refused control: the token is not this view's")), 1)
+        self.assertEqual(browser.console_errors(), [])
+        # Nothing from the internet: every request the page made went to its own server.
+        asked = {e["params"]["request"]["url"] for e in browser.events if e["method"] == "Network.requestWillBeSent"}
+        own = f"http://127.0.0.1:{self.web_port}/"
+        self.assertEqual({u for u in asked if not u.startswith(own)}, set())
+        self.assertTrue({own + "view.js", own + "view.css"} <= {u.split("?")[0] for u in asked}, asked)
+
+    def test_replay(self) -> None:
+        """playback.launch of a bag simulate wrote: the page finds the bodies from the played state topics,
+        their keys from the played config, runs and pauses the player, draws what it plays, and refuses any
+        change."""
+        bag = os.path.join(self.tmp, "run.bag")
+        subprocess.run([ARGS.simulate, ARGS.config, "--duration", "20", "--bag", bag, "--out-dir", self.tmp],
+                       check=True, timeout=120, stdout=subprocess.DEVNULL)
+        self.start("playback.launch", f"bag:={bag}", "rviz:=false", "start_paused:=true")
+        url = self.control_url()
+        rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
+        node = Listener(self.kinds)
+        self.browser = browser = Browser(1600, 900)
+        browser.navigate(url)
+        browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
+                     f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
+        # The page's Run and Pause drive the player (its pause_playback), as rviz's panel does.
+        browser.click("run")
+        browser.wait("the answer to Run", "rbs.replies.length === 1", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[0]"),
+                         {"type": "reply", "id": 1, "ok": True, "line": "/player: Playback is now resumed"})
+        wait_for("2 s of the recording", lambda: node.last("rod") is not None and node.last("rod").t >= 2.0,
+                 DEADLINE)
+        browser.click("pause")
+        browser.wait("the answer to Pause", "rbs.replies.length === 2", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[1].line"), "/player: Playback is now paused")
+        world = browser.evaluate("rbs.world.bodies")  # from the config the player played at t = 0
+        for body, keys in self.config["bodies"].items():
+            for key, value in keys.items():
+                self.assertEqual(world[body][key], value, f"{body}.{key}: the played config's")
+        self.check_drawn_is_the_node(browser, node)
+        self.check_plots(browser, node)
+        self.assertEqual(browser.evaluate("document.getElementById('status').textContent"),
+                         "replay of a recording, paused")
+        browser.click("step")
+        browser.wait("the answer to Step", "rbs.replies.length === 3", DEADLINE)
+        self.assertEqual(browser.evaluate("rbs.replies[2].line"),
+                         "refused: a recording cannot be changed, only paused and run (no node serves /sim/pause)")
+        self.assertEqual(browser.console_errors(), [])
+
+    def check_drawn_is_the_node(self, browser: Browser, node: Listener) -> None:
+        """Once the page has drawn the last state the test received of every body (paused: none comes after)."""
+        seen: Dict[str, Any] = {}
+
+        def caught_up() -> bool:
+            seen["drawn"] = browser.evaluate("rbs.drawn")
+            return all(seen["drawn"].get(b, {}).get("t") == node.last(b).t for b in self.kinds)
+        wait_for("the page's drawing of the node's last states", caught_up, DEADLINE)
+        last = {body: fields(node.last(body)) for body in self.kinds}
+        drawn = seen["drawn"]
+        panels = browser.evaluate("rbs.panels")
+        for body, state in last.items():
+            for field, value in state.items():
+                self.assertEqual(drawn[body][field], value, f"{body}.{field} drawn")
+            self.check_place(body, state, drawn[body], panels[body])
+        print(f"drawn as the node's states at t = {last['rod']['t']}", file=sys.stderr)
+
+    def check_place(self, body: str, s: Dict[str, Any], d: Dict[str, Any], view: Dict[str, float]) -> None:
+        """Where the page drew it: its view's metres to pixels (side view: downhill and up the screen)."""
+        b = self.bodies[body]
+        scale, ox, oy = view["scale"], view["ox"], view["oy"]
+        if self.kinds[body] == "rod":
+            self.assertAlmostEqual(d["cx"], ox + s["x"] * scale, delta=1e-6)
+            self.assertAlmostEqual(d["cy"], oy - s["y"] * scale, delta=1e-6)
+            half = 0.5 * b["length"]
+            self.assertAlmostEqual(d["ax"], ox + (s["x"] + half * math.cos(s["theta"])) * scale, delta=1e-6)
+            self.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
+            return
+        phi = b["incline_angle"]
+        # to scale, or 9 px (the page's smallest, said on its panel) when that is under 8.1 px
+        r = 9.0 if b["radius"] * scale < 0.9 * 9.0 else b["radius"] * scale
+        self.assertAlmostEqual(d["r"], r, delta=1e-9)
+        self.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
+        self.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
+        spoke = math.atan2(-(d["sy"] - d["cy"]), d["sx"] - d["cx"])  # the spoke's angle on the screen
+        self.assertAlmostEqual(math.remainder(spoke - (s["theta"] - phi), 2 * math.pi), 0.0, delta=1e-9)
+
+    def check_plots(self, browser: Browser, node: Listener) -> None:
+        for body in sorted(self.kinds):
+            browser.choose("plot-body", body)
+            browser.wait(f"the plots of {body}", f"rbs.plotLast.body === {json.dumps(body)}", DEADLINE)
+            points = browser.evaluate("rbs.plotLast.points")
+            s = fields(node.last(body))
+            b = self.bodies[body]
+            for key in set(points) - {"slip_to_roll"}:
+                self.assertEqual(points[key][0], s["t"], f"{body}: {key}'s last point is at t = {points[key][0]}")
+            self.assertEqual(points["energy"][1], s["energy"])
+            if self.kinds[body] == "rod":
+                M, L = b["mass"], b["length"]
+                kinetic = 0.5 * M * (s["vx"] ** 2 + s["vy"] ** 2) + 0.5 * (M * L * L / 12) * s["omega"] ** 2
+                self.assertEqual(points["end_a"][1], s["y"] + 0.5 * L * math.sin(s["theta"]))
+                self.assertEqual(points["end_b"][1], s["y"] - 0.5 * L * math.sin(s["theta"]))
+            else:
+                M, R, c = b["mass"], b["radius"], b["c"]
+                kinetic = 0.5 * M * s["v"] ** 2 + 0.5 * c * M * R * R * s["omega"] ** 2
+                self.assertEqual(points["v"][1], s["v"])
+                self.assertEqual(points["minus_omega_r"][1], -s["omega"] * R)
+            self.assertAlmostEqual(points["kinetic"][1], kinetic, delta=1e-12 * max(1.0, abs(kinetic)))
+            potential = s["energy"] - kinetic
+            self.assertAlmostEqual(points["potential"][1], potential, delta=1e-12 * max(1.0, abs(s["energy"])))
+        print(f"plots' last points: the states of {sorted(self.kinds)}", file=sys.stderr)
+
+    def check_slip_to_roll(self, browser: Browser, node: Listener, reset_t: float) -> None:
+        browser.choose("plot-body", "bowler")
+        browser.wait("the bowler's plots", "rbs.plotLast.body === 'bowler'", DEADLINE)
+        with node.lock:
+            after = [m for m in node.states["bowler"] if m.t > reset_t]
+        first = next(b for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling")
+        self.assertEqual(browser.evaluate("rbs.plotLast.points.slip_to_roll"), [first.t, first.v])
+        # The closed form's instant after the reset (docs/testing.md: 0.802 s), and the next state within a period.
+        b = self.bodies["bowler"]
+        g, phi, c = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["c"]
+        instant = (b["v0"] + b["omega0"] * b["radius"]) / (b["mu_d"] * g * math.cos(phi) * (1 + c) / c
+                                                           - g * math.sin(phi))
+        period = 1.0 / float(self.config.get("publish_rate", 50.0))
+        self.assertGreaterEqual(first.t - reset_t, instant)
+        self.assertLessEqual(first.t - reset_t, instant + period + 1e-9)
+        print(f"slip -> roll marked at t = {first.t} ({first.t - reset_t:.3f} s after the reset)", file=sys.stderr)
+
+    def rod_k(self) -> float:
+        config = yaml.safe_load(rospy.ServiceProxy("/sim/get_config", GetConfig)().yaml)
+        return float(config["bodies"]["rod"]["k"])
+
+    def set_key(self, browser: Browser, body: str, key: str, value: str) -> Dict[str, Any]:
+        browser.choose("set-body", body)
+        browser.choose("set-key", key)
+        replies = browser.evaluate("rbs.replies.length")
+        browser.type_into("set-value", value)
+        browser.click("set")
+        browser.wait("the answer to Set", f"rbs.replies.length > {replies}", DEADLINE)
+        reply: Dict[str, Any] = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
+        return reply
+
+    def check_keys(self, browser: Browser, node: Listener) -> None:
+        reply = self.set_key(browser, "rod", "k", "2000")
+        self.assertTrue(reply["ok"], reply)
+        self.assertEqual(self.rod_k(), 2000.0)
+        warnings = len(node.warnings)
+        reply = self.set_key(browser, "rod", "k", "-5")
+        self.assertFalse(reply["ok"], reply)
+        wait_for("the node's WARN line", lambda: len(node.warnings) > warnings, DEADLINE)
+        self.assertEqual(node.warnings[warnings:], [reply["line"]])
+        self.assertIn("'rod'", reply["line"])
+        self.assertEqual(browser.evaluate("document.getElementById('line').textContent"), reply["line"])
+        self.assertEqual(browser.evaluate("document.getElementById('line').className"), "refused")
+        self.assertEqual(self.rod_k(), 2000.0)
+        self.assertEqual(browser.evaluate("document.getElementById('set-value').value"), "2000",
+                         "the field shows the value that runs after a refusal")
+        print(f"k = 2000 set; k = -5 refused with the node's line: {reply['line']}", file=sys.stderr)
+
+    def check_refusals(self, node: Listener) -> None:
+        """A client without the token, and malformed messages: one line each, nothing reaches the node."""
+        commands = len(node.commands)
+        paused = node.paused
+        client = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                             origin=f"http://127.0.0.1:{self.web_port}")
+        hello = self.read_until(client, "hello")
+        self.assertFalse(hello["control"])
+        cases = [('{"op": "pause", "id": 1}', "refused: this page only shows"),
+                 ('{"op": "set", "id": 2, "body": "rod", "key": "k", "value": 1}', "refused: this page only shows"),
+                 ("{not json", "refused: not JSON"),
+                 ('{"op": "pause", "id": 3}' + " " * 1100, "refused: a message of more than 1024 bytes"),
+                 ('{"op": "shutdown", "id": 4}', "refused: unknown op 'shutdown'"),
+                 ("{not json either", "refused: not JSON")]
+        for text, line in cases:
+            client.send(text)
+            reply = self.read_until(client, "reply")
+            self.assertFalse(reply["ok"])
+            self.assertTrue(reply["line"].startswith(line), reply)
+        client.send("x" * (64 * 1024 + 1))  # beyond tornado's limit: the connection is closed
+        with self.assertRaises((websocket.WebSocketConnectionClosedException, ConnectionError)):
+            for _ in range(10000):
+                client.recv()
+        client.close()
+        # a foreign page's script (another Origin) gets no connection at all
+        with self.assertRaises(websocket.WebSocketBadStatusException):
+            websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                        origin="http://example.invalid")
+        # nor does a site whose name was pointed at 127.0.0.1 (DNS rebinding: same origin, foreign host)
+        rebound = f"rebound.invalid:{self.web_port}"
+        with self.assertRaises(websocket.WebSocketBadStatusException):
+            websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE, host=rebound,
+                                        origin=f"http://{rebound}")
+        with self.assertRaises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(urllib.request.Request(f"http://127.0.0.1:{self.web_port}/",
+                                                          headers={"Host": rebound}), timeout=DEADLINE)
+        self.assertEqual(refused.exception.code, 403)
+        wait_for("the refusals in the log", lambda: len(self.log_lines("bytes (connection closed)")) == 1, DEADLINE)
+        self.assertEqual(len(self.log_lines("refused: not JSON")), 1, "logged once per page")
+        self.assertEqual(len(self.log_lines("refused: this page only shows")), 1)
+        self.assertEqual(len(node.commands), commands, "a refused request reached the node")
+        self.assertEqual(node.paused, paused)
+        print(f"{len(cases) + 1} refused messages, each kind logged once; no command reached the node",
+              file=sys.stderr)
+
+    @staticmethod
+    def read_until(client: Any, kind: str) -> Dict[str, Any]:
+        deadline = time.monotonic() + DEADLINE
+        while time.monotonic() < deadline:
+            message: Dict[str, Any] = json.loads(client.recv())
+            if message["type"] == kind:
+                return message
+        raise TimeoutError(f"no {kind} message")
+
+    def take_screenshots(self, browser: Browser) -> None:
+        os.makedirs(ARGS.out_dir, exist_ok=True)
+        for name, width, height, scale, mobile in (("web.png", 1600, 900, 1, False),
+                                                   ("web_phone.png", 390, 844, 3, True)):
+            browser.choose("plot-body", "bowler")
+            browser.resize(width, height, scale, mobile)
+            browser.wait(f"the page laid out at {width}x{height}",
+                         f"document.getElementById('scene-canvas').width === "
+                         f"Math.round(document.getElementById('scene-canvas').clientWidth * {scale}) && "
+                         f"document.documentElement.clientWidth === {width}", DEADLINE)
+            drawn = browser.evaluate("Object.keys(rbs.drawn).length")
+            self.assertEqual(drawn, len(self.kinds))
+            path = os.path.join(ARGS.out_dir, name)
+            browser.screenshot(path)
+            print(f"screenshot {path}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("config")
+    parser.add_argument("out_dir")
+    parser.add_argument("simulate")
+    ARGS, rest = parser.parse_known_args()
+    unittest.main(argv=[sys.argv[0]] + rest)
