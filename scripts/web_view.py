@@ -258,6 +258,7 @@ class WebView:
         self.node_lines: List[Tuple[float, str]] = []  # (arrival, the node's WARN or ERROR line)
         self.line_came: asyncio.Event  # made on the server's loop (serve)
         self.subscribers: Dict[str, Any] = {}
+        self.held: Dict[str, Any] = {}  # a player's other topics (take_the_rest)
         self.need_config = threading.Event()
         self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
@@ -300,11 +301,22 @@ class WebView:
                     self.subscribers.pop(body).unregister()
                 kinds = {body: STATE_TYPES[kind][0] for body, kind in bodies.items()}
                 player = "" if live or not bodies else self.player_of(master, sorted(bodies)[0])
+                if player:
+                    self.take_the_rest(master, player)
                 self.loop.add_callback(self.on_discovered, kinds, "node" if live else "replay" if kinds else "none",
                                        player)
             except (OSError, rosgraph.MasterError) as error:
                 rospy.logwarn_throttle(10, f"web view: the master: {error}")
             time.sleep(1.0)
+
+    def take_the_rest(self, master: rosgraph.Master, player: str) -> None:
+        """Subscribes (the messages dropped) to every other topic the player publishes: playback.launch plays
+        nothing until each topic of the bag has a subscriber (rosbag play --wait-for-subscribers), and a web
+        view without rviz is the only one there."""
+        mine = {self.node + "/commands", self.node + "/paused", "/rosout", "/clock"}
+        for topic, nodes in master.getSystemState()[0]:
+            if player in nodes and topic not in mine and topic not in self.held and not self.state_topic.match(topic):
+                self.held[topic] = rospy.Subscriber(topic, rospy.AnyMsg, lambda _: None)
 
     def player_of(self, master: rosgraph.Master, body: str) -> str:
         """The node that publishes a body's states in a replay (as the rviz panel finds it), or ""."""
