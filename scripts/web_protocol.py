@@ -15,6 +15,7 @@ from __future__ import annotations
 import collections
 import json
 import math
+import re
 from dataclasses import dataclass
 from typing import Any, Deque, Dict, List, Mapping, Optional, Set, Tuple
 
@@ -116,3 +117,15 @@ def frame_message(seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
     """One frame: every state that came for each body since the last frame, in order, each with the state
     message's fields (numbers in shortest round-trip form: JSON.parse gives the very doubles)."""
     return json.dumps({"type": "frame", "seq": seq, "states": states}, separators=(",", ":"), allow_nan=False)
+
+
+# The node's label of a racer over the line (a race: `race: true`): its place and time beside the closed
+# form's, as the node computes them (src/ros/scene.cpp; test_scene holds the form). The page shows the
+# node's own words.
+FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): (\d+(?:st|nd|rd|th), [0-9.]+ s(?: \(closed form [0-9.]+ s\))?)$")
+
+
+def finish_of_label(text: str) -> Tuple[str, Optional[str]]:
+    """(body, its place and times) from a node's label, or (body, None) for a label that is no finish."""
+    found = FINISH_LABEL.match(text)
+    return (found.group(1), found.group(2)) if found else (text.split(":", 1)[0], None)

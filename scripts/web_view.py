@@ -45,14 +45,15 @@ from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, SetBool
+from visualization_msgs.msg import MarkerArray
 
 # sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
 # devel-space relay runs it from its source path.
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from sim_tools import (INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS,  # noqa: E402
                        rospy_on_python39)
-from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request, frame_message,  # noqa: E402
-                          parse_request)
+from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,  # noqa: E402
+                          finish_of_label, frame_message, parse_request)
 
 STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState)}
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
@@ -154,6 +155,8 @@ class Page(tornado.websocket.WebSocketHandler):
         self.reply({"type": "hello", "control": self.control, "node": self.view.node,
                     "frame_rate": self.view.frame_rate, "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS})
         self.reply_text(self.view.world.message())
+        if self.view.finishes:
+            self.reply({"type": "finishes", "finishes": self.view.finishes})
         if refused_token:
             self.reply({"type": "reply", "id": None, "ok": False, "line": str(refused_token)})
         latest = self.view.latest_frame()
@@ -259,6 +262,7 @@ class WebView:
         self.line_came: asyncio.Event  # made on the server's loop (serve)
         self.subscribers: Dict[str, Any] = {}
         self.held: Dict[str, Any] = {}  # a player's other topics (take_the_rest)
+        self.finishes: Dict[str, Optional[str]] = {}  # a race's results by body (on_markers)
         self.need_config = threading.Event()
         self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
@@ -271,6 +275,8 @@ class WebView:
         rospy.Subscriber(self.node + "/commands", Command, lambda m: self.loop.add_callback(self.on_command, m),
                          queue_size=1000)
         rospy.Subscriber("/rosout", Log, self.on_log, queue_size=100)
+        rospy.Subscriber(self.node + "/markers", MarkerArray,
+                         lambda m: self.loop.add_callback(self.on_markers, m), queue_size=10)
         threading.Thread(target=self.discover, daemon=True).start()
 
     def discover(self) -> None:
@@ -381,6 +387,19 @@ class WebView:
         else:
             return
         self.send_world()
+
+    def on_markers(self, msg: MarkerArray) -> None:
+        """A race's results from the node's labels: each finished racer's place and times, None for one
+        racing (its label is no finish)."""
+        finishes: Dict[str, Optional[str]] = {}
+        for marker in msg.markers:
+            if marker.ns != "label" or not marker.text:
+                continue
+            body, finish = finish_of_label(marker.text)
+            finishes[body] = finish
+        if finishes and finishes != {b: self.finishes.get(b) for b in finishes}:
+            self.finishes.update(finishes)
+            self.broadcast({"type": "finishes", "finishes": self.finishes})
 
     def on_state(self, body: str, msg: Any) -> None:
         state = state_dict(msg)

@@ -233,6 +233,29 @@ TEST(Scene, LabelsGiveTheCriticalAngleWhenAsked) {
   EXPECT_EQ(usual.at("hoop").rfind("hoop: rolling, E = ", 0), 0u) << usual.at("hoop");
 }
 
+// A race's labels: a finished racer's place and time beside the closed form's (the web view reads them in
+// this form: test_web_protocol), the others' as always; the labels of a race over the line run uphill.
+TEST(Scene, AFinishedRacersLabelGivesPlaceAndTimes) {
+  WorldConfig config;
+  config.race = true;
+  RollerConfig sphere;
+  sphere.params.incline_angle = 0.349;
+  sphere.params.mu_s = 0.2;
+  sphere.params.mu_d = 0.15;
+  RollerConfig ring = sphere;
+  ring.params.shape = Shape::Ring;
+  ring.params.inertia_factor = 1.0;
+  config.bodies = {{"sphere", sphere}, {"ring", ring}};
+  World world(config);
+  Scene scene("world", "", world.bodies());
+  while (!world.bodies()[0].finish) world.step();  // the sphere down (2.0439 s), the ring on its way
+  std::map<std::string, std::string> texts;
+  for (const Marker* m : inNamespace(scene.changes(ros::Time(world.time()), world.bodies()), "label"))
+    texts[m->text.substr(0, m->text.find(':'))] = m->text;
+  EXPECT_EQ(texts.at("sphere"), "sphere: 1st, 2.0439 s (closed form 2.0439 s)");
+  EXPECT_EQ(texts.at("ring").rfind("ring: rolling, E = ", 0), 0u) << texts.at("ring");
+}
+
 // A body whose fixed frame moved (a steeper slope) loses its trail: its path so far would float where the
 // old slope was. The others keep theirs.
 TEST(Scene, ABodyWhoseSlopeMovedStartsItsTrailAfresh) {

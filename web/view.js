@@ -12,7 +12,7 @@ const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spher
 
 const rbs = {
   frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
-  drawn: {}, plotLast: {}, panels: {}, replies: [],
+  drawn: {}, plotLast: {}, panels: {}, replies: [], finishes: {},
 };
 window.rbs = rbs;
 rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
@@ -80,6 +80,8 @@ function receive(m) {
     rbs.paused = m.paused;
     for (const body of Object.keys(latest)) if (!(body in m.bodies)) delete latest[body];
     fillSelects();
+  } else if (m.type === "finishes") {
+    rbs.finishes = m.finishes; // a race's results, in the node's own words: "1st, 2.0439 s (closed form ...)"
   } else if (m.type === "paused") {
     rbs.paused = m.paused;
   } else if (m.type === "reset") {
@@ -297,7 +299,8 @@ function drawRoller(ctx, rect, name, b, s) {
   // A body much smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so.
   const r = R * scale < 0.9 * MIN_RADIUS ? MIN_RADIUS : R * scale;
   const title = name === b.shape ? name : `${name} (${b.shape})`;
-  panelFrame(ctx, rect, [`${title}: ${mode}`,
+  const finish = rbs.finishes && rbs.finishes[name];
+  panelFrame(ctx, rect, [finish ? `${title}: ${finish}` : `${title}: ${mode}`,
                          `${energy} \u00b7 \u03c6c = ${deg(phiC)} (slope ${deg(phi)}: ${verdict})`]);
   // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards.
   const ox = area.x - box.x0 * scale;

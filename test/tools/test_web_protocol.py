@@ -12,7 +12,7 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, FrameQueue, Refusal, Request,  # noqa: E402
-                          frame_message, parse_request)
+                          finish_of_label, frame_message, parse_request)
 
 BODIES = {"rod": "rod", "sphere": "roller"}
 
@@ -98,6 +98,19 @@ class Frames(unittest.TestCase):
         self.assertEqual(frame["states"]["sphere"][0]["t"].hex(), (0.1 + 0.2).hex())
         with self.assertRaises(ValueError):
             frame_message(8, {"sphere": [{"t": float("nan")}]})
+
+
+class FinishLabels(unittest.TestCase):
+    """The node's labels of a race, as test_scene holds the form of a finished racer's."""
+
+    def test_a_finished_racer_gives_its_place_and_times(self) -> None:
+        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s (closed form 2.0439 s)"),
+                         ("sphere", "1st, 2.0439 s (closed form 2.0439 s)"))
+        self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"), ("ring_2", "12th, 10.5000 s"))
+
+    def test_any_other_label_is_no_finish(self) -> None:
+        for text in ("ring: rolling, critical angle 21.8 deg", "rod: E = 20.600 J", "ring: rolling, E = 0.000 J"):
+            self.assertEqual(finish_of_label(text), (text.split(":")[0], None))
 
 
 if __name__ == "__main__":
