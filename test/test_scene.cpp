@@ -234,7 +234,7 @@ TEST(Scene, LabelsGiveTheCriticalAngleWhenAsked) {
 }
 
 // A race's labels: a finished racer's place and time beside the closed form's (the web view reads them in
-// this form: test_web_protocol), the others' as always; the labels of a race over the line run uphill.
+// this form: test_web_protocol), the others' as always.
 TEST(Scene, AFinishedRacersLabelGivesPlaceAndTimes) {
   WorldConfig config;
   config.race = true;
@@ -249,9 +249,9 @@ TEST(Scene, AFinishedRacersLabelGivesPlaceAndTimes) {
   World world(config);
   Scene scene("world", "", world.bodies());
   while (!world.bodies()[0].finish) world.step();  // the sphere down (2.0439 s), the ring on its way
+  const MarkerArray changes = scene.changes(ros::Time(world.time()), world.bodies());
   std::map<std::string, std::string> texts;
-  for (const Marker* m : inNamespace(scene.changes(ros::Time(world.time()), world.bodies()), "label"))
-    texts[m->text.substr(0, m->text.find(':'))] = m->text;
+  for (const Marker* m : inNamespace(changes, "label")) texts[m->text.substr(0, m->text.find(':'))] = m->text;
   EXPECT_EQ(texts.at("sphere"), "sphere: 1st, 2.0439 s (closed form 2.0439 s)");
   EXPECT_EQ(texts.at("ring").rfind("ring: rolling, E = ", 0), 0u) << texts.at("ring");
 }

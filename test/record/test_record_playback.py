@@ -4,6 +4,8 @@
 - As fast as possible (real_time_factor 0) for 60 s of simulated time, a listener receives every state
   exactly once: 60 * publish_rate + 1 per body, at t = j / publish_rate, the last at 60 s (60 * rate steps),
   each equal to `simulate`'s CSV row at that t, bit for bit; /clock never 0, never back, to 60 s.
+- As fast as possible for 600 s with the node's own recorder (~bag): the bag has every state of every
+  publishing instant from t = 0, each equal to the CSV, bit for bit.
 - Through sim.launch record:=true use_sim_time:=true: the bag is closed, has every topic, each body's states
   at every publishing instant exactly once, stamped in simulated time (t + 1 ns), equal to the CSV.
 - playback.launch (rosbag play --clock, once every topic has a subscriber) delivers every recorded state to a
@@ -21,7 +23,7 @@ import sys
 import tempfile
 import unittest
 from dataclasses import dataclass
-from typing import Any, Dict, List, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 import rosbag
 import rosgraph
@@ -114,33 +116,41 @@ class NodeOutput(unittest.TestCase):
         cls.config = load_config(cls.tools.config)
         cls.publish_rate = float(world_value(cls.config, "publish_rate"))
         cls.tmp = tempfile.mkdtemp(prefix="rbs_record_")
-        out = os.path.join(cls.tmp, "csv")
-        subprocess.run([cls.tools.simulate, cls.tools.config, "--duration", "60", "--out-dir", out], check=True,
-                       stdout=subprocess.DEVNULL)
-        cls.csv = {}
+        cls.csv = cls.simulated(60.0)
+        cls.master = Master()
+
+    @classmethod
+    def simulated(cls, duration: float) -> Dict[str, Tuple[List[str], List[List[Any]]]]:
+        """`simulate`'s CSV rows of the config for `duration`, by body: the core's states."""
+        out = os.path.join(cls.tmp, f"csv{duration:g}")
+        subprocess.run([cls.tools.simulate, cls.tools.config, "--duration", f"{duration:g}", "--out-dir", out],
+                       check=True, stdout=subprocess.DEVNULL)
+        rows = {}
         for name in cls.config["bodies"]:
             with open(os.path.join(out, f"{name}.csv")) as f:
                 reader = csv.reader(f)
                 header = next(reader)
-                cls.csv[name] = (header, [[cell if key == "mode" else float(cell) for key, cell in zip(header, row)]
-                                          for row in reader])
-        cls.master = Master()
+                rows[name] = (header, [[cell if key == "mode" else float(cell) for key, cell in zip(header, row)]
+                                       for row in reader])
+        return rows
 
     @classmethod
     def tearDownClass(cls) -> None:
         cls.master.stop()
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def expect_every_sample(self, states: States, duration: float, what: str, first: int = 0) -> None:
+    def expect_every_sample(self, states: States, duration: float, what: str, first: int = 0,
+                            csv_rows: Optional[Dict[str, Tuple[List[str], List[List[Any]]]]] = None) -> None:
         """Each body's states: every publishing instant from sample `first` up to duration exactly once, each
-        equal to the CSV. Before `first`, samples may be missing (published before the test subscribed)."""
+        equal to the CSV (the 60 s one unless `csv_rows`). Before `first`, samples may be missing (published
+        before the test subscribed)."""
         samples = int(round(duration * self.publish_rate))
         for name, msgs in states.items():
             msgs = [m for m in msgs if m.t >= first / self.publish_rate]
             ts = [m.t for m in msgs]
             self.assertEqual(len(ts), samples + 1 - first, f"{what}: {name} has {len(ts)} states for {duration:g} s")
             self.assertEqual(ts, [j / self.publish_rate for j in range(first, samples + 1)], f"{what}: {name}")
-            header, rows = self.csv[name]
+            header, rows = (csv_rows or self.csv)[name]
             for row, msg in zip(rows[first:], msgs):
                 self.assertEqual(header, state_fields(msg), name)
                 self.assertEqual(row, as_row(msg), f"{what}: {name} at t = {msg.t}")
@@ -177,6 +187,22 @@ class NodeOutput(unittest.TestCase):
         self.assertEqual(not_increasing, [], "/clock not strictly increasing at: " + ", ".join(
             f"[{i}] {clocks[i - 1].to_sec()} -> {clocks[i].to_sec()}" for i in not_increasing[:5]))
         self.assertEqual(clocks[-1], sim_stamp(60.0))
+
+    def test_as_fast_as_possible_600_s_in_the_nodes_own_bag(self) -> None:
+        """At real_time_factor 0 a subscriber may fall behind, the node's own recorder (~bag) never: 600 s of
+        simulated time, every state at every publishing instant from t = 0, each equal to the core's."""
+        bag_path = os.path.join(self.tmp, "own.bag")
+        self.master.run(["rosparam", "load", self.tools.config, "/sim"])
+        node = self.master.run([self.tools.sim_node, "__name:=sim", "_real_time_factor:=0", "_duration:=600",
+                                "_start_paused:=false", f"_bag:={bag_path}"], timeout=300)
+        self.assertEqual(node.returncode, 0, node.stdout[-3000:])
+        states: States = {}
+        with rosbag.Bag(bag_path) as bag:
+            for topic, msg, _ in bag.read_messages(topics=[f"/sim/{name}/state" for name in self.config["bodies"]]):
+                states.setdefault(topic.split("/")[2], []).append(msg)
+        self.assertEqual(set(states), set(self.config["bodies"]))
+        self.expect_every_sample(states, 600.0, "the node's own bag, real_time_factor 0",
+                                 csv_rows=self.simulated(600.0))
 
     def test_recording_and_playback(self) -> None:
         duration = 15.0
