@@ -331,8 +331,17 @@ TEST(ConfigDocuments, ASecondDocumentIsRefused) {
             "body 'hoop' holds 2 YAML documents (allowed: one; '---' starts another)");
   EXPECT_EQ(test::refusalOf([] { parseStateText("rod", "{x: 1}\n---\n{x: 2}"); }),
             "state of body 'rod' holds 2 YAML documents (allowed: one; '---' starts another)");
-  // One document with its optional markers is one document.
+  EXPECT_EQ(test::refusalOf([] {
+              parseWorldConfigText("bodies: {rod: {type: rod}}\n...\nbodies: {ball: {type: roller}}", "test");
+            }),
+            "config file 'test' holds 2 YAML documents (allowed: one; '---' starts another)");
+  // One document with its optional markers is one document, comments and a directive around it too.
   EXPECT_EQ(test::refusalOf([] { parseWorldConfigText("---\nbodies: {rod: {type: rod}}\n...\n", "test"); }),
+            "");
+  EXPECT_EQ(test::refusalOf([] {
+              parseWorldConfigText(
+                  "%YAML 1.2\n# a rod\n--- # the world\nbodies: {rod: {type: rod}}\n...\n# end\n", "test");
+            }),
             "");
 }
 
