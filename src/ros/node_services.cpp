@@ -44,8 +44,8 @@ bool NodeServices::onSpawn(Spawn::Request& request, Spawn::Response& response) {
 }
 
 bool NodeServices::onDelete(Delete::Request& request, Delete::Response& response) {
-  return answer(
-      WorldCommand::Kind::Delete, request.name, [](WorldCommand&) {}, response);
+  const auto nothing = [](WorldCommand&) {};  // a delete brings no payload
+  return answer(WorldCommand::Kind::Delete, request.name, nothing, response);
 }
 
 bool NodeServices::onSetState(SetState::Request& request, SetState::Response& response) {
@@ -61,9 +61,9 @@ bool NodeServices::onGetConfig(GetConfig::Request&, GetConfig::Response& respons
 }
 
 bool NodeServices::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
-  Delete::Response ignored;  // ~reset answers nothing: a refusal is its WARN line alone
-  return answer(
-      WorldCommand::Kind::Reset, "", [](WorldCommand&) {}, ignored);
+  Delete::Response ignored;                   // ~reset answers nothing: a refusal is its WARN line alone
+  const auto nothing = [](WorldCommand&) {};  // nor a reset
+  return answer(WorldCommand::Kind::Reset, "", nothing, ignored);
 }
 
 bool NodeServices::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {

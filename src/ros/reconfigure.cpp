@@ -11,9 +11,14 @@ namespace {
 // the .cfg holds exactly the description's written keys, with their defaults, levels and meanings, and no
 // ranges of its own. (Type names: clang-format 14 and 19 space `Request::*field` apart.)
 template <class Request>
+using NumberMember = double Request::*;
+template <class Request>
+using TextMember = std::string Request::*;
+
+template <class Request>
 struct Member {
-  double Request::*number = nullptr;
-  std::string Request::*text = nullptr;
+  NumberMember<Request> number = nullptr;
+  TextMember<Request> text = nullptr;
 };
 
 template <class Request>

@@ -65,8 +65,9 @@ MasterWatch::Start startOfWatched() { return {kWatched, startParams(), true, fal
 // Runs first: it makes the master forget this node for good.
 TEST(MasterWatch, PutsTheParametersBackWhenTheMasterForgetsTheNode) {
   std::atomic<int> forgotten{0};
-  MasterWatch watch(
-      startOfWatched(), 3, [] { return false; }, [&] { ++forgotten; });
+  const auto running = [] { return false; };
+  const auto forget = [&] { ++forgotten; };
+  MasterWatch watch(startOfWatched(), 3, running, forget);
   watch.start();
   ROS_INFO("the master forgets this node");  // the /rosout appender's parameter cached now, not later
   ASSERT_EQ(askMaster(), MasterView::Knows);
@@ -95,8 +96,9 @@ TEST(MasterWatch, AnEndingNodeIsNoRestart) {
   std::atomic<int> asked{0};
   std::atomic<int> forgotten{0};
   // Running when the watch looks first, ending once it has found the node forgotten.
-  MasterWatch watch(
-      startOfWatched(), 3, [&] { return ++asked > 1; }, [&] { ++forgotten; });
+  const auto ending = [&] { return ++asked > 1; };
+  const auto forget = [&] { ++forgotten; };
+  MasterWatch watch(startOfWatched(), 3, ending, forget);
   watch.start();
   ASSERT_TRUE(test::waitUntil([&] { return asked >= 2; }, kTimeout));
   watch.stop();

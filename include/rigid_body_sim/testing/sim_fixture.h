@@ -127,9 +127,13 @@ class SimFixture {
   }
 
   // `value` into the request's list of its kind (doubles, strs); then the server must show it in that list.
+  // A list of a reconfigure config (a name: clang-format 14 and 19 space `Config::*list` apart).
+  template <class List>
+  using ConfigList = List dynamic_reconfigure::Config::*;
+
   template <class List, class Value>
   ::testing::AssertionResult setKey(const std::string& body, const std::string& key, const Value& value,
-                                    List dynamic_reconfigure::Config::*list, const char* kind) const {
+                                    ConfigList<List> list, const char* kind) const {
     typename List::value_type parameter;
     parameter.name = key;
     parameter.value = value;
