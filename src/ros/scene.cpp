@@ -428,12 +428,16 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     label.text = labelText(body, marker_options_.critical_angles);
     // A roller's label starts above it and runs downhill (world +x): centred, its uphill half would cut
     // into the slope that rises behind the body. A racer at the end of its slope has no slope below it: its
-    // label ends above it and runs uphill, over the slope, so that it stays in a view of the slope.
+    // label ends above it and runs uphill, in front of every lane (further lanes have a larger y), so that
+    // no slope hides it and it stays in a view of the slopes.
     const double half_width = 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size());
+    const Eigen::Vector3d at = worldPosition(placements_[i], body);
     const double downhill =
         std::holds_alternative<Roller>(body.model) ? (body.finish ? -half_width : half_width) : 0.0;
-    label.pose.position = toPoint(worldPosition(placements_[i], body) +
-                                  Eigen::Vector3d(downhill, 0, reachOf(body) + placements_[i].label_above));
+    // Brought nearer, the lanes' labels would come closer together: they are lifted twice as far apart.
+    const double nearer = body.finish ? kFirstLaneY - kMinLaneSpacing - at.y() : 0.0;
+    const double above = (body.finish ? 2.0 : 1.0) * placements_[i].label_above;
+    label.pose.position = toPoint(at + Eigen::Vector3d(downhill, nearer, reachOf(body) + above));
     label.scale.z = kLabelHeight;
     label.color = kLabelColour;
     array.markers.push_back(std::move(label));
