@@ -165,15 +165,6 @@ bool initialChanged(const Config& a, const Config& b) {
   return false;
 }
 
-// Every written key of both configs equal, numbers bit for bit (their shortest round-trip text).
-template <class Config>
-bool sameKeys(const Config& a, const Config& b) {
-  for (const auto& key : bodyType<Config>().keys) {
-    if (key.written() && key.text(a) != key.text(b)) return false;
-  }
-  return true;
-}
-
 // The most bodies a world holds, from its config file or spawned while it runs: each brings a thread-safe
 // publisher, a reconfigure server and markers to the node, and a CSV file to `simulate`.
 constexpr std::size_t kMaxBodies = 1000;
