@@ -17,8 +17,7 @@ import re
 import subprocess
 import sys
 import tempfile
-from dataclasses import dataclass
-from typing import Any, Callable, Dict, List
+from typing import Any, Callable, Dict, List, NamedTuple
 
 import numpy as np
 
@@ -31,8 +30,7 @@ THETA0_RODS = 1001  # theta0 = i 2 pi / 1000: theta0 + pi and pi - theta0 are on
 Runs = Dict[str, Any]
 
 
-@dataclass
-class Figure:
+class Figure(NamedTuple):  # not a dataclass: Debian 11's mypy takes a Callable field of one for a method
     doc: str  # relative to the package
     pattern: str  # a regular expression whose groups are the figures
     values: Callable[[Runs], List[str]]  # the figures as the doc writes them, one per group
