@@ -152,7 +152,10 @@ class WebView(unittest.TestCase):
         def printed() -> bool:
             found[:] = [m.group(1) for m in (pattern.search(line) for line in list(self.log)) if m]
             return bool(found)
-        wait_for("the web view's control link in the launch's log", printed, DEADLINE)
+        try:
+            wait_for("the web view's control link in the launch's log", printed, DEADLINE)
+        except TimeoutError as error:
+            raise AssertionError(f"{error}; the launch's log:\n" + "".join(list(self.log)[-60:])) from None
         return found[0]
 
     def test_node(self) -> None:
