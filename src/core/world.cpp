@@ -110,7 +110,7 @@ World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
   bodies_.reserve(config.bodies.size());
   for (auto& body : config_.bodies) {
     body = withGravity(body, config.gravity);
-    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race)});
+    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race), std::nullopt});
   }
 }
 
@@ -164,7 +164,7 @@ void World::apply(const WorldCommand& command) {
       WorldConfig would_be = config_;
       would_be.bodies.push_back(wanted);
       validateWouldBe(would_be);
-      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race)});
+      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race), std::nullopt});
       config_.bodies.push_back(wanted);
       if (kindOf(wanted) == BodyKind::Roller) restartRace();  // the newcomer starts with the others
       return;
