@@ -121,8 +121,10 @@ class WebView(unittest.TestCase):
         """roslaunch rigid_body_sim WORDS... with the web view (control on) on a port of its own, and a master
         of its own; this process joins that master (one test per process: rospy joins one master)."""
         port = free_port()
+        # PYTHONUNBUFFERED: roslaunch and the web view write their lines into a pipe here, which Python would
+        # otherwise fill in blocks: the control link would come only when the launch ends.
         env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
-                   PATH="/usr/bin:" + os.environ.get("PATH", ""))
+                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
         env.pop("ROS_HOSTNAME", None)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
         self.launch = subprocess.Popen(
