@@ -14,25 +14,33 @@
 
 namespace {
 
-// Every line rosconsole logs while it is registered, with its level.
+// Every line rosconsole logs, with its level.
 class CapturedLog : public ros::console::LogAppender {
  public:
-  CapturedLog() { ros::console::register_appender(this); }
-  ~CapturedLog() override { ros::console::deregister_appender(this); }
-  CapturedLog(const CapturedLog&) = delete;
-  CapturedLog& operator=(const CapturedLog&) = delete;
   void log(ros::console::Level level, const char* text, const char*, const char*, int) override {
     lines.emplace_back(level, text);
   }
   std::vector<std::pair<ros::console::Level, std::string>> lines;
 };
 
+// Registered once for the process and never deregistered: Debian 11's rosconsole crashes in
+// deregister_appender (a SEGV under ASan).
+CapturedLog& capturedLog() {
+  static CapturedLog* const log = [] {
+    auto* appender = new CapturedLog;
+    ros::console::register_appender(appender);
+    return appender;
+  }();
+  return *log;
+}
+
 TEST(LaunchEnd, AFailedInterruptIsOneErrorLineWithThePidAndTheReason) {
   const pid_t gone = fork();
   ASSERT_GE(gone, 0);
   if (gone == 0) _exit(0);
   ASSERT_EQ(waitpid(gone, nullptr, 0), gone);  // reaped: no process has that pid now (ESRCH)
-  const CapturedLog log;
+  CapturedLog& log = capturedLog();
+  log.lines.clear();
   EXPECT_FALSE(rigid_body_sim::interruptRoslaunch(gone));
   ASSERT_EQ(log.lines.size(), 1u);
   EXPECT_EQ(log.lines[0].first, ros::console::levels::Error);
