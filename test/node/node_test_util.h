@@ -171,10 +171,11 @@ class StateCollector {
 
   std::mutex mutex_;
   std::condition_variable cv_;
-  std::vector<ros::Subscriber> subs_;
   std::map<std::string, std::vector<RodState>> rods_;
   std::map<std::string, std::vector<RollerState>> rollers_;
   std::size_t count_ = 0;
+  // Last, and so destroyed first: unsubscribing waits for a callback under way, which still finds the maps.
+  std::vector<ros::Subscriber> subs_;
 };
 
 // Calls `method` of a node's own XML-RPC API (with this node as the caller); false if that fails.

@@ -58,10 +58,12 @@ class TopicLog {
   }
 
  private:
-  std::map<std::string, ros::Subscriber> subscribers_;
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::map<std::string, std::vector<std::vector<std::uint8_t>>> received_;
+  // Last, and so destroyed first: unsubscribing waits for a callback under way (the publisher still sends
+  // as the test ends), which still finds the log.
+  std::map<std::string, ros::Subscriber> subscribers_;
 };
 
 bool waitUntil(const std::function<bool()>& holds) { return test::waitUntil(holds, kTimeout); }
