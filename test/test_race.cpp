@@ -4,13 +4,16 @@
 // launches (sliding, backspin, topspin, uphill).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <random>
 #include <string>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/config_loader.h"
 #include "test_util.h"
 
 using namespace rigid_body_sim;
@@ -205,4 +208,49 @@ TEST(Race, ResetAndANewStartRestartTheRace) {
     EXPECT_FALSE(body.finish) << body.name;
     EXPECT_EQ(std::get<Roller>(body.model).state().x, 0.0) << body.name;
   }
+}
+
+// The lesson's slip part (config/race_slip.yaml): three shapes bowled with backspin slip, then roll at
+// t = (v0 + omega0 R) / (g mu_d cos(phi) (1 + 1/c) - g sin(phi)), the times its comment gives (0.77, 0.92,
+// 1.54 s), in every lap; each lap's finish at the closed form's.
+TEST(Race, TheSlipLessonRollsAtTheSlipPhaseClosedForm) {
+  World world(loadWorldConfigFile(test::config("race_slip.yaml")));
+  const std::map<std::string, double> stated{{"sphere", 0.77}, {"cylinder", 0.92}, {"ring", 1.54}};
+  std::map<std::string, double> rolls_at;
+  for (const auto& body : world.bodies()) {
+    const Roller& model = std::get<Roller>(body.model);
+    const RollerParams& p = model.params();
+    const RollerMotion& start = model.state();
+    const double g = world.config().gravity;
+    const double slip = start.v + start.omega * p.radius;  // u = v + omega R, 0 while rolling
+    const double slip_rate =
+        g * std::sin(p.incline_angle) - g * p.mu_d * std::cos(p.incline_angle) * (1 + 1 / p.inertia_factor);
+    ASSERT_GT(slip, 0.0) << body.name << " launched sliding";
+    rolls_at[body.name] = -slip / slip_rate;
+    EXPECT_NEAR(rolls_at[body.name], stated.at(body.name), 0.005) << body.name << ": the config's comment";
+  }
+  std::map<std::string, int> rolled;
+  std::map<std::string, double> lap_start{{"sphere", 0.0}, {"cylinder", 0.0}, {"ring", 0.0}};
+  const auto lapsRolled = [&] {
+    int fewest = 3;
+    for (const auto& [name, at] : rolls_at) fewest = std::min(fewest, rolled[name]);
+    return fewest;
+  };
+  while (lapsRolled() < 3 && world.time() < 20.0) {  // laps of about 4.4 s
+    world.step();
+    for (const auto& event : world.takeEvents()) {
+      SCOPED_TRACE(event.body + " at t = " + std::to_string(event.t));
+      const Body& body = world.bodies()[event.body == "sphere" ? 0 : event.body == "cylinder" ? 1 : 2];
+      ASSERT_EQ(body.name, event.body);
+      if (event.kind == WorldEvent::Kind::Restarted) lap_start[event.body] = event.t;
+      if (event.kind == WorldEvent::Kind::StartedRolling) {
+        EXPECT_NEAR(event.t - lap_start[event.body], rolls_at.at(event.body), kTimeTolerance);
+        ++rolled[event.body];
+      }
+      if (event.kind == WorldEvent::Kind::StartedSlipping) ADD_FAILURE() << "slips again after rolling";
+      if (event.kind == WorldEvent::Kind::Finished)
+        EXPECT_NEAR(body.finish->time, *body.finish->closed_form, kTimeTolerance);
+    }
+  }
+  EXPECT_EQ(lapsRolled(), 3);
 }

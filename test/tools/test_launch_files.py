@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rod.launch and incline.launch take every argument of sim.launch but config, with the same defaults and docs
 (rviz_config: the same doc, its default the wrapper's own rviz/<wrapper>.rviz); lesson.launch too, but with its
-part (below, above or rod) choosing the config and the view, rviz and critical_angles on by default;
+part choosing the config (config/race_<part>.yaml, or rod.yaml) and the view, its doc naming every part ("slip:"),
+rviz and critical_angles on by default;
 and every argument of sim.launch and playback.launch has a doc (roslaunch --ros-args shows it). playback.launch's
 player is required (the launch ends with the bag) without rviz or with close_at_end, and only then; start_paused
 passes --pause.
@@ -10,6 +11,7 @@ Usage: test_launch_files.py LAUNCH_DIR
 """
 import argparse
 import os
+import re
 import sys
 import xml.etree.ElementTree as ElementTree
 from typing import Dict, List, Tuple
@@ -17,8 +19,6 @@ from typing import Dict, List, Tuple
 Args = Dict[str, Tuple[str, str]]  # name: (default, doc)
 LESSON_VIEW = ("$(eval find('rigid_body_sim') + '/rviz/lesson_' + ('rod' if arg('part') == 'rod' else 'race') + "
                "'.rviz')")
-LESSON_PART = ("below", "below, above: the three shapes racing below, above their critical angles (section 16.3.2); "
-               "rod: the bouncing rod (section 16.3.3)")
 
 
 def launch_args(path: str) -> Args:
@@ -57,6 +57,13 @@ def playback_failures(launch_dir: str) -> List[str]:
     return failures
 
 
+def lesson_parts(launch_dir: str) -> List[str]:
+    """lesson.launch's parts: rod, and a race for every config/race_<part>.yaml."""
+    configs = os.listdir(os.path.join(launch_dir, os.pardir, "config"))
+    return ["rod"] + sorted(name[len("race_"):-len(".yaml")] for name in configs
+                            if name.startswith("race_") and name.endswith(".yaml"))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("launch_dir")
@@ -64,8 +71,11 @@ def main() -> None:
     sim = launch_args(os.path.join(launch_dir, "sim.launch"))
     failures = [f"sim.launch: {name} has no doc" for name, (_, doc) in sim.items() if not doc]
     del sim["config"]
+    part_default, part_doc = launch_args(os.path.join(launch_dir, "lesson.launch")).get("part", ("", ""))
+    failures += [f"lesson.launch: part's doc does not name {part}"
+                 for part in lesson_parts(launch_dir) if not re.search(rf"\b{part}[,:]", part_doc)]
     lesson = dict(sim, rviz=("true", sim["rviz"][1]), critical_angles=("true", sim["critical_angles"][1]),
-                  rviz_config=(LESSON_VIEW, sim["rviz_config"][1]), part=LESSON_PART)
+                  rviz_config=(LESSON_VIEW, sim["rviz_config"][1]), part=("below", part_doc))
     for wrapper in ("rod.launch", "incline.launch", "lesson.launch"):
         args = launch_args(os.path.join(launch_dir, wrapper))
         own_view = "$(find rigid_body_sim)/rviz/" + wrapper.replace(".launch", ".rviz")
