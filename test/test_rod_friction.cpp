@@ -11,6 +11,9 @@
 
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/rod_dynamics.h"
+#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/io/config_loader.h"
+#include "test_util.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -327,6 +330,27 @@ TEST(RodFriction, TiltedSpinningDropIsPushedAgainstItsSlip) {
                 flat.state().vx);
     EXPECT_LE(std::fabs(flat.state().vx), 1e-12) << toString(integrator);
   }
+}
+
+// The lesson's rod (config/rod.yaml, the text's run) with floor_mu = 0.3, as its comment and docs/rviz.md
+// say: the slide ends within a few bounces, the rod staying within half a metre of where it is at 12 s to
+// the end of a minute (on the text's floor it slides 96 m in that time).
+TEST(RodFriction, TheLessonsRodStopsSlidingOnARoughFloor) {
+  WorldConfig config = loadWorldConfigFile(test::config("rod.yaml"));
+  RodConfig& rod = std::get<RodConfig>(config.bodies.at(0).config);
+  ASSERT_EQ(rod.params.floor_mu, 0.0) << "the text's floor by default";
+  rod.params.floor_mu = 0.3;
+  World world(config);
+  const auto x = [&] { return std::get<Rod>(world.bodies().at(0).model).state().x; };
+  while (world.time() < 12.0) world.step();
+  const double x12 = x();
+  double farthest = 0.0;
+  while (world.time() < 60.0) {
+    world.step();
+    farthest = std::max(farthest, std::fabs(x() - x12));
+  }
+  std::printf("[ lesson ] x at 12 s %.3f m, farthest from it to 60 s %.3f m\n", x12, farthest);
+  EXPECT_LT(farthest, 0.5);
 }
 
 }  // namespace
