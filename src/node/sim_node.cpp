@@ -18,9 +18,8 @@ namespace {
 
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
-// After the last step of a `duration`: for subscribers (a recorder) to receive the last messages before the
-// launch ends. roscpp counts a message sent when it is queued and tells a publisher nothing of a
-// subscriber's backlog (docs/performance.md: what a slow subscriber loses).
+// After the last step of a `duration`: for subscribers (a recorder) to receive the last messages. roscpp
+// tells a publisher nothing of a subscriber's backlog (docs/performance.md: what a slow subscriber loses).
 constexpr auto kEndWait = std::chrono::milliseconds(500);
 
 double wallNow() {
@@ -221,6 +220,9 @@ void SimNode::anchor() {
 }
 
 void SimNode::afterStep(World& world) {
+#ifdef RBS_FAULT_INJECTION  // sim_node_faults, a test's build only: test/faults/fault_injection.h
+  injectFault(world);
+#endif
   for (const NonFinite& fault : guard_.afterStep(world.bodies())) {
     const Body& held = world.bodies()[fault.index];  // already back at its last finite state
     ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field

@@ -347,6 +347,34 @@ inline bool waitUntil(const std::function<bool()>& holds, double timeout) {
   return true;
 }
 
+// A node started paused (start_paused) with a `duration`: waits until it publishes every body's state topic
+// to this test (in the node's own view: from then on all it publishes there arrives), unpauses it, waits for
+// the end of its run and every body's state at the duration. Returns the duration and the lines the node
+// logged in its run. Use it inside ASSERT_NO_FATAL_FAILURE.
+inline void runToDuration(StateCollector& collector, NodeLog& log, const World& world, double* duration,
+                          std::vector<rosgraph_msgs::Log>* logged = nullptr) {
+  ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
+  ASSERT_TRUE(log.waitConnected(10.0)) << "the node does not log to this test";
+  const auto connected = [&] {
+    return std::all_of(world.bodies().begin(), world.bodies().end(), [](const Body& body) {
+      return publishesHere("/sim", "/sim/" + body.name + "/state");
+    });
+  };
+  ASSERT_TRUE(waitUntil(connected, 10.0)) << "the node does not publish every state to this test";
+  ASSERT_TRUE(ros::service::waitForService("/sim/unpause", 10000));
+  ASSERT_TRUE(callEmpty("/sim/unpause"));
+  // The run is over when the node says so, after it published the last sample (t = duration); that sample
+  // of every body arrives before the node exits.
+  ASSERT_TRUE(ros::param::get("/sim/duration", *duration));
+  const auto lines = log.takeUntil("the requested duration; shutting down", 40.0);
+  ASSERT_TRUE(lines) << "the run did not end";
+  if (logged) *logged = *lines;
+  const std::optional<bool> complete = collector.waitAllAtOrGone(world, *duration, 40.0);
+  ASSERT_TRUE(complete.has_value()) << "neither every body's state at t = " << *duration
+                                    << " nor the node's exit";
+  ASSERT_TRUE(*complete) << "the node exited before this test had every body's state at t = " << *duration;
+}
+
 // main() for a rostest gtest node: ros::init, an AsyncSpinner, then the tests.
 #define RBS_ROSTEST_MAIN(node_name)       \
   int main(int argc, char** argv) {       \

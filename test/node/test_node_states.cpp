@@ -45,31 +45,8 @@ TEST(SimNodeStates, EveryStateIsTheCorePrediction) {
 
   StateCollector collector(nh, world);
   NodeLog log(nh);
-  ASSERT_TRUE(collector.waitConnected(10.0)) << "no publisher of the state topics";
-  ASSERT_TRUE(log.waitConnected(10.0)) << "the node does not log to this test";
-  // The node starts paused, and runs once every state topic is the node's connection to this test (in the
-  // node's own view: from then on all it publishes there arrives).
-  const auto connected = [&] {
-    return std::all_of(world.bodies().begin(), world.bodies().end(), [](const Body& body) {
-      return publishesHere("/sim", "/sim/" + body.name + "/state");
-    });
-  };
-  const ros::WallTime connect_deadline = ros::WallTime::now() + ros::WallDuration(10.0);
-  while (!connected()) {
-    ASSERT_LT(ros::WallTime::now(), connect_deadline) << "the node does not publish every state to this test";
-    ros::WallDuration(0.02).sleep();
-  }
-  ASSERT_TRUE(ros::service::waitForService("/sim/unpause", 10000));
-  ASSERT_TRUE(callEmpty("/sim/unpause"));
-  // The run is over when the node says so, after it published the last sample (t = duration); that sample
-  // of every body arrives before the node exits.
   double duration = 0.0;
-  ASSERT_TRUE(ros::param::get("/sim/duration", duration));
-  ASSERT_TRUE(log.takeUntil("the requested duration; shutting down", 40.0)) << "the run did not end";
-  const std::optional<bool> complete = collector.waitAllAtOrGone(world, duration, 40.0);
-  ASSERT_TRUE(complete.has_value()) << "neither every body's state at t = " << duration
-                                    << " nor the node's exit";
-  ASSERT_TRUE(*complete) << "the node exited before this test had every body's state at t = " << duration;
+  ASSERT_NO_FATAL_FAILURE(runToDuration(collector, log, world, &duration));
 
   // Index the messages by step count; check the per-body sequences.
   std::map<std::string, std::map<std::int64_t, RodState>> rods;

@@ -81,8 +81,7 @@ class SimNode {
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
   void stopRecording(double t, const std::string& what);
   const World& world() const { return session_.world(); }  // on the stepping thread
-  void anchor();  // the pace and the wall-clock stamps start from now and the current step
-
+  void anchor();       // the pace and the wall-clock stamps start from now and the current step
   void stopThreads();  // stops and joins the stepper and the master watch
 
   ros::NodeHandle node_;
@@ -91,7 +90,6 @@ class SimNode {
   NodeOptions options_;
 
   TaskQueue stepper_tasks_;  // the work handed to the stepping thread
-
   // Owned by the stepping thread (set up before it starts):
   // The world (also the running config, what ~get_config returns), sampled at every publishing instant.
   Session session_;
