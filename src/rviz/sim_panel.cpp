@@ -168,7 +168,7 @@ QTabWidget* SimPanel::makeTabs() {
   tabs_ = new QTabWidget(this);
   tabs_->setObjectName("tabs");
   tabs_->addTab(scroll, "Bodies");
-  plots_ = new BodyPlots(tabs_);
+  plots_ = new BodyPlots(*calls_, tabs_);
   tabs_->addTab(plots_, "Plots");
   return tabs_;
 }
