@@ -20,6 +20,7 @@
 
 #include <dynamic_reconfigure/Config.h>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
 
@@ -178,13 +179,15 @@ void BodyPlots::setNode(const std::string& ns) {
   gravity_ = 0;
   commands_ = ros::NodeHandle().subscribe<Command>(ns_ + "/commands", 100,
                                                    [this](const Command::ConstPtr& c) { onCommand(*c); });
-  const std::string name = ns_ + "/gravity";  // the world's g (sim.launch loads the config there)
+  // The world's g: sim.launch loads the config's keys there, and a key it lacks takes its default.
+  const std::string name = ns_ + "/gravity";
   const auto ask = [name] {
-    double g = 0;
-    return ros::param::get(name, g) ? g : 0.0;
+    double g = kDefaultGravity;
+    ros::param::get(name, g);
+    return g;
   };
   const auto got = [this, ns](const double& g) {
-    if (ns == ns_) gravity_ = g;
+    if (ns == ns_ && gravity_ == 0) gravity_ = g;  // a config command's, if one came first, is newer
   };
   calls_.post<double>(this, ask, got);
   setBodies({});
@@ -471,6 +474,10 @@ void BodyPlots::slipToRoll(const RollerState& state, bool restart) {
 void BodyPlots::onCommand(const Command& command) {
   if (command.kind != "reset" && command.kind != "config") return;
   origin_ = std::max(origin_, command.t);
+  // A config's world has its g on a line of its own (config_writer writes every world key).
+  const std::size_t at = command.yaml.find("gravity:");
+  if (command.kind == "config" && at != std::string::npos && (at == 0 || command.yaml[at - 1] == '\n'))
+    gravity_ = std::strtod(command.yaml.c_str() + at + 8, nullptr);
   for (auto& chart : charts_) {
     for (auto& track : chart.tracks) {
       while (!track.points.empty() && track.points.front().t <= command.t) track.points.pop_front();

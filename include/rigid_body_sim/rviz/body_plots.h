@@ -5,7 +5,7 @@
 // (the first rolling state after a slipping one) with its time beside the closed form's (closedFormRun from
 // the state that began the slipping phase), and the friction force. A rod: the height of each end,
 // y +- (L/2) sin(theta). The parameters (L, R, M, c, the slope) come from the body's reconfigure server, g
-// from the node's ~gravity parameter.
+// from the node's ~gravity parameter or a newer config command.
 // Time: the t axis is simulated time since the last reset or config (the node's ~commands), whose points go:
 // the node's t goes on through a reset, a user's charts start afresh at 0. A body restarted within a run (a
 // lap: the end of its slope or floor, a race's new lap) jumps back: a new line starts there, never a segment
@@ -141,7 +141,7 @@ class BodyPlots : public QWidget {
   bool parameters_known_ = false;
   RodParams rod_;
   RollerParams roller_;
-  double gravity_ = 0;  // the node's ~gravity; 0 until known (no closed form then)
+  double gravity_ = 0;  // the world's; 0 until known (no closed form then)
   std::string last_mode_;
   double origin_ = 0;  // t of the last reset or config: the t axis starts there
   int line_ = 0;
