@@ -20,6 +20,7 @@
 
 #include <dynamic_reconfigure/Config.h>
 
+#include "rigid_body_sim/core/axis_ticks.h"
 #include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
@@ -67,46 +68,6 @@ double parameter(const dynamic_reconfigure::Config& config, const std::string& n
 QFont pixels(QFont font, int px) {
   font.setPixelSize(px);
   return font;
-}
-
-// Ticks at whole multiples of 1, 2 or 5 times a power of ten, about five of them, written with as many
-// decimals as the step needs: distinct numbers. A flat series (a constant force) gets a span of a fifth of
-// its size (0.1 at least) around it, not the noise of its last digits.
-struct Ticks {
-  long first;
-  long last;
-  double step;
-  int decimals;
-};
-
-Ticks niceTicks(double low, double high) {
-  const double magnitude = std::max(std::abs(low), std::abs(high));
-  const double least = std::max(0.2 * magnitude, 0.1);
-  if (high - low < least) {
-    const double middle = 0.5 * (low + high);
-    low = middle - 0.5 * least;
-    high = middle + 0.5 * least;
-  }
-  const double margin = 0.05 * (high - low);  // a line at the edge is drawn whole
-  low -= margin;
-  high += margin;
-  const double raw = (high - low) / 5;
-  int exponent = static_cast<int>(std::floor(std::log10(raw)));
-  const double decade = std::pow(10.0, exponent);
-  double mantissa = 10;
-  for (const double m : {1.0, 2.0, 5.0}) {
-    if (raw <= m * decade * (1 + 1e-9)) {
-      mantissa = m;
-      break;
-    }
-  }
-  if (mantissa == 10) {
-    mantissa = 1;
-    ++exponent;
-  }
-  const double step = mantissa * std::pow(10.0, exponent);
-  return {static_cast<long>(std::floor(low / step)), static_cast<long>(std::ceil(high / step)), step,
-          std::max(0, -exponent)};
 }
 
 }  // namespace
@@ -567,18 +528,15 @@ void BodyPlots::redraw() {
     }
     if (!std::isfinite(t_last) || !std::isfinite(low)) continue;
     chart.x->setRange(std::max(0.0, t_last - kPlotWindow), std::max(kPlotWindow, t_last));  // from 0 at first
-    const Ticks ticks = niceTicks(low, high);
+    const AxisTicks ticks = niceTicks(low, high);
     QStringList labels;
-    for (long k = ticks.first; k <= ticks.last; ++k)
-      labels << fixed(static_cast<double>(k) * ticks.step, ticks.decimals);
+    for (const std::string& label : ticks.labels) labels << QString::fromStdString(label);
     if (labels != chart.y->categoriesLabels()) {
       for (const QString& old : chart.y->categoriesLabels()) chart.y->remove(old);
-      chart.y->setStartValue(static_cast<double>(ticks.first - 1) * ticks.step);
-      for (long k = ticks.first; k <= ticks.last; ++k)
-        chart.y->append(labels[static_cast<int>(k - ticks.first)], static_cast<double>(k) * ticks.step);
+      chart.y->setStartValue(ticks.low - ticks.step);
+      for (int k = 0; k < labels.size(); ++k) chart.y->append(labels[k], ticks.low + k * ticks.step);
     }
-    chart.y->setRange(static_cast<double>(ticks.first) * ticks.step,
-                      static_cast<double>(ticks.last) * ticks.step);
+    chart.y->setRange(ticks.low, ticks.high);
   }
   placeNote();
 }
