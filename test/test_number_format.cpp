@@ -241,6 +241,19 @@ TEST(NumberFormat, KnownTexts) {
   EXPECT_EQ(formatNumber(std::ldexp(1.0, -1017)), "7.120236347223045e-307");  // nearest does not read back
 }
 
+// A panel's numbers: rounded, never a negative zero.
+TEST(NumberFormat, FixedHasNoNegativeZero) {
+  EXPECT_EQ(formatFixed(-0.0, 3), "0.000");
+  EXPECT_EQ(formatFixed(-1e-9, 3), "0.000");
+  EXPECT_EQ(formatFixed(-0.0004999, 3), "0.000");
+  EXPECT_EQ(formatFixed(-0.0005001, 3), "-0.001");
+  EXPECT_EQ(formatFixed(-0.4, 0), "0");
+  EXPECT_EQ(formatFixed(-1.6751, 2), "-1.68");
+  EXPECT_EQ(formatFixed(2.5, 1), "2.5");
+  EXPECT_EQ(formatFixed(12.0, 0), "12");
+  EXPECT_EQ(formatFixed(-std::numeric_limits<double>::infinity(), 3), "-inf");
+}
+
 #if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
 std::string toChars(double value) {
   char buffer[64];

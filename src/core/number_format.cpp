@@ -6,6 +6,7 @@
 // snprintf("%.*e") rounds correctly to any digit count and strtod reads correctly (in the default rounding
 // mode, which nothing here changes), so trying digit counts finds the same digits;
 // test/test_number_format.cpp compares the bytes with to_chars.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -175,6 +176,20 @@ std::string formatNumber(double value) {
   const std::string sign = std::signbit(value) ? "-" : "";
   if (value == 0) return sign + "0";
   return sign + positiveText(std::fabs(value));
+}
+
+// The C library rounds; its "-0.00" of a small negative number (or of -0) loses the sign. The radix
+// character follows LC_NUMERIC (which Qt sets from the environment): a point is what readers here expect.
+std::string formatFixed(double value, int decimals) {
+  if (!std::isfinite(value)) return formatNumber(value);
+  char text[400];  // DBL_MAX has 309 digits before the point
+  std::snprintf(text, sizeof text, "%.*f", std::clamp(decimals, 0, 30), value);
+  std::string fixed(text);
+  for (char& c : fixed) {
+    if (c == ',') c = '.';
+  }
+  if (fixed[0] == '-' && fixed.find_first_not_of("-0.") == std::string::npos) fixed.erase(0, 1);
+  return fixed;
 }
 
 }  // namespace rigid_body_sim

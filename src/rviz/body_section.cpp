@@ -22,6 +22,7 @@
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/call_queue.h"
+#include "rigid_body_sim/rviz/fixed_text.h"
 #include "rigid_body_sim/rviz/focus_wheel.h"
 
 namespace rigid_body_sim {
@@ -98,7 +99,7 @@ QString valueText(const dynamic_reconfigure::Config& config, const std::string& 
 QString numberText(double value) { return QString::fromStdString(formatNumber(value)); }
 
 QString degreesText(double radians, int decimals) {
-  return QString("%1").arg(radians * 180.0 / kPi, 0, 'f', decimals) + QChar(0x00B0);
+  return QString("%1").arg(fixed(radians * 180.0 / kPi, decimals)) + QChar(0x00B0);
 }
 
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
@@ -448,7 +449,7 @@ void BodySection::onRodState(const RodState& state) {
   // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values;
   // a replay has no server: the energy alone).
   const QString energy =
-      QString("E = %1 J (potential 0 with its centre at floor level)").arg(state.energy, 0, 'f', 3);
+      QString("E = %1 J (potential 0 with its centre at floor level)").arg(fixed(state.energy, 3));
   const auto* length = parameterNamed(values_.doubles, "length");
   if (length) {
     const double lowest_end = state.y - 0.5 * length->value * std::abs(std::sin(state.theta));
@@ -470,7 +471,7 @@ void BodySection::clearPendingNote() {
 void BodySection::onRollerState(const RollerState& state) {
   motion_->setText(QString("%1 · E = %2 J (potential 0 with its centre at the slope's top)")
                        .arg(QString::fromStdString(state.mode))
-                       .arg(state.energy, 0, 'f', 3));
+                       .arg(fixed(state.energy, 3)));
   clearPendingNote();
   on_time_(state.t);
 }

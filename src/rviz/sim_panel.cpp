@@ -25,6 +25,7 @@
 #include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/body_plots.h"
 #include "rigid_body_sim/rviz/body_section.h"
+#include "rigid_body_sim/rviz/fixed_text.h"
 #include "rigid_body_sim/rviz/focus_wheel.h"
 
 namespace rigid_body_sim {
@@ -167,7 +168,7 @@ QTabWidget* SimPanel::makeTabs() {
   tabs_ = new QTabWidget(this);
   tabs_->setObjectName("tabs");
   tabs_->addTab(scroll, "Bodies");
-  plots_ = new BodyPlots(tabs_);
+  plots_ = new BodyPlots(*calls_, tabs_);
   tabs_->addTab(plots_, "Plots");
   return tabs_;
 }
@@ -273,7 +274,7 @@ void SimPanel::enter(Source source, const Discovery& found) {
       enablePlayer(false, "the recording has ended");
       showStatus(times_.empty()
                      ? QString("end of recording")
-                     : QString("end of recording at t = %1 s").arg(times_.back().second, 0, 'f', 3));
+                     : QString("end of recording at t = %1 s").arg(fixed(times_.back().second, 3)));
       break;
   }
 }
@@ -454,7 +455,7 @@ void SimPanel::showClock() {
                                              : "t = ?  (no state from " + from + ")");
     return;
   }
-  clock_->setText(QString("t = %1 s   ").arg(times_.back().second, 0, 'f', 3) + clockState(now));
+  clock_->setText(QString("t = %1 s   ").arg(fixed(times_.back().second, 3)) + clockState(now));
 }
 
 // A replay paused from the panel says so (states already on their way may still come), and so does a paused
@@ -466,7 +467,7 @@ QString SimPanel::clockState(double now) const {
   if (now - times_.back().first > kStoppedAfter) return "stopped";
   const double span = now - times_.front().first;
   const double factor = span > 0 ? (times_.back().second - times_.front().second) / span : 0.0;
-  return QString("real-time factor %1").arg(factor, 0, 'f', 2);
+  return QString("real-time factor %1").arg(fixed(factor, 2));
 }
 
 // The node's WARN and ERROR lines (a refused reconfigure, drop or ~step) go to the status line, and those

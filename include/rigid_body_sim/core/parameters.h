@@ -223,6 +223,9 @@ bool dividesRate(double rate, double divisor);
 
 // Formats a double the way error messages and CSV files show it (shortest round-trip form).
 std::string formatNumber(double value);
+// A double with `decimals` digits after the point, for people to read (a panel, a chart's ticks): never
+// "-0.000", which reads as a sign that is not there; a value that rounds to zero is "0.000".
+std::string formatFixed(double value, int decimals);
 
 // "a, b or c".
 std::string oneOf(const std::vector<std::string>& names);

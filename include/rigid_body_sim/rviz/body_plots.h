@@ -2,22 +2,35 @@
 // kPlotWindow simulated seconds, from the body's state topic. Every body: its energy, the total (the state's
 // `energy`), the kinetic (the core's, from the state and the body's parameters) and the potential (their
 // difference). A roller: v and -omega R on one chart (equal while it rolls), each slip-to-roll instant marked
-// (the first rolling state after a slipping one), and the friction force. A rod: the height of each end,
-// y +- (L/2) sin(theta). The parameters (L, R, M, c) come from the body's reconfigure server. Nothing is
-// recorded or drawn while the tab is hidden (the charts start afresh when it shows again), nothing comes
-// while the node is paused, and the points before a reset (the node's ~commands, kind "reset") go.
+// (the first rolling state after a slipping one) with its time beside the closed form's (closedFormRun from
+// the state that began the slipping phase), and the friction force. A rod: the height of each end,
+// y +- (L/2) sin(theta). The parameters (L, R, M, c, the slope) come from the body's reconfigure server, g
+// from the node's ~gravity parameter or a newer config command.
+// Time: the t axis is simulated time since the last reset or config (the node's ~commands), whose points go:
+// the node's t goes on through a reset, a user's charts start afresh at 0. A body restarted within a run (a
+// lap: the end of its slope or floor, a race's new lap) jumps back: a new line starts there, never a segment
+// across the jump. Nothing is recorded or drawn while neither the tab nor the projector window shows (the
+// charts start afresh when one shows again), and nothing comes while the node is paused.
+// The projector window (the tab's "Projector view") holds the same charts, all at once, in a grid with fonts
+// in pixels (legible from the back of a room), and saves them as one PNG ("Save PNG": a file dialog, or the
+// file RBS_PLOTS_PNG names, for tests); closing it puts the charts back in the tab.
 #pragma once
 
 #include <deque>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <QCategoryAxis>
 #include <QChart>
 #include <QChartView>
 #include <QComboBox>
+#include <QGraphicsSimpleTextItem>
+#include <QLabel>
 #include <QLineSeries>
 #include <QPointF>
+#include <QPushButton>
 #include <QScatterSeries>
 #include <QTimer>
 #include <QValueAxis>
@@ -31,11 +44,13 @@
 #include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/roller.h"
+#include "rigid_body_sim/rviz/call_queue.h"
 
 namespace rigid_body_sim {
 
 // Qt 5 puts QtCharts in a namespace of its own (QT_CHARTS_USE_NAMESPACE); Qt 6 does not.
 #if QT_VERSION < QT_VERSION_CHECK(6, 0, 0)
+using QtCharts::QCategoryAxis;
 using QtCharts::QChart;
 using QtCharts::QChartView;
 using QtCharts::QLineSeries;
@@ -49,7 +64,9 @@ inline constexpr double kPlotWindow = 10.0;  // simulated seconds shown
 class BodyPlots : public QWidget {
   Q_OBJECT
  public:
-  explicit BodyPlots(QWidget* parent = nullptr);
+  struct Style;  // fonts, pens and sizes: the tab's or the projector window's (body_plots.cpp)
+
+  explicit BodyPlots(CallQueue& calls, QWidget* parent = nullptr);
 
   void setNode(const std::string& ns);                               // the node's namespace (its ~commands)
   void setBodies(const std::map<std::string, std::string>& bodies);  // name -> state message type
@@ -57,41 +74,65 @@ class BodyPlots : public QWidget {
   // The body to show once it is there (an rviz config's "Plot Body"), and the one shown.
   void prefer(const std::string& body);
   const std::string& chosen() const { return body_; }
-  // For the GUI test (RBS_PANEL_LAYOUT): one line per series, "plot.<series> 0 0 0 0 1 count t value"
-  // (its last point; count 0: no t and value).
+  // The projector window: every chart of the body at once, as large as the screen allows.
+  void openWindow();
+  // For the GUI test (RBS_PANEL_LAYOUT): one line per series, "plot.<series> 0 0 0 0 1 count t value" (its
+  // last point; count 0: no t and value) and "plot.<series>.lines 0 0 0 0 1 lines" (the lines drawn); one
+  // per chart, "plot.chart<i> x y width height 1 title_px axis_title_px x_tick_px y_tick_px x_min x_max
+  // y_ticks" (y_ticks comma-separated); "plot.slip_to_roll.note 0 0 0 0 1 text".
   std::string layoutLines() const;
 
  protected:
   void showEvent(QShowEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;  // the projector window's closing
 
  private:
+  struct Point {
+    double t;
+    double value;
+    int line;  // a new one after each restart within the run (a lap)
+  };
   struct Track {
-    std::string key;  // plot.<key> in the layout lines
-    QXYSeries* series;
-    std::deque<QPointF> points;
+    std::string key;                 // plot.<key> in the layout lines
+    std::vector<QXYSeries*> series;  // a line series per line drawn, the first with the legend entry
+    std::deque<Point> points;
   };
   struct Chart {
     QChartView* view;
     QValueAxis* x;
-    QValueAxis* y;
+    QCategoryAxis* y;  // its labels are ours: distinct, never "-0"
     std::vector<Track> tracks;
   };
-
   void select(const std::string& body);
   void build(const std::string& type);  // the charts of a body of that state type; none if empty
   Chart makeChart(const QString& title, const QString& y_title);
   void addTrack(Chart& chart, const std::string& key, const QString& name, QXYSeries* series);
+  void place();  // the charts in the projector window while it is open, else in the tab
+  void style(Chart& chart, const Style& style);
   void onRod(const RodState& state);
   void onRoller(const RollerState& state);
   void onCommand(const Command& command);
+  bool recording() const;
+  bool restarted(double t, double x, double v);
+  void slipToRoll(const RollerState& state, bool restart);
   void append(Chart& chart, std::size_t track, double t, double value);
   void trim(double t);
   void redraw();
+  void drawTrack(Chart& chart, Track& track);
+  void placeNote();
+  void savePng();
 
+  CallQueue& calls_;
   std::string ns_, body_;
   std::map<std::string, std::string> bodies_;
   QComboBox* choice_;
   QWidget* charts_box_;
+  QLabel* moved_;    // in the tab while the charts are in the projector window
+  QWidget* window_;  // the projector window
+  QLabel* heading_;  // its body's name
+  QWidget* grid_;    // its charts
+  QPushButton* save_;
+  QLabel* saved_;              // where the PNG went
   std::vector<Chart> charts_;  // energy, then a roller's speeds and friction or a rod's ends
   void setParameters(const dynamic_reconfigure::Config& config);
   void appendEnergies(Chart& chart, double t, double total, double kinetic);
@@ -100,7 +141,15 @@ class BodyPlots : public QWidget {
   bool parameters_known_ = false;
   RodParams rod_;
   RollerParams roller_;
+  double gravity_ = 0;  // the world's; 0 until known (no closed form then)
   std::string last_mode_;
+  double origin_ = 0;  // t of the last reset or config: the t axis starts there
+  int line_ = 0;
+  bool have_last_ = false;  // the body's last state (t, x, v), to see a restart
+  double last_t_ = 0, last_x_ = 0, last_v_ = 0;
+  std::optional<double> closed_roll_;  // the closed form's slip-to-roll t of the slipping phase under way
+  QString note_;                       // the last slip-to-roll mark's time and the closed form's
+  QGraphicsSimpleTextItem* note_item_ = nullptr;
   bool dirty_ = false;
   QTimer redraw_timer_;
   ros::Subscriber state_, parameters_, commands_;
