@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 
 #include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/ros/messages.h"
@@ -16,6 +18,11 @@ constexpr double kRodPlaneSpacing = 1.5;  // between the planes of successive ro
 constexpr double kFirstLaneY = 1.0;       // world y of the first roller's lane
 constexpr double kMinLaneSpacing = 0.5;   // between roller lanes
 constexpr double kLaneRadii = 3.0;        // a lane is at least this many of the largest radius wide
+// A steeper slope's lower end lies this much further along x than a shallower nearer one's: in perspective
+// (the saved views: from the front, looking down 0.5 rad) its top face then stays above the nearer lane's,
+// even nearly upright (checked for every angle in test_scene and by the picture tests' projections).
+constexpr double kSteeperStagger = 0.8;
+constexpr double kGridCell = 1.0;  // rviz's Grid display's cell (m): a ground frame moves by whole cells
 
 // --- the look (m, and RGBA in [0, 1]) ------------------------------------------------------------
 constexpr double kFloorLength = 40.0;  // along world x
@@ -261,6 +268,19 @@ visualization_msgs::Marker boundedFloorMarker(const BodyPlacement& placement, in
   return strip;
 }
 
+// A rod's unbounded floor, in its ground frame: as long as the world's floor, centred under the rod's
+// rounded x, raised as a bounded one (above the world's floor where both are) in the floor's colour.
+visualization_msgs::Marker groundMarker(const BodyPlacement& placement, int id) {
+  auto ground = sceneMarker(kNsFloor, id, visualization_msgs::Marker::CUBE, placement.ground_frame);
+  ground.pose.position.y = placement.world_from_frame.translation().y();
+  ground.pose.position.z = kBoundedFloorRaise - kFloorThickness / 2;
+  ground.scale.x = kFloorLength;
+  ground.scale.y = 2 * kFloorMargin;
+  ground.scale.z = kFloorThickness;
+  ground.color = kFloorColour;
+  return ground;
+}
+
 visualization_msgs::Marker slopeMarker(const BodyPlacement& placement, int id) {
   const double length = placement.slope_length;
   auto slope = sceneMarker(kNsSlope, id, visualization_msgs::Marker::CUBE, placement.frame);
@@ -285,27 +305,86 @@ Eigen::Vector3d worldPosition(const BodyPlacement& placement, const Body& body) 
 
 }  // namespace
 
+std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
+  struct Slope {
+    std::size_t roller;  // its place among the rollers
+    double angle;
+    double run;  // m along x
+  };
+  std::vector<Slope> slopes;
+  for (const auto& body : bodies) {
+    if (const auto* roller = std::get_if<Roller>(&body.model)) {
+      const RollerParams& p = roller->params();
+      slopes.push_back(
+          {slopes.size(), p.incline_angle, std::max(0.0, p.incline_length * std::cos(p.incline_angle))});
+    }
+  }
+  // Nearest the shallowest: seen from the side, a steeper slope whose lower end is at or beyond a shallower
+  // one's stands above it wherever both are, as a further lane does on screen.
+  std::stable_sort(slopes.begin(), slopes.end(),
+                   [](const Slope& a, const Slope& b) { return a.angle < b.angle; });
+  const double spacing = laneSpacing(bodies);
+  std::vector<Lane> lanes(slopes.size());
+  std::vector<std::pair<double, double>> placed;  // top x, lower end x of the lanes so far, nearest first
+  for (std::size_t k = 0; k < slopes.size(); ++k) {
+    const Slope& slope = slopes[k];
+    // With each nearer lane, its lower end at or beyond that one's (0.6 m beyond a shallower one's), or the
+    // whole slope before that one's top: of the ends where that holds for all, the one that puts its top
+    // nearest x = 0.
+    const auto clear = [&](double end) {
+      for (std::size_t i = 0; i < k; ++i) {
+        const double beyond = placed[i].second + (slope.angle > slopes[i].angle ? kSteeperStagger : 0.0);
+        if (end < beyond - 1e-12 && end > placed[i].first - kSteeperStagger + 1e-12) return false;
+      }
+      return true;
+    };
+    std::vector<double> candidates{slope.run};
+    for (std::size_t i = 0; i < k; ++i) {
+      candidates.push_back(placed[i].second + (slope.angle > slopes[i].angle ? kSteeperStagger : 0.0));
+      candidates.push_back(placed[i].first - kSteeperStagger);
+    }
+    double end = std::numeric_limits<double>::infinity();
+    for (const double candidate : candidates) {
+      if (clear(candidate) && std::abs(candidate - slope.run) < std::abs(end - slope.run)) end = candidate;
+    }
+    placed.emplace_back(end - slope.run, end);
+    lanes[slope.roller] = {end - slope.run, kFirstLaneY + spacing * static_cast<double>(k), k};
+  }
+  double first_top = 0.0;  // every top at x >= 0, the first at 0
+  for (const auto& [top, end] : placed) first_top = std::min(first_top, top);
+  for (auto& lane : lanes) lane.top_x -= first_top;
+  return lanes;
+}
+
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
-  const double lane_spacing = laneSpacing(bodies);
+  const std::vector<Lane> lanes = placeLanes(bodies);
   int rods = 0;
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
     if (const auto* rod = std::get_if<Rod>(&body.model)) {
+      const double floor_length = rod->params().floor_length;
       placements.push_back({frame_prefix + fixedFrameOf(body),
-                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
-                            rod->params().floor_length, kLabelAbove});
+                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
+                            kLabelAbove, floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
-    const double lane_y = kFirstLaneY + lane_spacing * rollers;
+    const Lane& lane = lanes[static_cast<std::size_t>(rollers)];
     placements.push_back({frame_prefix + fixedFrameOf(body),
-                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length, 0.0,
-                          kLabelAbove + kLabelStagger * rollers});
+                          uprightPlane({lane.top_x, lane.y, top}, p.incline_angle), p.incline_length, 0.0,
+                          kLabelAbove + kLabelStagger * static_cast<double>(lane.rank), ""});
     ++rollers;
   }
   return placements;
+}
+
+Eigen::Isometry3d worldFromGround(const BodyPlacement& placement, const Body& body) {
+  const double x = worldPosition(placement, body).x();
+  Eigen::Isometry3d ground = Eigen::Isometry3d::Identity();
+  ground.translate(Eigen::Vector3d(kGridCell * std::round(x / kGridCell), 0.0, 0.0));
+  return ground;
 }
 
 Eigen::Isometry3d frameFromBody(const Body& body) {
@@ -367,6 +446,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
     const std::string frame = bodyFrame(bodies[i]);
     if (placements_[i].floor_length > 0.0)
       scene.markers.push_back(boundedFloorMarker(placements_[i], id + 1));
+    if (!placements_[i].ground_frame.empty()) scene.markers.push_back(groundMarker(placements_[i], id + 1));
     if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
     scene.markers.push_back(bodyMarker(bodies[i], frame, id));
     if (std::holds_alternative<Roller>(bodies[i].model))
