@@ -7,16 +7,17 @@
 // - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes from world y = 1, 0.5 apart (wider
 //   for large radii), every slope's lower end on the floor: side by side, never overlapping. The lanes go by
 //   steepness, the shallowest nearest (the smallest y; equal angles in the bodies' order), and a steeper
-//   slope ends where the nearer ones end, 0.8 m further than a shallower one (or wholly before them all,
-//   if that puts its top nearer x = 0); the first top is at x = 0. Seen from the side a further slope then
-//   stands above every nearer one wherever both are, so that in a view from the front no slope crosses
-//   another's lane, whatever their angles;
+//   slope ends where the nearer ones end, 0.8 m further than a shallower one; the first top is at x = 0.
+//   Seen from the side a further slope then stands above every nearer one wherever both are, so that in
+//   a view from the front no slope crosses another's lane, whatever their angles. One this would move
+//   more than 7 m along keeps its top at x = 0 and lies further back instead;
 // - a rod on an unbounded floor has a frame `<body>_ground` (on /tf, with the body's): the world's axes,
 //   its origin at the rod's world x rounded to whole metres (rviz's grid cells), y = z = 0. Its floor and
 //   rviz's Grid are drawn in it: under the rod wherever it goes, and still in the world's grid;
 // - a label floats above the highest point its body can reach (a rod's half length), higher in each
-//   further lane, so that the labels of rollers racing side
-//   by side do not cover one another in a view from the side.
+//   further lane, so that the labels of rollers racing side by side do not cover one another in a view
+//   from the side; a roller's runs downhill from above it but stays over the slopes' stretch of x, just in
+//   front of its slope.
 // Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
 // instances publish distinct frames on one /tf.
 //
@@ -122,6 +123,8 @@ class Scene {
   std::map<std::string, Trail> trails_;
   std::vector<int> removed_slots_;  // of bodies gone since the last changes()
   std::vector<int> moved_slots_;    // of bodies whose fixed frame moved: their trails go
+  double slopes_from_ = 0.0;        // world x the slopes span: the rollers' labels stay over it
+  double slopes_to_ = 0.0;
   int next_slot_ = 0;
 };
 
