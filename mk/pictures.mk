@@ -15,7 +15,7 @@ THETA0_RODS = 1001
 screenshot: build
 	mkdir -p docs/images
 	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz.png
-	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_rod.png --launch rod.launch --settle 8
+	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_rod.png --launch rod.launch --moments 34
 	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_incline.png --launch incline.launch
 	test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_lesson.png --launch lesson.launch
 	RVIZ_SCRIPT=rviz_panel.py test/pictures/rviz_screenshot.sh $(DEVEL) $(PICTURES_OUT)/rviz_panel.png \

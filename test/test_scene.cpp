@@ -3,12 +3,19 @@
 // marker carries a non-finite number.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/ros/scene.h"
+#include "rigid_body_sim/ros/snapshot.h"
 
 using namespace rigid_body_sim;
 using visualization_msgs::Marker;
@@ -77,7 +84,7 @@ TEST(Scene, StartsWithDeleteAllAndDrawsEveryBodyLockedToItsOwnFrame) {
   const MarkerArray& markers = scene.sceneMarkers();
   ASSERT_FALSE(markers.markers.empty());
   EXPECT_EQ(markers.markers.front().action, Marker::DELETEALL);
-  EXPECT_EQ(inNamespace(markers, "floor").size(), 1u);
+  EXPECT_EQ(inNamespace(markers, "floor").size(), 2u);  // the world's and the rod's unbounded one
   EXPECT_EQ(inNamespace(markers, "slope").size(), 2u);
   const auto bodies = inNamespace(markers, "body");
   ASSERT_EQ(bodies.size(), 3u);
@@ -257,7 +264,7 @@ TEST(Scene, AFinishedRacersLabelGivesPlaceAndTimes) {
 }
 
 // A body whose fixed frame moved (a steeper slope) loses its trail: its path so far would float where the
-// old slope was. The others keep theirs.
+// old slope was. The others keep theirs (the hoop's lane is the furthest: no other lane moves back).
 TEST(Scene, ABodyWhoseSlopeMovedStartsItsTrailAfresh) {
   World world(demoConfig());
   const MarkerOptions options{2.0, 10.0};
@@ -265,7 +272,8 @@ TEST(Scene, ABodyWhoseSlopeMovedStartsItsTrailAfresh) {
   stepAndSend(world, scene, 3);
 
   WorldConfig steeper = demoConfig();
-  std::get<RollerConfig>(steeper.bodies[1].config).params.incline_angle = 0.5;  // the ball's
+  std::get<RollerConfig>(steeper.bodies[2].config).params.incline_angle =
+      0.5;  // the hoop's, the furthest lane
   const World moved(steeper);
   scene.rebuild(moved.bodies());
   scene.sample(moved.bodies());
@@ -274,12 +282,225 @@ TEST(Scene, ABodyWhoseSlopeMovedStartsItsTrailAfresh) {
   for (const Marker* m : inNamespace(after, "trail")) {
     if (m->action == Marker::DELETE) ++deleted[m->id / options.ring()];
   }
-  ASSERT_EQ(deleted.size(), 1u) << "only the ball's trail goes";
+  ASSERT_EQ(deleted.size(), 1u) << "only the hoop's trail goes";
   EXPECT_EQ(deleted.begin()->second, options.ring());
-  const int ball_slot = deleted.begin()->first;
+  const int hoop_slot = deleted.begin()->first;
   for (const Marker* m : inNamespace(after, "trail")) {
-    if (m->action == Marker::ADD) EXPECT_NE(m->id / options.ring(), ball_slot) << "one point is no strip yet";
+    if (m->action == Marker::ADD) EXPECT_NE(m->id / options.ring(), hoop_slot) << "one point is no strip yet";
   }
   EXPECT_EQ(inNamespace(after, "trail").size(), static_cast<std::size_t>(options.ring()) + 2)
-      << "the ball's ring of deletions and a piece for each of the other two";
+      << "the hoop's ring of deletions and a piece for each of the other two";
+}
+
+namespace {
+
+// A slope's top and lower end in the world (its frame's origin and x = L).
+std::pair<Eigen::Vector3d, Eigen::Vector3d> slopeEnds(const BodyPlacement& placement) {
+  return {placement.world_from_frame.translation(),
+          placement.world_from_frame * Eigen::Vector3d(placement.slope_length, 0.0, 0.0)};
+}
+
+// The slope's height over world x (between its ends), seen from the side.
+double heightAt(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& ends, double x) {
+  const auto& [top, bottom] = ends;
+  const double run = bottom.x() - top.x();
+  return run > 1e-12 ? top.z() + (bottom.z() - top.z()) * (x - top.x()) / run : top.z();
+}
+
+}  // namespace
+
+// Angles across the key's whole range [0, pi/2) on each of three slopes, of a race's and the demo's lengths:
+// seen from the side, each further lane stands nowhere below a nearer one where both are (a steeper one
+// ends 0.8 m beyond a shallower one, or wholly before it), or lies back as far as a view looking down
+// 0.5 rad needs; the lanes never overlap and the first top is at x = 0.
+TEST(Scene, LanesNeverCrossWhateverTheAngles) {
+  // The key's range [0, pi/2): k pi / 48 for k = 0 ... 23, and the largest double below pi / 2.
+  std::vector<double> angles;
+  for (int k = 0; k < 24; ++k) angles.push_back(kPi / 48 * k);
+  angles.push_back(std::nextafter(kPi / 2, 0.0));
+  const std::size_t n = angles.size();
+  long checked = 0;
+  for (const double long_slope : {5.0, 15.0}) {
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t b = 0; b < n; ++b) {
+        for (std::size_t c = 0; c < n; c += 2) {
+          WorldConfig config;
+          const double lengths[] = {5.0, long_slope, 2.0};
+          const std::size_t picks[] = {a, b, c};
+          config.bodies.push_back({"rod", RodConfig{}});
+          for (int k = 0; k < 3; ++k) {
+            RollerConfig roller;
+            roller.params.incline_angle = angles[picks[k]];
+            roller.params.incline_length = lengths[k];
+            config.bodies.push_back({"r" + std::to_string(k), roller});
+          }
+          const World world(config);
+          auto placements = placeBodies(world.bodies());
+          placements.erase(placements.begin());  // the rod's
+          std::sort(placements.begin(), placements.end(), [](const BodyPlacement& p, const BodyPlacement& q) {
+            return p.world_from_frame.translation().y() < q.world_from_frame.translation().y();
+          });
+          double first_top = std::numeric_limits<double>::infinity();
+          for (std::size_t i = 0; i < placements.size(); ++i) {
+            const auto nearer = slopeEnds(placements[i]);
+            first_top = std::min(first_top, nearer.first.x());
+            for (std::size_t j = i + 1; j < placements.size(); ++j) {
+              const auto further = slopeEnds(placements[j]);
+              ASSERT_GE(further.first.y() - nearer.first.y(), 0.5 - 1e-12);
+              const double from = std::max(nearer.first.x(), further.first.x());
+              const double to = std::min(nearer.second.x(), further.second.x());
+              // Where both are, the further slope stands above, or its lane lies back by 1/tan(0.5) m for
+              // every metre the nearer one stands higher (a long shallow slope nearer: the demo's bowler).
+              double higher = 0.0;
+              for (int s = 0; s <= 20 && from + 1e-9 < to; ++s) {  // more than a point
+                const double x = from + (to - from) * s / 20;
+                higher = std::max(higher, heightAt(nearer, x) - heightAt(further, x));
+                ++checked;
+              }
+              const double back = further.first.y() - nearer.first.y() - 0.5;
+              ASSERT_GE(back + 1e-9, higher / std::tan(0.5))
+                  << "angles " << angles[a] << ", " << angles[b] << ", " << angles[c];
+            }
+          }
+          ASSERT_NEAR(first_top, 0.0, 1e-12);
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 100000);
+}
+
+// The text's rod on its unbounded floor, published for a minute: its ground frame is always at a whole
+// metre within half a metre of the rod, and its floor marker, drawn there, always reaches 10 m beyond it.
+TEST(Scene, AnUnboundedFloorIsUnderTheRodThroughoutARun) {
+  WorldConfig config;
+  config.bodies = {{"rod", RodConfig{}}};
+  World world(config);
+  const SnapshotBuilder snapshots("world", "", world.bodies());
+  const Marker* ground = nullptr;
+  for (const auto& m : snapshots.scene().sceneMarkers().markers) {
+    if (m.ns == "floor" && m.header.frame_id == "rod_ground") ground = &m;
+  }
+  ASSERT_NE(ground, nullptr);
+  EXPECT_TRUE(ground->frame_locked);
+  double furthest = 0.0;
+  for (int publication = 0; publication <= 60 * 50; ++publication) {
+    const double t = world.time();
+    const Snapshot snapshot = snapshots.build(t, ros::Time(1.0 + t), world.bodies());
+    ASSERT_EQ(snapshot.tf.transforms.size(), 2u);
+    const auto& body = snapshot.tf.transforms[0].transform.translation;
+    const auto& frame = snapshot.tf.transforms[1];
+    EXPECT_EQ(frame.child_frame_id, "rod_ground");
+    EXPECT_EQ(frame.header.stamp, snapshot.tf.transforms[0].header.stamp);
+    const double x = frame.transform.translation.x;
+    ASSERT_EQ(x, std::round(x)) << "t = " << t;
+    ASSERT_LE(std::abs(body.x - x), 0.5 + 1e-9) << "t = " << t;
+    ASSERT_LE(std::abs(body.x - (x + ground->pose.position.x)) + 10.0, 0.5 * ground->scale.x) << "t = " << t;
+    ASSERT_EQ(frame.transform.translation.y, 0.0);
+    furthest = std::max(furthest, body.x);
+    for (int step = 0; step < kStepsPerPublication; ++step) world.step();
+  }
+  EXPECT_GT(furthest, 100.0) << "the rod goes far beyond the world's 40 m floor";
+}
+
+// A bounded floor is drawn where it is: no ground frame.
+TEST(Scene, ABoundedFloorHasNoGroundFrame) {
+  WorldConfig config;
+  RodConfig rod;
+  rod.params.floor_length = 10.0;
+  config.bodies = {{"rod", rod}};
+  const World world(config);
+  const SnapshotBuilder snapshots("world", "", world.bodies());
+  EXPECT_EQ(snapshots.build(0.0, ros::Time(1.0), world.bodies()).tf.transforms.size(), 1u);
+  for (const auto& m : snapshots.scene().sceneMarkers().markers) EXPECT_NE(m.header.frame_id, "rod_ground");
+}
+
+namespace {
+
+// rviz's Orbit view (as test/pictures/picture_check.py's Camera): screen coordinates up to a scale, which
+// leaves apart what is apart.
+struct OrbitView {
+  Eigen::Vector3d eye, forward, right, up;
+  explicit OrbitView(const std::string& file) {
+    const YAML::Node view = YAML::LoadFile(file)["Visualization Manager"]["Views"]["Current"];
+    const Eigen::Vector3d focal(view["Focal Point"]["X"].as<double>(), view["Focal Point"]["Y"].as<double>(),
+                                view["Focal Point"]["Z"].as<double>());
+    const double distance = view["Distance"].as<double>();
+    const double pitch = view["Pitch"].as<double>();
+    const double yaw = view["Yaw"].as<double>();
+    eye = focal + distance * Eigen::Vector3d(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch),
+                                             std::sin(pitch));
+    forward = (focal - eye).normalized();
+    right = forward.cross(Eigen::Vector3d::UnitZ()).normalized();
+    up = right.cross(forward);
+  }
+  Eigen::Vector2d project(const Eigen::Vector3d& point) const {
+    const Eigen::Vector3d rel = point - eye;
+    return Eigen::Vector2d(rel.dot(right), rel.dot(up)) / rel.dot(forward);
+  }
+};
+
+// Whether two convex polygons (vertices in any order around) have a separating line: an edge's normal.
+bool apart(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {
+  const auto separated_by_an_edge_of = [&](const std::vector<Eigen::Vector2d>& poly) {
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d edge = poly[(i + 1) % poly.size()] - poly[i];
+      const Eigen::Vector2d normal(-edge.y(), edge.x());
+      double a_min = INFINITY, a_max = -INFINITY, b_min = INFINITY, b_max = -INFINITY;
+      for (const auto& p : a) a_min = std::min(a_min, p.dot(normal)), a_max = std::max(a_max, p.dot(normal));
+      for (const auto& p : b) b_min = std::min(b_min, p.dot(normal)), b_max = std::max(b_max, p.dot(normal));
+      if (a_max < b_min || b_max < a_min) return true;
+    }
+    return false;
+  };
+  return separated_by_an_edge_of(a) || separated_by_an_edge_of(b);
+}
+
+// A slope's top face (0.4 m wide, as drawn) on screen: its four corners, in order around.
+std::vector<Eigen::Vector2d> topFace(const OrbitView& view, const BodyPlacement& placement) {
+  std::vector<Eigen::Vector2d> face;
+  const double corners[4][2] = {
+      {0.0, -0.2}, {placement.slope_length, -0.2}, {placement.slope_length, 0.2}, {0.0, 0.2}};
+  for (const auto& [x, z] : corners)
+    face.push_back(view.project(placement.world_from_frame * Eigen::Vector3d(x, 0, z)));
+  return face;
+}
+
+}  // namespace
+
+// Through the cameras of the saved views with slopes (the demo's, incline.launch's, the lesson's races),
+// three slopes of the views' lengths at every angle of the key's range: no slope's top face meets
+// another's on screen.
+TEST(Scene, LanesStayApartInTheSavedViewsWhateverTheAngles) {
+  std::vector<double> angles;
+  for (int k = 0; k < 24; ++k) angles.push_back(kPi / 48 * k);
+  angles.push_back(std::nextafter(kPi / 2, 0.0));
+  for (const char* file : {"sim.rviz", "incline.rviz", "lesson_race.rviz"}) {
+    const OrbitView view(std::string(RBS_RVIZ_DIR) + "/" + file);
+    for (const double first_length : {5.0, 3.5}) {
+      for (const double a : angles) {
+        for (const double b : angles) {
+          for (const double c : angles) {
+            WorldConfig config;
+            const double picks[] = {a, b, c};
+            for (int k = 0; k < 3; ++k) {
+              RollerConfig roller;
+              roller.params.radius = 0.15;
+              roller.params.incline_angle = picks[k];
+              roller.params.incline_length = k == 0 ? first_length : 5.0;
+              config.bodies.push_back({"r" + std::to_string(k), roller});
+            }
+            const World world(config);
+            const auto placements = placeBodies(world.bodies());
+            for (std::size_t i = 0; i < placements.size(); ++i) {
+              for (std::size_t j = i + 1; j < placements.size(); ++j) {
+                ASSERT_TRUE(apart(topFace(view, placements[i]), topFace(view, placements[j])))
+                    << file << ": angles " << a << ", " << b << ", " << c << "; lanes " << i << ", " << j;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
 }

@@ -453,6 +453,8 @@ std::string fixedFrameOf(const std::string& name, BodyKind kind) {
 
 std::string fixedFrameOf(const BodyConfig& body) { return fixedFrameOf(body.name, kindOf(body)); }
 
+std::string groundFrameOf(const std::string& name) { return name + "_ground"; }
+
 const std::vector<std::string>& worldKeys() {
   static const std::vector<std::string> keys = {"rate",        "publish_rate", "gravity",
                                                 "world_frame", "race",         "bodies"};
@@ -497,11 +499,14 @@ void validate(const WorldConfig& config, const std::vector<std::string>& reserve
           world, "bodies", "'" + body.name + "'",
           "a name other than the node's own keys, topics and services (" + joined(reserved) + ")");
     }
-    // Each body brings two TF frames: its own and its fixed frame (<name>_floor or <name>_slope).
-    if (!frames.insert(body.name).second || !frames.insert(fixedFrameOf(body)).second) {
+    // Each body brings two TF frames: its own and its fixed frame (<name>_floor or <name>_slope); a rod
+    // a third, its ground frame (on an unbounded floor, which a reconfigure may make it).
+    const bool rod = kindOf(body) == BodyKind::Rod;
+    if (!frames.insert(body.name).second || !frames.insert(fixedFrameOf(body)).second ||
+        (rod && !frames.insert(groundFrameOf(body.name)).second)) {
       throw ConfigError(world, "bodies", "'" + body.name + "'",
-                        "names whose TF frames (<name>, <name>_floor or <name>_slope) differ from each "
-                        "other and from world_frame");
+                        "names whose TF frames (<name>, <name>_floor or <name>_slope, a rod's <name>_ground) "
+                        "differ from each other and from world_frame");
     }
     std::visit(
         [&](const auto& body_config) {

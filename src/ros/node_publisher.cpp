@@ -131,8 +131,7 @@ void NodePublisher::write(const World& world) {
   if (stamp > last_tf_stamp_ && (tf_.watched() || namespace_tf_.watched())) {
     tf2_msgs::TFMessage tf;
     tf.transforms.reserve(bodies.size());
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-      tf.transforms.push_back(snapshots_.transform(i, stamp, bodies[i]));
+    for (std::size_t i = 0; i < bodies.size(); ++i) snapshots_.appendTransforms(i, stamp, bodies[i], tf);
     tf_.publisher.publish(tf);
     if (namespace_tf_.publisher) namespace_tf_.publisher.publish(tf);
     last_tf_stamp_ = stamp;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 
 #include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/ros/messages.h"
@@ -16,6 +18,13 @@ constexpr double kRodPlaneSpacing = 1.5;  // between the planes of successive ro
 constexpr double kFirstLaneY = 1.0;       // world y of the first roller's lane
 constexpr double kMinLaneSpacing = 0.5;   // between roller lanes
 constexpr double kLaneRadii = 3.0;        // a lane is at least this many of the largest radius wide
+// A steeper slope's lower end lies this much further along x than a shallower nearer one's: in perspective
+// (the saved views: from the front, looking down 0.5 rad) its top face then stays above the nearer lane's,
+// even nearly upright (checked for every angle in test_scene and by the picture tests' projections).
+constexpr double kSteeperStagger = 0.8;
+constexpr double kMaxStagger = 7.0;  // m of x a slope's top may move from x = 0 to keep lanes apart
+constexpr double kViewPitch = 0.5;   // rad: the saved views look down this much, from the front
+constexpr double kGridCell = 1.0;    // rviz's Grid display's cell (m): a ground frame moves by whole cells
 
 // --- the look (m, and RGBA in [0, 1]) ------------------------------------------------------------
 constexpr double kFloorLength = 40.0;  // along world x
@@ -38,8 +47,11 @@ constexpr double kLabelAbove = 0.25;  // between the body's top and its label
 constexpr double kLabelHeight = 0.15;
 // Each further roller lane lifts its label by this much: rollers released side by side (the race) move
 // together, and a view from the side would otherwise draw their labels on top of one another.
-constexpr double kLabelStagger = 1.5 * kLabelHeight;  // a line and a half: clear also in perspective
-constexpr double kGlyphWidth = 0.55;                  // rviz's text: a glyph's width over the text's height
+constexpr double kLabelStagger = 1.5 * kLabelHeight;        // a line and a half: clear also in perspective
+constexpr double kLabelInFront = 0.5 * kSlopeWidth + 0.05;  // a roller's label before its own slope
+// ... and raised by as much as the saved views (from the front, looking down 0.5 rad) then see it lowered.
+const double kLabelInFrontRaise = kLabelInFront * std::tan(0.5);
+constexpr double kGlyphWidth = 0.55;  // rviz's text: a glyph's width over the text's height
 
 // Marker namespaces: fixed, so that a user can toggle them in rviz.
 const char* const kNsFloor = "floor";
@@ -261,6 +273,19 @@ visualization_msgs::Marker boundedFloorMarker(const BodyPlacement& placement, in
   return strip;
 }
 
+// A rod's unbounded floor, in its ground frame: as long as the world's floor, centred under the rod's
+// rounded x, raised as a bounded one (above the world's floor where both are) in the floor's colour.
+visualization_msgs::Marker groundMarker(const BodyPlacement& placement, int id) {
+  auto ground = sceneMarker(kNsFloor, id, visualization_msgs::Marker::CUBE, placement.ground_frame);
+  ground.pose.position.y = placement.world_from_frame.translation().y();
+  ground.pose.position.z = kBoundedFloorRaise - kFloorThickness / 2;
+  ground.scale.x = kFloorLength;
+  ground.scale.y = 2 * kFloorMargin;
+  ground.scale.z = kFloorThickness;
+  ground.color = kFloorColour;
+  return ground;
+}
+
 visualization_msgs::Marker slopeMarker(const BodyPlacement& placement, int id) {
   const double length = placement.slope_length;
   auto slope = sceneMarker(kNsSlope, id, visualization_msgs::Marker::CUBE, placement.frame);
@@ -285,27 +310,98 @@ Eigen::Vector3d worldPosition(const BodyPlacement& placement, const Body& body) 
 
 }  // namespace
 
+// A slope seen from the side: its top x, its lower end x, the tangent of its angle.
+struct Profile {
+  double top_x;
+  double end_x;
+  double tangent;
+  double heightAt(double x) const { return std::isfinite(tangent) ? tangent * (end_x - x) : 0.0; }
+};
+
+// How far a nearer slope stands above a further one where both are: the larger difference at the ends of
+// their common stretch (both are straight), 0 without one.
+double standsAbove(const Profile& nearer, const Profile& further) {
+  const double from = std::max(nearer.top_x, further.top_x);
+  const double to = std::min(nearer.end_x, further.end_x);
+  if (from > to) return 0.0;
+  return std::max(
+      {0.0, nearer.heightAt(from) - further.heightAt(from), nearer.heightAt(to) - further.heightAt(to)});
+}
+
+std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
+  struct Slope {
+    std::size_t roller;  // its place among the rollers
+    double angle;
+    double run;  // m along x
+  };
+  std::vector<Slope> slopes;
+  for (const auto& body : bodies) {
+    if (const auto* roller = std::get_if<Roller>(&body.model)) {
+      const RollerParams& p = roller->params();
+      slopes.push_back(
+          {slopes.size(), p.incline_angle, std::max(0.0, p.incline_length * std::cos(p.incline_angle))});
+    }
+  }
+  // Nearest the shallowest: seen from the side, a steeper slope whose lower end is at or beyond a shallower
+  // one's stands above it wherever both are, as a further lane does on screen.
+  std::stable_sort(slopes.begin(), slopes.end(),
+                   [](const Slope& a, const Slope& b) { return a.angle < b.angle; });
+  const double spacing = laneSpacing(bodies);
+  std::vector<Lane> lanes(slopes.size());
+  std::vector<std::pair<double, double>> placed;  // top x, lower end x of the lanes so far, nearest first
+  for (std::size_t k = 0; k < slopes.size(); ++k) {
+    const Slope& slope = slopes[k];
+    // Its lower end at or beyond every nearer lane's (0.8 m beyond a shallower one's), but for a lane that
+    // would move it more than kMaxStagger along (a long shallow slope nearer: the demo's bowler's): behind
+    // that one its lane lies further back instead, by what the views need to see it above it (seen from
+    // the side, 1/tan(0.5) m for every metre that one stands higher).
+    double end = slope.run;
+    for (std::size_t i = 0; i < k; ++i) {
+      const double beyond = placed[i].second + (slope.angle > slopes[i].angle ? kSteeperStagger : 0.0);
+      if (beyond - slope.run <= kMaxStagger) end = std::max(end, beyond);
+    }
+    double y = kFirstLaneY + (k > 0 ? lanes[slopes[k - 1].roller].y - kFirstLaneY + spacing : 0.0);
+    for (std::size_t i = 0; i < k; ++i) {
+      const Profile nearer{placed[i].first, placed[i].second, std::tan(slopes[i].angle)};
+      const Profile further{end - slope.run, end, std::tan(slope.angle)};
+      y = std::max(y,
+                   lanes[slopes[i].roller].y + spacing + standsAbove(nearer, further) / std::tan(kViewPitch));
+    }
+    placed.emplace_back(end - slope.run, end);
+    lanes[slope.roller] = {end - slope.run, y, k};
+  }
+  return lanes;
+}
+
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
-  const double lane_spacing = laneSpacing(bodies);
+  const std::vector<Lane> lanes = placeLanes(bodies);
   int rods = 0;
   int rollers = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
     if (const auto* rod = std::get_if<Rod>(&body.model)) {
+      const double floor_length = rod->params().floor_length;
       placements.push_back({frame_prefix + fixedFrameOf(body),
-                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
-                            rod->params().floor_length, kLabelAbove});
+                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
+                            kLabelAbove, floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
     const double top = p.incline_length * std::sin(p.incline_angle);
-    const double lane_y = kFirstLaneY + lane_spacing * rollers;
+    const Lane& lane = lanes[static_cast<std::size_t>(rollers)];
     placements.push_back({frame_prefix + fixedFrameOf(body),
-                          uprightPlane({0.0, lane_y, top}, p.incline_angle), p.incline_length, 0.0,
-                          kLabelAbove + kLabelStagger * rollers});
+                          uprightPlane({lane.top_x, lane.y, top}, p.incline_angle), p.incline_length, 0.0,
+                          kLabelAbove + kLabelStagger * static_cast<double>(lane.rank), ""});
     ++rollers;
   }
   return placements;
+}
+
+Eigen::Isometry3d worldFromGround(const BodyPlacement& placement, const Body& body) {
+  const double x = worldPosition(placement, body).x();
+  Eigen::Isometry3d ground = Eigen::Isometry3d::Identity();
+  ground.translate(Eigen::Vector3d(kGridCell * std::round(x / kGridCell), 0.0, 0.0));
+  return ground;
 }
 
 Eigen::Isometry3d frameFromBody(const Body& body) {
@@ -359,6 +455,16 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
   }
   trails_ = std::move(kept);
 
+  slopes_from_ = std::numeric_limits<double>::infinity();
+  slopes_to_ = -std::numeric_limits<double>::infinity();
+  for (const auto& placement : placements_) {
+    if (placement.slope_length <= 0.0) continue;
+    const double top = placement.world_from_frame.translation().x();
+    const double end = (placement.world_from_frame * Eigen::Vector3d(placement.slope_length, 0.0, 0.0)).x();
+    slopes_from_ = std::min({slopes_from_, top, end});
+    slopes_to_ = std::max({slopes_to_, top, end});
+  }
+
   visualization_msgs::MarkerArray scene;
   scene.markers.push_back(deleteAll(world_frame_, ros::Time()));
   scene.markers.push_back(floorMarker(world_frame_, placements_));
@@ -367,6 +473,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
     const std::string frame = bodyFrame(bodies[i]);
     if (placements_[i].floor_length > 0.0)
       scene.markers.push_back(boundedFloorMarker(placements_[i], id + 1));
+    if (!placements_[i].ground_frame.empty()) scene.markers.push_back(groundMarker(placements_[i], id + 1));
     if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
     scene.markers.push_back(bodyMarker(bodies[i], frame, id));
     if (std::holds_alternative<Roller>(bodies[i].model))
@@ -426,18 +533,23 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     auto label =
         marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
     label.text = labelText(body, marker_options_.critical_angles);
-    // A roller's label starts above it and runs downhill (world +x): centred, its uphill half would cut
-    // into the slope that rises behind the body. A racer at the end of its slope has no slope below it: its
-    // label ends above it and runs uphill, in front of every lane (further lanes have a larger y), so that
-    // no slope hides it and it stays in a view of the slopes.
+    // A rod's label ends above it. A roller's starts above it and runs downhill (world +x), but stays over
+    // the slopes' stretch of x (which the views frame: near the lower end it runs uphill), just in front of
+    // its own slope (which would hide its uphill part) and raised as much as the views (looking down 0.5 rad)
+    // see it lowered.
     const double half_width = 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size());
     const Eigen::Vector3d at = worldPosition(placements_[i], body);
-    const double downhill =
-        std::holds_alternative<Roller>(body.model) ? (body.finish ? -half_width : half_width) : 0.0;
-    // Brought nearer, the lanes' labels would come closer together: they are lifted twice as far apart.
-    const double nearer = body.finish ? kFirstLaneY - kMinLaneSpacing - at.y() : 0.0;
-    const double above = (body.finish ? 2.0 : 1.0) * placements_[i].label_above;
-    label.pose.position = toPoint(at + Eigen::Vector3d(downhill, nearer, reachOf(body) + above));
+    Eigen::Vector3d position = at + Eigen::Vector3d(0.0, 0.0, reachOf(body) + placements_[i].label_above);
+    if (std::holds_alternative<Rod>(body.model)) {
+      position.x() -= half_width;  // ends above the rod: clear of the rollers' labels, which run downhill
+    } else {
+      const double centre =
+          slopes_from_ + half_width <= slopes_to_ - half_width
+              ? std::clamp(at.x() + half_width, slopes_from_ + half_width, slopes_to_ - half_width)
+              : 0.5 * (slopes_from_ + slopes_to_);
+      position += Eigen::Vector3d(centre - at.x(), -kLabelInFront, kLabelInFrontRaise);
+    }
+    label.pose.position = toPoint(position);
     label.scale.z = kLabelHeight;
     label.color = kLabelColour;
     array.markers.push_back(std::move(label));

@@ -21,6 +21,15 @@ geometry_msgs::TransformStamped SnapshotBuilder::transform(std::size_t i, const 
   return toTransform(world_from_body, scene_.worldFrame(), scene_.bodyFrame(body), stamp);
 }
 
+void SnapshotBuilder::appendTransforms(std::size_t i, const ros::Time& stamp, const Body& body,
+                                       tf2_msgs::TFMessage& tf) const {
+  tf.transforms.push_back(transform(i, stamp, body));
+  const BodyPlacement& placement = scene_.placements()[i];
+  if (placement.ground_frame.empty()) return;
+  tf.transforms.push_back(
+      toTransform(worldFromGround(placement, body), scene_.worldFrame(), placement.ground_frame, stamp));
+}
+
 StateMsg SnapshotBuilder::state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const {
   StateMsg state = toStateMsg(t, body);
   std::visit(
@@ -35,7 +44,7 @@ StateMsg SnapshotBuilder::state(std::size_t i, double t, const ros::Time& stamp,
 Snapshot SnapshotBuilder::build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const {
   Snapshot snapshot;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    snapshot.tf.transforms.push_back(transform(i, stamp, bodies[i]));
+    appendTransforms(i, stamp, bodies[i], snapshot.tf);
     snapshot.states.push_back(state(i, t, stamp, bodies[i]));
   }
   return snapshot;

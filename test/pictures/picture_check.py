@@ -25,6 +25,7 @@ COLOUR_CLASSES: Dict[str, Tuple[Tuple[float, float], Tuple[float, float], float]
     "purple": ((270, 300), (0.6, 1.0), 0.25),    # spherical shell
     "brown": ((20, 42), (0.4, 0.72), 0.15),      # slopes, hue 30, half saturated
     "grey": ((0, 360), (0.0, 0.12), 0.33),      # floor (and the grid's lines); background is 0.19
+    "floor": ((0, 360), (0.0, 0.12), 0.22),     # any floor: a rod's bounded one (grey 0.5) shows at 0.24
 }
 SHAPE_CLASS = {"sphere": "red", "cylinder": "green", "ring": "orange", "spherical_shell": "purple"}
 

@@ -199,6 +199,8 @@ bool isValidName(const std::string& name);
 // The fixed frame in which a body's coordinates are measured: <name>_floor (rod) or <name>_slope (roller).
 std::string fixedFrameOf(const std::string& name, BodyKind kind);
 std::string fixedFrameOf(const BodyConfig& body);
+// A rod's frame under it on an unbounded floor: <name>_ground.
+std::string groundFrameOf(const std::string& name);
 
 // Checks the world keys, every body, name validity, that every TF frame (world_frame, each body and its
 // fixed frame) is distinct, that there are 1 to kMaxBodies bodies, and that publish_rate divides rate. A body

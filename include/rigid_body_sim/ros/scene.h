@@ -4,11 +4,20 @@
 // - every body has a fixed 2-D frame in which its CSV coordinates are measured, published on /tf_static:
 //   a rod's `<body>_floor` (x along the world x, y up = world z, on the floor z = 0) and a roller's
 //   `<body>_slope` (x down the slope, y normal to it, origin at the top of the slope);
-// - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes world y = 1 + 0.5 j (wider for
-//   large radii): side by side, never overlapping; every slope ends on the floor at its lower end;
+// - rods stand in the plane world y = -1.5 i (i-th rod), rollers in lanes from world y = 1, 0.5 apart (wider
+//   for large radii), every slope's lower end on the floor: side by side, never overlapping. The lanes go by
+//   steepness, the shallowest nearest (the smallest y; equal angles in the bodies' order), and a steeper
+//   slope ends where the nearer ones end, 0.8 m further than a shallower one; the first top is at x = 0.
+//   Seen from the side a further slope then stands above every nearer one wherever both are, so that in
+//   a view from the front no slope crosses another's lane, whatever their angles. One this would move
+//   more than 7 m along keeps its top at x = 0 and lies further back instead;
+// - a rod on an unbounded floor has a frame `<body>_ground` (on /tf, with the body's): the world's axes,
+//   its origin at the rod's world x rounded to whole metres (rviz's grid cells), y = z = 0. Its floor and
+//   rviz's Grid are drawn in it: under the rod wherever it goes, and still in the world's grid;
 // - a label floats above the highest point its body can reach (a rod's half length), higher in each
-//   further lane, so that the labels of rollers racing side
-//   by side do not cover one another in a view from the side.
+//   further lane, so that the labels of rollers racing side by side do not cover one another in a view
+//   from the side; a roller's runs downhill from above it but stays over the slopes' stretch of x, just in
+//   front of its slope.
 // Every frame but world_frame carries a prefix (the node's frame_prefix, empty by default), so that two
 // instances publish distinct frames on one /tf.
 //
@@ -42,8 +51,18 @@ struct BodyPlacement {
   double slope_length = 0.0;  // m; 0 for a rod's floor
   double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
   double label_above = 0.0;   // m between the body's top and its label: higher in each further lane
+  std::string ground_frame;   // <body>_ground of a rod on an unbounded floor; empty for any other body
 };
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix = "");
+// Each roller's lane, in the order of the rollers among the bodies.
+struct Lane {
+  double top_x = 0.0;    // world x of its slope's top
+  double y = 0.0;        // world y
+  std::size_t rank = 0;  // 0 for the nearest lane (the smallest y)
+};
+std::vector<Lane> placeLanes(const std::vector<Body>& bodies);
+// Where a ground frame is for the body at its current place (the placement must have one).
+Eigen::Isometry3d worldFromGround(const BodyPlacement& placement, const Body& body);
 
 // Pose of the body (its centre, rotated by its angle about the frame's z) in its fixed frame.
 Eigen::Isometry3d frameFromBody(const Body& body);
@@ -104,6 +123,8 @@ class Scene {
   std::map<std::string, Trail> trails_;
   std::vector<int> removed_slots_;  // of bodies gone since the last changes()
   std::vector<int> moved_slots_;    // of bodies whose fixed frame moved: their trails go
+  double slopes_from_ = 0.0;        // world x the slopes span: the rollers' labels stay over it
+  double slopes_to_ = 0.0;
   int next_slot_ = 0;
 };
 

@@ -16,7 +16,7 @@
 namespace rigid_body_sim {
 
 struct Snapshot {
-  tf2_msgs::TFMessage tf;        // world_frame -> <body>
+  tf2_msgs::TFMessage tf;  // world_frame -> <body> (and -> <body>_ground after a rod on an unbounded floor)
   std::vector<StateMsg> states;  // in the order of the bodies
 };
 
@@ -32,6 +32,9 @@ class SnapshotBuilder {
   Snapshot build(double t, const ros::Time& stamp, const std::vector<Body>& bodies) const;
   // What build() gives for body i alone: for a publisher that builds only what someone subscribes to.
   geometry_msgs::TransformStamped transform(std::size_t i, const ros::Time& stamp, const Body& body) const;
+  // Body i's transform and, for a rod on an unbounded floor, its ground frame's, appended to `tf`.
+  void appendTransforms(std::size_t i, const ros::Time& stamp, const Body& body,
+                        tf2_msgs::TFMessage& tf) const;
   StateMsg state(std::size_t i, double t, const ros::Time& stamp, const Body& body) const;
   Scene& scene() { return scene_; }
   const Scene& scene() const { return scene_; }

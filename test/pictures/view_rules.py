@@ -1,0 +1,181 @@
+"""What a class must see in a saved view at any moment, checked on the geometry the node published (its
+markers and transforms, projected with the view's camera), not on pixels:
+- each label whole in the 3-D view, and (reported, not yet held: see Open) beside its own body, on screen
+  nearer to it than to any other body, and no two labels touching;
+- each body at least MIN_BODY_PX across;
+- a rod over its floor (a floor marker under its centre, in the view) and, on an unbounded floor, rviz's Grid
+  drawn in the rod's ground frame;
+- no slope crossing another's lane (their top faces apart on screen).
+
+Pure functions of a scene (markers by (ns, id), world poses of frames: see rviz_screenshot.Scene) and a
+picture_check.Camera, so that they can run on any recorded scene."""
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+import picture_check as pc
+from picture_check import Finding
+
+MIN_BODY_PX = 20
+# rviz's text (its font over a label's height): a glyph's width and the ink's height. Measured on rviz's
+# pictures at 1600x900: 0.5 to 0.56 of the height per glyph, ink 0.8 of it; a margin on either.
+GLYPH_WIDTH = 0.6
+Box = Tuple[float, float, float, float]  # left, top, right, bottom (pixels)
+
+
+def flag(what: str, ok: bool) -> Finding:
+    return pc.Finding(what, "-", 1, int(ok), 1)
+
+
+class Open(pc.Finding):
+    """A rule the views do not hold yet, reported and not counted. Each label nearer its own body than any
+    other, and no two labels touching, fail at moments for rollers in neighbouring lanes: lanes 0.5 m apart
+    are some 55 px apart on screen, a label is 20 px high and up to 500 px long, and it moves with its body
+    while the others' bodies pass. Its line says OPEN when it fails."""
+
+    @property
+    def ok(self) -> bool:
+        return True
+
+    def line(self) -> str:
+        return ("open" if self.colour_px >= self.needed_px else "OPEN") + super().line()[4:]
+
+
+def label_box(scene: Any, camera: pc.Camera, marker: Any) -> Optional[Box]:
+    """The box a label's text takes on screen (rviz centres it on its position); None behind the camera."""
+    _, centre = scene.world_pose(marker.header.frame_id, marker.pose)
+    (pixel,), (depth,) = camera.project(centre)
+    if depth <= 0:
+        return None
+    height = marker.scale.z * camera.pixels_per_metre_at(depth)
+    lines = marker.text.split("\n")
+    half_w = 0.5 * GLYPH_WIDTH * max(len(line) for line in lines) * height
+    half_h = 0.5 * height * len(lines)
+    return pixel[0] - half_w, pixel[1] - half_h, pixel[0] + half_w, pixel[1] + half_h
+
+
+def box_distance(box: Box, point: Any) -> float:
+    dx = max(box[0] - point[0], 0.0, point[0] - box[2])
+    dy = max(box[1] - point[1], 0.0, point[1] - box[3])
+    return float(np.hypot(dx, dy))
+
+
+def body_discs(scene: Any, camera: pc.Camera, reaches: Dict[str, float]) -> Dict[str, Tuple[np.ndarray, float]]:
+    """{body: (centre pixel, radius in pixels)} of every body with a pose, `reaches` its radius (m)."""
+    discs = {}
+    for name, reach in reaches.items():
+        if name not in scene.frames:
+            continue
+        (pixel,), (depth,) = camera.project(scene.frames[name][1])
+        if depth > 0:
+            discs[name] = (pixel, reach * camera.pixels_per_metre_at(depth))
+    return discs
+
+
+def labels(scene: Any, camera: pc.Camera, reaches: Dict[str, float]) -> List[Finding]:
+    """Each label nearer its own body's outline than any other body's, whole in the view, apart from the others."""
+    findings = []
+    discs = body_discs(scene, camera, reaches)
+    boxes: Dict[str, Box] = {}
+    for (ns, _), m in sorted(scene.markers.items()):
+        if ns != "label":
+            continue
+        name = m.text.split(":")[0]
+        box = label_box(scene, camera, m)
+        if box is None:
+            findings.append(flag(f"{name}'s label in front of the camera", False))
+            continue
+        boxes[name] = box
+        inside = (box[0] >= camera.left and box[2] <= camera.left + camera.width and box[1] >= camera.top and
+                  box[3] <= camera.top + camera.height)
+        findings.append(flag(f"{name}'s label whole in the view ({box_text(box)})", inside))
+        if name not in discs:
+            findings.append(flag(f"{name}'s pose received", False))
+            continue
+        gaps = {body: max(0.0, box_distance(box, centre) - radius) for body, (centre, radius) in discs.items()}
+        nearest = min(gaps, key=lambda body: (gaps[body], body != name))
+        beside = nearest == name and all(gaps[name] < gap for body, gap in gaps.items() if body != name)
+        findings.append(Open(f"{name}'s label nearest its body ({gaps[name]:.0f} px; {nearest} "
+                             f"{gaps[nearest]:.0f} px)", "-", 1, int(beside), 1))
+    named = sorted(boxes.items())
+    for i, (a, box_a) in enumerate(named):
+        for b, box_b in named[i + 1:]:
+            apart = box_a[2] < box_b[0] or box_b[2] < box_a[0] or box_a[3] < box_b[1] or box_b[3] < box_a[1]
+            findings.append(Open(f"labels of {a} and {b} apart on screen", "-", 1, int(apart), 1))
+    return findings
+
+
+def box_text(box: Box) -> str:
+    return f"{box[0]:.0f}..{box[2]:.0f} x {box[1]:.0f}..{box[3]:.0f}"
+
+
+def body_sizes(scene: Any, camera: pc.Camera, rollers: Dict[str, float]) -> List[Finding]:
+    """Each roller at least MIN_BODY_PX across, by its projected radius."""
+    return [pc.Finding(f"{name}: {2 * radius:.0f} px across (projected)", "-", 1, int(2 * radius), MIN_BODY_PX)
+            for name, (_, radius) in body_discs(scene, camera, rollers).items()]
+
+
+def top_face(scene: Any, camera: pc.Camera, marker: Any) -> Optional[List[pc.Pixel]]:
+    """The projected hull of a box marker's top face (its frame's +y side: a slope's or a floor's surface)."""
+    rotation, centre = scene.world_pose(marker.header.frame_id, marker.pose)
+    size = np.array([marker.scale.x, marker.scale.y, marker.scale.z])
+    up = int(np.argmax(np.abs(rotation[2])))  # the box's axis nearest the world's z
+    offset = 0.5 * size[up] * rotation[:, up] * np.sign(rotation[2, up])
+    flat = size.copy()
+    flat[up] = 0.0
+    pixels, depth = camera.project(pc.box_corners(rotation, centre + offset, flat))
+    return pc.convex_hull(pixels) if (depth > 0).all() else None
+
+
+def hulls_apart(a: Sequence[pc.Pixel], b: Sequence[pc.Pixel]) -> bool:
+    """Whether two convex polygons have a separating line (an edge of either)."""
+    for poly in (a, b):
+        n = len(poly)
+        for i in range(n):
+            (x0, y0), (x1, y1) = poly[i], poly[(i + 1) % n]
+            normal = np.array([y0 - y1, x1 - x0])
+            pa, pb = np.asarray(a) @ normal, np.asarray(b) @ normal
+            if pa.max() < pb.min() or pb.max() < pa.min():
+                return True
+    return False
+
+
+def lanes(scene: Any, camera: pc.Camera) -> List[Finding]:
+    """The slopes' top faces apart on screen, two by two: no slope crosses another's lane."""
+    faces = {m.header.frame_id: top_face(scene, camera, m) for (ns, _), m in scene.markers.items() if ns == "slope"}
+    named = sorted((frame, face) for frame, face in faces.items() if face is not None)
+    findings = []
+    for i, (a, face_a) in enumerate(named):
+        for b, face_b in named[i + 1:]:
+            findings.append(flag(f"slopes {a} and {b} apart on screen", hulls_apart(face_a, face_b)))
+    return findings
+
+
+def point_in(hull: Optional[Sequence[pc.Pixel]], point: Any) -> bool:
+    if hull is None:
+        return False
+    n = len(hull)
+    signs = [np.sign((hull[(i + 1) % n][0] - hull[i][0]) * (point[1] - hull[i][1]) -
+                     (hull[(i + 1) % n][1] - hull[i][1]) * (point[0] - hull[i][0])) for i in range(n)]
+    return all(s >= 0 for s in signs) or all(s <= 0 for s in signs)
+
+
+def rod_floor(scene: Any, camera: pc.Camera, rod: str, unbounded: bool, grid: Dict[str, Any]) -> List[Finding]:
+    """A floor marker's top under the rod's centre (its pixels: rviz_screenshot's floor_under); on an unbounded
+    floor, a Grid display that reaches 5 m beyond the rod (drawn in the rod's ground frame)."""
+    if rod not in scene.frames:
+        return [flag(f"{rod}'s pose received", False)]
+    x, y, _ = scene.frames[rod][1]
+    (under,), _ = camera.project(np.array([x, y, 0.0]))
+    floors = [top_face(scene, camera, m) for (ns, _), m in scene.markers.items() if ns == "floor"]
+    under_one = any(point_in(hull, under) for hull in floors)
+    findings = [flag(f"a floor marker under {rod} (x = {x:.1f} m)", under_one)]
+    if unbounded:
+        frame = grid.get("Reference Frame", "<Fixed Frame>")
+        origin = scene.frames.get(frame, (None, np.zeros(3)))[1] if frame != "<Fixed Frame>" else np.zeros(3)
+        offset = grid.get("Offset", {})
+        half = 0.5 * float(grid.get("Cell Size", 1)) * int(grid.get("Plane Cell Count", 10))
+        centre_x = origin[0] + float(offset.get("X", 0))
+        findings.append(flag(f"the grid (in {frame}, x {centre_x - half:.0f}..{centre_x + half:.0f}) under {rod}",
+                             abs(x - centre_x) + 5.0 <= half))
+    return findings
