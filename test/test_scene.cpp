@@ -340,6 +340,14 @@ TEST(Scene, LanesNeverCrossWhateverTheAngles) {
           std::sort(placements.begin(), placements.end(), [](const BodyPlacement& p, const BodyPlacement& q) {
             return p.world_from_frame.translation().y() < q.world_from_frame.translation().y();
           });
+          // A finished racer's label comes in front of the lanes side by side with its own (each one
+          // spacing nearer than the next), no further: a lane further back stands above the nearer ones.
+          for (std::size_t i = 0; i < placements.size(); ++i) {
+            const double y = placements[i].world_from_frame.translation().y();
+            const double nearer_y = i > 0 ? placements[i - 1].world_from_frame.translation().y() : -1e9;
+            const bool side_by_side = y - nearer_y <= 0.5 + 1e-9;
+            ASSERT_EQ(placements[i].front_y, side_by_side ? placements[i - 1].front_y : y);
+          }
           double first_top = std::numeric_limits<double>::infinity();
           for (std::size_t i = 0; i < placements.size(); ++i) {
             const auto nearer = slopeEnds(placements[i]);

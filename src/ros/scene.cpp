@@ -49,9 +49,9 @@ constexpr double kLabelHeight = 0.15;
 // together, and a view from the side would otherwise draw their labels on top of one another.
 constexpr double kLabelStagger = 1.5 * kLabelHeight;        // a line and a half: clear also in perspective
 constexpr double kLabelInFront = 0.5 * kSlopeWidth + 0.05;  // a roller's label before its own slope
-// ... and raised by as much as the saved views (from the front, looking down 0.5 rad) then see it lowered.
-const double kLabelInFrontRaise = kLabelInFront * std::tan(0.5);
-constexpr double kGlyphWidth = 0.55;  // rviz's text: a glyph's width over the text's height
+// rviz's text: a glyph's width over the text's height, with a margin (measured 0.5 to 0.56, wider where
+// the system's font is: Debian 13's), so that a label kept over the slopes' stretch stays whole in the view.
+constexpr double kGlyphWidth = 0.6;
 
 // Marker namespaces: fixed, so that a user can toggle them in rviz.
 const char* const kNsFloor = "floor";
@@ -368,7 +368,10 @@ std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
                    lanes[slopes[i].roller].y + spacing + standsAbove(nearer, further) / std::tan(kViewPitch));
     }
     placed.emplace_back(end - slope.run, end);
-    lanes[slope.roller] = {end - slope.run, y, k};
+    const double front_y = k > 0 && y <= lanes[slopes[k - 1].roller].y + spacing * (1 + 1e-9)
+                               ? lanes[slopes[k - 1].roller].front_y
+                               : y;
+    lanes[slope.roller] = {end - slope.run, y, k, front_y};
   }
   return lanes;
 }
@@ -383,7 +386,8 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
       const double floor_length = rod->params().floor_length;
       placements.push_back({frame_prefix + fixedFrameOf(body),
                             uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
-                            kLabelAbove, floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
+                            kLabelAbove, 0.0,
+                            floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
       continue;
     }
     const RollerParams& p = std::get<Roller>(body.model).params();
@@ -391,7 +395,7 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
     const Lane& lane = lanes[static_cast<std::size_t>(rollers)];
     placements.push_back({frame_prefix + fixedFrameOf(body),
                           uprightPlane({lane.top_x, lane.y, top}, p.incline_angle), p.incline_length, 0.0,
-                          kLabelAbove + kLabelStagger * static_cast<double>(lane.rank), ""});
+                          kLabelAbove + kLabelStagger * static_cast<double>(lane.rank), lane.front_y, ""});
     ++rollers;
   }
   return placements;
@@ -535,8 +539,10 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     label.text = labelText(body, marker_options_.critical_angles);
     // A rod's label ends above it. A roller's starts above it and runs downhill (world +x), but stays over
     // the slopes' stretch of x (which the views frame: near the lower end it runs uphill), just in front of
-    // its own slope (which would hide its uphill part) and raised as much as the views (looking down 0.5 rad)
-    // see it lowered.
+    // its own slope (which would hide its uphill part), a finished racer's in front of the lanes side by
+    // side with its own (they rise in front of it, uphill of their lower ends), and raised as much as the
+    // views (looking down kViewPitch) see it lowered: where a view sees it is where it would be above its
+    // body.
     const double half_width = 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size());
     const Eigen::Vector3d at = worldPosition(placements_[i], body);
     Eigen::Vector3d position = at + Eigen::Vector3d(0.0, 0.0, reachOf(body) + placements_[i].label_above);
@@ -547,7 +553,8 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
           slopes_from_ + half_width <= slopes_to_ - half_width
               ? std::clamp(at.x() + half_width, slopes_from_ + half_width, slopes_to_ - half_width)
               : 0.5 * (slopes_from_ + slopes_to_);
-      position += Eigen::Vector3d(centre - at.x(), -kLabelInFront, kLabelInFrontRaise);
+      const double forward = kLabelInFront + (body.finish ? at.y() - placements_[i].front_y : 0.0);
+      position += Eigen::Vector3d(centre - at.x(), -forward, forward * std::tan(kViewPitch));
     }
     label.pose.position = toPoint(position);
     label.scale.z = kLabelHeight;

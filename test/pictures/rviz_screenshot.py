@@ -169,11 +169,21 @@ class Scene:
         return rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w]), origin + rotation @ [p.x, p.y, p.z]
 
 
-def rviz_status_pixels(image: np.ndarray, render: Tuple[int, int, int, int]) -> Dict[str, int]:
-    """Pixels in the text of rviz's display tree (left of the render view) drawn in the colour of a
-    warning or an error: rviz paints a display's name so when its status is not Ok."""
-    left, top, _, height = render
-    panel = image[top:top + height, 42:max(43, left - 20), :3].astype(int)
+def displays_dock_height(window: Dict[str, Any]) -> int:
+    """The height of the Displays dock (the display tree) in a view's Window Geometry: Qt's saveState holds
+    each dock by its name (UTF-16), a visibility byte, then its position and size along the dock area."""
+    state = bytes.fromhex(window["QMainWindow State"])
+    name = "Displays".encode("utf-16-be")
+    at = state.index(name) + len(name) + 1
+    return int.from_bytes(state[at + 4:at + 8], "big")
+
+
+def rviz_status_pixels(image: np.ndarray, render: Tuple[int, int, int, int], tree_height: int) -> Dict[str, int]:
+    """Pixels in the text of rviz's display tree (left of the render view, in the Displays dock: the
+    panel under it draws its own colours, a chart's lines among them) drawn in the colour of a warning or
+    an error: rviz paints a display's name so when its status is not Ok."""
+    left, top, _, _ = render
+    panel = image[top:top + tree_height, 42:max(43, left - 20), :3].astype(int)
     return {name: int((np.abs(panel - colour).max(axis=-1) <= 24).sum()) for name, colour in STATUS_COLOURS.items()}
 
 
@@ -575,7 +585,9 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
 
     view_file = os.path.join(PACKAGE, "rviz", LAUNCH_CONFIGS[args.launch][1])  # the launch's view
     with open(view_file) as f:
-        manager = yaml.safe_load(f)["Visualization Manager"]
+        saved = yaml.safe_load(f)
+    manager = saved["Visualization Manager"]
+    tree_height = displays_dock_height(saved["Window Geometry"])
     view = manager["Views"]["Current"]
     target = view.get("Target Frame", "<Fixed Frame>")
     grid: Dict[str, Any] = next((d for d in manager["Displays"] if d.get("Class") == "rviz/Grid"), {})
@@ -615,7 +627,7 @@ def run(args: argparse.Namespace, start: float, stem: str, launch: Any) -> int:
         found += view_checks(scene, camera, config, grid)
         if k == 0:
             found += old_slopes_gone(image, scene, camera, old_slopes)
-        status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height))
+        status = rviz_status_pixels(image, (camera.left, camera.top, camera.width, camera.height), tree_height)
         found += [flag(f"rviz display tree free of {k} colour ({v} px)", v == 0) for k, v in status.items()]
         found.append(control(image, scene, camera, config, background))
         save_outlined(image, outlines, os.path.splitext(out)[0] + "_regions.png")
