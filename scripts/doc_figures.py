@@ -56,7 +56,31 @@ def runs(simulate: str, work: str) -> Runs:
     run_simulate(simulate, [os.path.join(PACKAGE, "config", "rod.yaml"), "--sweep",
                             f"rod.theta0=0:{2 * math.pi!r}:{THETA0_RODS}", "--duration", "10", "--out-dir", folder])
     out["sweep"] = np.genfromtxt(os.path.join(folder, "sweep.csv"), delimiter=",", names=True)
+    for part in ("above", "below", "slip"):
+        bag = os.path.join(work, f"race_{part}.bag")
+        run_simulate(simulate, [os.path.join(PACKAGE, "config", f"race_{part}.yaml"), "--duration", "0.02",
+                                "--out-dir", os.path.join(work, f"race_{part}"), "--bag", bag])
+        out[f"lanes_{part}"] = lane_ys(bag)
     return out
+
+
+def lane_ys(bag: str) -> List[float]:
+    """The world y of each slope's frame as the bag's /tf_static gives it (the scene's lanes), nearest first."""
+    import rosbag  # ROS's, from Debian: imported here so that the rest runs without it
+    ys = {}
+    with rosbag.Bag(bag) as opened:
+        for _, message, _ in opened.read_messages(topics=["/tf_static"]):
+            for transform in message.transforms:
+                if transform.child_frame_id.endswith("_slope"):
+                    ys[transform.child_frame_id] = transform.transform.translation.y
+    return sorted(ys.values())
+
+
+def lane_spacing(r: Runs, part: str) -> str:
+    """The lanes' spacing of a race (its three slopes alike: one spacing), in the doc's "%.1f"."""
+    gaps = np.diff(r[f"lanes_{part}"])
+    assert len(gaps) == 2 and abs(gaps[0] - gaps[1]) < 1e-9, gaps
+    return f"{gaps[0]:.1f}"
 
 
 # --- the closed forms of section 16.3.2 -----------------------------------------------------------------
@@ -234,8 +258,10 @@ FIGURES = [
                       f"{rod_swing(r)['energy_last']:.4f}",
                       f"{100 * (rod_swing(r)['energy_last'] / rod_swing(r)['energy_first'] - 1):.2f}"
                       .replace("-", "−")]),
-    Figure("docs/rviz.md", r"`sphere: 1st, (\S+) s \(closed form (\S+) s\)`",
+    Figure("docs/rviz.md", r"`sphere: 1st, (\S+) s` over `\(closed form (\S+) s\)`",
            lambda r: [f"{race_time(r):.4f}"] * 2),
+    Figure("docs/rviz.md", r"\((\S+) m at 38°, (\S+) m at 20°, (\S+) m at 5\.7°\)",
+           lambda r: [lane_spacing(r, part) for part in ("above", "below", "slip")]),
     Figure("docs/sweeps.md", r"lands on both ends at once\s+and bounces (\S+) times",
            lambda r: [sweep_figures(r)["flat"]]),
     Figure("docs/sweeps.md", r"(\S+) to (\S+) bounces \(8 to 13 for (\S+) %\)",

@@ -126,6 +126,8 @@ FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): (\d+(?:st|nd|rd|th), [0-9.
 
 
 def finish_of_label(text: str) -> Tuple[str, Optional[str]]:
-    """(body, its place and times) from a node's label, or (body, None) for a label that is no finish."""
+    """(body, its place and times) from a node's board (its lines joined by a space), or (body, None) for a
+    board that is no finish."""
+    text = " ".join(text.split("\n"))
     found = FINISH_LABEL.match(text)
     return (found.group(1), found.group(2)) if found else (text.split(":", 1)[0], None)

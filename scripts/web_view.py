@@ -389,11 +389,11 @@ class WebView:
         self.send_world()
 
     def on_markers(self, msg: MarkerArray) -> None:
-        """A race's results from the node's labels: each finished racer's place and times, None for one
-        racing (its label is no finish)."""
+        """A race's results from the node's boards (a roller's, at its lane's lower end): each finished
+        racer's place and times, None for one racing (its board is no finish)."""
         finishes: Dict[str, Optional[str]] = {}
         for marker in msg.markers:
-            if marker.ns != "label" or not marker.text:
+            if marker.ns != "board" or not marker.text:
                 continue
             body, finish = finish_of_label(marker.text)
             finishes[body] = finish

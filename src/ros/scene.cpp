@@ -18,6 +18,12 @@ constexpr double kRodPlaneSpacing = 1.5;  // between the planes of successive ro
 constexpr double kFirstLaneY = 1.0;       // world y of the first roller's lane
 constexpr double kMinLaneSpacing = 0.5;   // between roller lanes
 constexpr double kLaneRadii = 3.0;        // a lane is at least this many of the largest radius wide
+// Lanes are as far apart as a roller's name tag needs (laneSpacing), up to kMaxTagSpacing, beside a slope
+// up to kMaxTagAngle. Beside a steeper one they are not: its bodies drop nearly straight down the screen,
+// past any tag beside, and lanes further apart than the least no longer stand apart on screen in
+// perspective (test_scene: at 1.4 rad with 2 m).
+constexpr double kMaxTagSpacing = 3.0;
+constexpr double kMaxTagAngle = 0.8;  // rad
 // A steeper slope's lower end lies this much further along x than a shallower nearer one's: in perspective
 // (the saved views: from the front, looking down 0.5 rad) its top face then stays above the nearer lane's,
 // even nearly upright (checked for every angle in test_scene and by the picture tests' projections).
@@ -43,12 +49,11 @@ constexpr double kSpokeLength = 2.02;  // of the radius: just out of the body
 constexpr double kSpokeWidth = 0.25;   // of the radius
 constexpr double kTrailWidth = 0.01;
 constexpr float kTrailAlpha = 0.6f;
-constexpr double kLabelAbove = 0.25;  // between the body's top and its label
-constexpr double kLabelHeight = 0.15;
-// Each further roller lane lifts its label by this much: rollers released side by side (the race) move
-// together, and a view from the side would otherwise draw their labels on top of one another.
-constexpr double kLabelStagger = 1.5 * kLabelHeight;        // a line and a half: clear also in perspective
-constexpr double kLabelInFront = 0.5 * kSlopeWidth + 0.05;  // a roller's label before its own slope
+constexpr double kLabelAbove = 0.25;  // between a rod's top and its label
+constexpr double kLabelHeight = 0.22;
+constexpr double kTagGap = 0.05;    // between a roller and its name tag, on its right
+constexpr double kClearance = 0.1;  // seen by the views, between a lane's body or tag and another lane's
+constexpr double kBoardGap = 0.2;   // between a body at its slope's top and its lane's board, uphill of it
 // rviz's text: a glyph's width over the text's height, with a margin (measured 0.5 to 0.56, wider where
 // the system's font is: Debian 13's), so that a label kept over the slopes' stretch stays whole in the view.
 constexpr double kGlyphWidth = 0.6;
@@ -60,6 +65,18 @@ const char* const kNsBody = "body";
 const char* const kNsSpoke = "spoke";
 const char* const kNsTrail = "trail";
 const char* const kNsLabel = "label";
+const char* const kNsBoard = "board";
+
+// Of its longest line.
+double textWidth(const std::string& text) {
+  std::size_t longest = 0;
+  for (std::size_t from = 0; from <= text.size();) {
+    const std::size_t end = std::min(text.find('\n', from), text.size());
+    longest = std::max(longest, end - from);
+    from = end + 1;
+  }
+  return kGlyphWidth * kLabelHeight * static_cast<double>(longest);
+}
 
 std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
   std_msgs::ColorRGBA color;
@@ -138,12 +155,36 @@ Eigen::Isometry3d uprightPlane(const Eigen::Vector3d& origin, double tilt) {
   return frame;
 }
 
-double laneSpacing(const std::vector<Body>& bodies) {
-  double largest_radius = 0.0;
+// What the lanes keep apart: the largest roller and the widest name tag.
+struct LaneLoad {
+  double radius = 0.0;
+  double tag = 0.0;
+};
+
+LaneLoad laneLoad(const std::vector<Body>& bodies) {
+  LaneLoad load;
   for (const auto& body : bodies) {
-    if (std::holds_alternative<Roller>(body.model)) largest_radius = std::max(largest_radius, radiusOf(body));
+    if (!std::holds_alternative<Roller>(body.model)) continue;
+    load.radius = std::max(load.radius, radiusOf(body));
+    load.tag = std::max(load.tag, textWidth(body.name));
   }
-  return std::max(kMinLaneSpacing, kLaneRadii * largest_radius);
+  return load;
+}
+
+// Between two lanes side by side, so that the saved views (from the front, looking down kViewPitch) see
+// each body and its tag (on its right, at its height) kClearance from the other lane's, wherever each is
+// on its slope: the other body, as far along x as a tag and two bodies reach, is lower on screen by its
+// drop on the steeper slope (no more than that slope's height), and the lanes lie that much further apart.
+double leastSpacing(const LaneLoad& load) { return std::max(kMinLaneSpacing, kLaneRadii * load.radius); }
+
+double laneSpacing(const LaneLoad& load, double steeper_angle, double steeper_height) {
+  const double reach = load.tag + 2.0 * load.radius + kTagGap + kClearance;
+  const double least = leastSpacing(load);
+  if (steeper_angle > kMaxTagAngle) return least;
+  const double drop = std::min(reach * std::tan(steeper_angle), steeper_height);
+  const double across = std::max(load.radius, 0.5 * kLabelHeight) + 0.5 * kLabelHeight + kClearance;
+  const double clear = (across + drop * std::cos(kViewPitch)) / std::sin(kViewPitch);
+  return std::max(least, std::min(clear, kMaxTagSpacing));
 }
 
 visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id) {
@@ -213,7 +254,7 @@ std::string ordinal(int place) {
 std::string finishText(const Body& body, const RaceFinish& finish) {
   char text[96];
   if (finish.closed_form) {
-    std::snprintf(text, sizeof text, "%s, %.4f s (closed form %.4f s)", ordinal(finish.place).c_str(),
+    std::snprintf(text, sizeof text, "%s, %.4f s\n(closed form %.4f s)", ordinal(finish.place).c_str(),
                   finish.time, *finish.closed_form);
   } else {
     std::snprintf(text, sizeof text, "%s, %.4f s", ordinal(finish.place).c_str(), finish.time);
@@ -221,16 +262,17 @@ std::string finishText(const Body& body, const RaceFinish& finish) {
   return body.name + ": " + text;
 }
 
+// A rod's label; a roller's board, in two lines (half as wide: the view holds the slopes and the boards).
 std::string labelText(const Body& body, bool critical_angle) {
   if (body.finish) return finishText(body, *body.finish);
   char energy[48];
   const double e = energyOf(body);
   std::snprintf(energy, sizeof energy, "E = %.3f J", std::abs(e) < 5e-4 ? 0.0 : e);  // never "-0.000"
   if (const auto* roller = std::get_if<Roller>(&body.model)) {
-    const std::string head = body.name + ": " + toString(roller->mode()) + ", ";
+    const std::string head = body.name + ": " + toString(roller->mode()) + "\n";
     if (!critical_angle) return head + energy;
     // Section 16.3.2's, for its mu_s and shape, in place of the energy (the panel plots it): a class sees
-    // why one body slips, and the labels of a race stay short.
+    // why one body slips.
     const RollerParams& params = roller->params();
     char critical[48];
     std::snprintf(critical, sizeof critical, "critical angle %.1f deg",
@@ -298,6 +340,16 @@ visualization_msgs::Marker slopeMarker(const BodyPlacement& placement, int id) {
   return slope;
 }
 
+// White text of kLabelHeight in the world frame, centred on its position (rviz's), facing the view.
+visualization_msgs::Marker textMarker(const char* ns, int id, const std::string& text, const ros::Time& stamp,
+                                      const std::string& frame) {
+  auto m = marker(ns, id, visualization_msgs::Marker::TEXT_VIEW_FACING, frame, stamp);
+  m.text = text;
+  m.scale.z = kLabelHeight;
+  m.color = kLabelColour;
+  return m;
+}
+
 visualization_msgs::Marker deleteAll(const std::string& frame, const ros::Time& stamp) {
   auto m = marker("", 0, visualization_msgs::Marker::CUBE, frame, stamp);
   m.action = visualization_msgs::Marker::DELETEALL;
@@ -332,21 +384,29 @@ std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
   struct Slope {
     std::size_t roller;  // its place among the rollers
     double angle;
-    double run;  // m along x
+    double run;     // m along x
+    double height;  // m
   };
   std::vector<Slope> slopes;
   for (const auto& body : bodies) {
     if (const auto* roller = std::get_if<Roller>(&body.model)) {
       const RollerParams& p = roller->params();
-      slopes.push_back(
-          {slopes.size(), p.incline_angle, std::max(0.0, p.incline_length * std::cos(p.incline_angle))});
+      slopes.push_back({slopes.size(), p.incline_angle,
+                        std::max(0.0, p.incline_length * std::cos(p.incline_angle)),
+                        std::max(0.0, p.incline_length * std::sin(p.incline_angle))});
     }
   }
   // Nearest the shallowest: seen from the side, a steeper slope whose lower end is at or beyond a shallower
   // one's stands above it wherever both are, as a further lane does on screen.
   std::stable_sort(slopes.begin(), slopes.end(),
                    [](const Slope& a, const Slope& b) { return a.angle < b.angle; });
-  const double spacing = laneSpacing(bodies);
+  const LaneLoad load = laneLoad(bodies);
+  const double least = leastSpacing(load);
+  // Lanes are sorted shallowest first: of two, the further is the steeper.
+  const auto spacing = [&](std::size_t nearer, std::size_t further) {
+    const Slope& steeper = slopes[further].angle >= slopes[nearer].angle ? slopes[further] : slopes[nearer];
+    return laneSpacing(load, steeper.angle, steeper.height);
+  };
   std::vector<Lane> lanes(slopes.size());
   std::vector<std::pair<double, double>> placed;  // top x, lower end x of the lanes so far, nearest first
   for (std::size_t k = 0; k < slopes.size(); ++k) {
@@ -354,24 +414,22 @@ std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
     // Its lower end at or beyond every nearer lane's (0.8 m beyond a shallower one's), but for a lane that
     // would move it more than kMaxStagger along (a long shallow slope nearer: the demo's bowler's): behind
     // that one its lane lies further back instead, by what the views need to see it above it (seen from
-    // the side, 1/tan(0.5) m for every metre that one stands higher).
+    // the side, 1/tan(0.5) m for every metre that one stands higher, beyond the least spacing) if the
+    // spacing its tags need does not put it further.
     double end = slope.run;
     for (std::size_t i = 0; i < k; ++i) {
       const double beyond = placed[i].second + (slope.angle > slopes[i].angle ? kSteeperStagger : 0.0);
       if (beyond - slope.run <= kMaxStagger) end = std::max(end, beyond);
     }
-    double y = kFirstLaneY + (k > 0 ? lanes[slopes[k - 1].roller].y - kFirstLaneY + spacing : 0.0);
+    double y = kFirstLaneY;
     for (std::size_t i = 0; i < k; ++i) {
       const Profile nearer{placed[i].first, placed[i].second, std::tan(slopes[i].angle)};
       const Profile further{end - slope.run, end, std::tan(slope.angle)};
-      y = std::max(y,
-                   lanes[slopes[i].roller].y + spacing + standsAbove(nearer, further) / std::tan(kViewPitch));
+      const double back = least + standsAbove(nearer, further) / std::tan(kViewPitch);
+      y = std::max(y, lanes[slopes[i].roller].y + std::max(spacing(i, k), back));
     }
     placed.emplace_back(end - slope.run, end);
-    const double front_y = k > 0 && y <= lanes[slopes[k - 1].roller].y + spacing * (1 + 1e-9)
-                               ? lanes[slopes[k - 1].roller].front_y
-                               : y;
-    lanes[slope.roller] = {end - slope.run, y, k, front_y};
+    lanes[slope.roller] = {end - slope.run, y, k};
   }
   return lanes;
 }
@@ -386,7 +444,6 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
       const double floor_length = rod->params().floor_length;
       placements.push_back({frame_prefix + fixedFrameOf(body),
                             uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
-                            kLabelAbove, 0.0,
                             floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
       continue;
     }
@@ -395,7 +452,7 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
     const Lane& lane = lanes[static_cast<std::size_t>(rollers)];
     placements.push_back({frame_prefix + fixedFrameOf(body),
                           uprightPlane({lane.top_x, lane.y, top}, p.incline_angle), p.incline_length, 0.0,
-                          kLabelAbove + kLabelStagger * static_cast<double>(lane.rank), lane.front_y, ""});
+                          ""});
     ++rollers;
   }
   return placements;
@@ -459,15 +516,8 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
   }
   trails_ = std::move(kept);
 
-  slopes_from_ = std::numeric_limits<double>::infinity();
-  slopes_to_ = -std::numeric_limits<double>::infinity();
-  for (const auto& placement : placements_) {
-    if (placement.slope_length <= 0.0) continue;
-    const double top = placement.world_from_frame.translation().x();
-    const double end = (placement.world_from_frame * Eigen::Vector3d(placement.slope_length, 0.0, 0.0)).x();
-    slopes_from_ = std::min({slopes_from_, top, end});
-    slopes_to_ = std::max({slopes_to_, top, end});
-  }
+  const LaneLoad load = laneLoad(bodies);
+  board_offset_ = load.radius + kBoardGap;
 
   visualization_msgs::MarkerArray scene;
   scene.markers.push_back(deleteAll(world_frame_, ros::Time()));
@@ -508,9 +558,11 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
   };
   for (const int slot : removed_slots_) {
     deleteTrail(slot);
-    auto label = marker(kNsLabel, slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-    label.action = visualization_msgs::Marker::DELETE;
-    array.markers.push_back(label);
+    for (const char* ns : {kNsLabel, kNsBoard}) {
+      auto text = marker(ns, slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
+      text.action = visualization_msgs::Marker::DELETE;
+      array.markers.push_back(text);
+    }
   }
   removed_slots_.clear();
   for (const int slot : moved_slots_) deleteTrail(slot);  // before the new pieces, which take ids from 0
@@ -534,32 +586,28 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
         ++trail.pieces;
       }
     }
-    auto label =
-        marker(kNsLabel, trail.slot, visualization_msgs::Marker::TEXT_VIEW_FACING, world_frame_, stamp);
-    label.text = labelText(body, marker_options_.critical_angles);
-    // A rod's label ends above it. A roller's starts above it and runs downhill (world +x), but stays over
-    // the slopes' stretch of x (which the views frame: near the lower end it runs uphill), just in front of
-    // its own slope (which would hide its uphill part), a finished racer's in front of the lanes side by
-    // side with its own (they rise in front of it, uphill of their lower ends), and raised as much as the
-    // views (looking down kViewPitch) see it lowered: where a view sees it is where it would be above its
-    // body.
-    const double half_width = 0.5 * kGlyphWidth * kLabelHeight * static_cast<double>(label.text.size());
     const Eigen::Vector3d at = worldPosition(placements_[i], body);
-    Eigen::Vector3d position = at + Eigen::Vector3d(0.0, 0.0, reachOf(body) + placements_[i].label_above);
     if (std::holds_alternative<Rod>(body.model)) {
-      position.x() -= half_width;  // ends above the rod: clear of the rollers' labels, which run downhill
-    } else {
-      const double centre =
-          slopes_from_ + half_width <= slopes_to_ - half_width
-              ? std::clamp(at.x() + half_width, slopes_from_ + half_width, slopes_to_ - half_width)
-              : 0.5 * (slopes_from_ + slopes_to_);
-      const double forward = kLabelInFront + (body.finish ? at.y() - placements_[i].front_y : 0.0);
-      position += Eigen::Vector3d(centre - at.x(), -forward, forward * std::tan(kViewPitch));
+      // Above the rod, in its own plane.
+      auto label = textMarker(kNsLabel, trail.slot, labelText(body, marker_options_.critical_angles), stamp,
+                              world_frame_);
+      label.pose.position = toPoint(at + Eigen::Vector3d(0.0, 0.0, reachOf(body) + kLabelAbove));
+      array.markers.push_back(std::move(label));
+      continue;
     }
-    label.pose.position = toPoint(position);
-    label.scale.z = kLabelHeight;
-    label.color = kLabelColour;
-    array.markers.push_back(std::move(label));
+    // A roller's name on its right, at its height: the lanes are apart enough for it (laneSpacing). What
+    // it does (its mode and energy or critical angle, a racer's place and times) is on its lane's board,
+    // ending before its slope's top, where no body goes.
+    auto tag = textMarker(kNsLabel, trail.slot, body.name, stamp, world_frame_);
+    tag.pose.position =
+        toPoint(at + Eigen::Vector3d(radiusOf(body) + kTagGap + 0.5 * textWidth(tag.text), 0.0, 0.0));
+    array.markers.push_back(std::move(tag));
+    auto board = textMarker(kNsBoard, trail.slot, labelText(body, marker_options_.critical_angles), stamp,
+                            world_frame_);
+    const Eigen::Vector3d top = placements_[i].world_from_frame.translation();
+    board.pose.position =
+        toPoint(top - Eigen::Vector3d(board_offset_ + 0.5 * textWidth(board.text), 0.0, -radiusOf(body)));
+    array.markers.push_back(std::move(board));
   }
   return array;
 }

@@ -163,8 +163,9 @@ def quadrants_with(image: np.ndarray, region: np.ndarray, centre: Any, colour: s
 
 
 def white_mask(image: np.ndarray) -> np.ndarray:
-    """rviz's label text (white, unlit): every channel at 235 or more; the floor's lit grey stays below."""
-    return np.asarray((image[..., :3] >= 235).all(axis=-1))  # an array, as numpy 2's stubs cannot tell
+    """rviz's label text (white, unlit): every channel at 200 or more (a thin stroke's core is drawn at 220 or
+    so, the font hinted to whole pixels); the floor's lit grey (0.75) stays below."""
+    return np.asarray((image[..., :3] >= 200).all(axis=-1))  # an array, as numpy 2's stubs cannot tell
 
 
 def ink_box(mask: np.ndarray, region: np.ndarray) -> Optional[Tuple[int, int, int, int]]:

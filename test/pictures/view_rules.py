@@ -1,20 +1,27 @@
 """What a class must see in a saved view at any moment, checked on the geometry the node published (its
 markers and transforms, projected with the view's camera), not on pixels:
-- each label whole in the 3-D view, and (reported, not yet held: see Open) beside its own body, on screen
-  nearer to it than to any other body, and no two labels touching;
+- each label (a roller's name, a rod's energy) whole in the 3-D view and beside its own body, on screen
+  nearer to it than to any other body; each board (a roller's mode and figures, at its lane's lower end)
+  whole in the view and touching no body; no two of these texts touching;
 - each body at least MIN_BODY_PX across;
 - a rod over its floor (a floor marker under its centre, in the view) and, on an unbounded floor, rviz's Grid
   drawn in the rod's ground frame;
 - no slope crossing another's lane (their top faces apart on screen).
 
-Pure functions of a scene (markers by (ns, id), world poses of frames: see rviz_screenshot.Scene) and a
-picture_check.Camera, so that they can run on any recorded scene."""
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+Pure functions of a PublishedScene (markers by (ns, id), world poses of frames) and a picture_check.Camera,
+so that they run on the scene rviz was sent (rviz_screenshot) and on a recorded run (views_over_a_run)."""
+import os
+import sys
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 import picture_check as pc
 from picture_check import Finding
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                "scripts"))
+from sim_tools import RodSpec, RollerSpec  # noqa: E402
 
 MIN_BODY_PX = 20
 # rviz's text (its font over a label's height): a glyph's width and the ink's height. Measured on rviz's
@@ -27,18 +34,61 @@ def flag(what: str, ok: bool) -> Finding:
     return pc.Finding(what, "-", 1, int(ok), 1)
 
 
-class Open(pc.Finding):
-    """A rule the views do not hold yet, reported and not counted. Each label nearer its own body than any
-    other, and no two labels touching, fail at moments for rollers in neighbouring lanes: lanes 0.5 m apart
-    are some 55 px apart on screen, a label is 20 px high and up to 500 px long, and it moves with its body
-    while the others' bodies pass. Its line says OPEN when it fails."""
+TEXT_KINDS = ("label", "board")  # the marker namespaces of the node's texts
+# rviz's 3-D view in every saved view's window at 1600x900 (left, top, width, height), the display tree and
+# the Simulation panel docked at the left, as the picture tests find it (rviz_screenshot.render_window): each
+# edge within RENDER_SLACK pixels of this (its top and height vary by a few pixels from one start to the
+# next). A run checked without rviz holds its texts that much inside (views_over_a_run).
+RENDER_AT_1600X900 = (471, 58, 1114, 816)
+RENDER_SLACK = 12
+
+
+def near_render_at_1600x900(window: Tuple[int, int, int, int]) -> bool:
+    left, top, width, height = window
+    nominal_left, nominal_top, nominal_width, nominal_height = RENDER_AT_1600X900
+    edges = (left, top, left + width, top + height)
+    nominal = (nominal_left, nominal_top, nominal_left + nominal_width, nominal_top + nominal_height)
+    return all(abs(a - b) <= RENDER_SLACK for a, b in zip(edges, nominal))
+
+
+class PublishedScene:
+    """What the node published, as a viewer holds it: the world pose of every frame (/tf, /tf_static) and the
+    markers of ~scene and ~markers by (ns, id)."""
+
+    def __init__(self) -> None:
+        self.frames: Dict[str, Tuple[np.ndarray, np.ndarray]] = {}
+        # Markers by topic: a DELETEALL clears those of its own topic only, as in rviz's displays.
+        self.by_topic: Dict[str, Dict[Tuple[str, int], Any]] = {"/sim/scene": {}, "/sim/markers": {}}
+
+    def on_tf(self, msg: Any) -> None:
+        for t in msg.transforms:
+            r, q = t.transform.translation, t.transform.rotation
+            self.frames[t.child_frame_id] = (pc.quaternion_matrix([q.x, q.y, q.z, q.w]), np.array([r.x, r.y, r.z]))
+
+    def on_markers(self, msg: Any, topic: str) -> None:
+        markers = self.by_topic[topic]
+        for m in msg.markers:
+            if m.action == m.DELETEALL:
+                markers.clear()
+            elif m.action == m.DELETE:
+                markers.pop((m.ns, m.id), None)
+            else:
+                markers[(m.ns, m.id)] = m
 
     @property
-    def ok(self) -> bool:
-        return True
+    def markers(self) -> Dict[Tuple[str, int], Any]:
+        return {key: m for markers in self.by_topic.values() for key, m in markers.items()}
 
-    def line(self) -> str:
-        return ("open" if self.colour_px >= self.needed_px else "OPEN") + super().line()[4:]
+    def world_pose(self, frame_id: str, pose: Any) -> Tuple[np.ndarray, np.ndarray]:
+        """Rotation and position in the world of a marker's pose in `frame_id` (a child of the world)."""
+        rotation, origin = self.frames.get(frame_id, (np.eye(3), np.zeros(3)))
+        q, p = pose.orientation, pose.position
+        return rotation @ pc.quaternion_matrix([q.x, q.y, q.z, q.w]), origin + rotation @ [p.x, p.y, p.z]
+
+
+def text_name(ns: str, marker: Any) -> str:
+    """"<body>'s label" or "<body>'s board": a text names its body before any colon."""
+    return f"{marker.text.split(':')[0]}'s {ns}"
 
 
 def label_box(scene: Any, camera: pc.Camera, marker: Any) -> Optional[Box]:
@@ -72,36 +122,41 @@ def body_discs(scene: Any, camera: pc.Camera, reaches: Dict[str, float]) -> Dict
     return discs
 
 
-def labels(scene: Any, camera: pc.Camera, reaches: Dict[str, float]) -> List[Finding]:
-    """Each label nearer its own body's outline than any other body's, whole in the view, apart from the others."""
+def labels(scene: Any, camera: pc.Camera, reaches: Dict[str, float], inset: int = 0) -> List[Finding]:
+    """Each label nearer its own body's outline than any other body's, each board touching no body, all
+    whole in the view (inset pixels inside its edges) and apart from one another."""
     findings = []
     discs = body_discs(scene, camera, reaches)
     boxes: Dict[str, Box] = {}
     for (ns, _), m in sorted(scene.markers.items()):
-        if ns != "label":
+        if ns not in TEXT_KINDS:
             continue
-        name = m.text.split(":")[0]
+        name, what = m.text.split(":")[0], text_name(ns, m)
         box = label_box(scene, camera, m)
         if box is None:
-            findings.append(flag(f"{name}'s label in front of the camera", False))
+            findings.append(flag(f"{what} in front of the camera", False))
             continue
-        boxes[name] = box
-        inside = (box[0] >= camera.left and box[2] <= camera.left + camera.width and box[1] >= camera.top and
-                  box[3] <= camera.top + camera.height)
-        findings.append(flag(f"{name}'s label whole in the view ({box_text(box)})", inside))
+        boxes[what] = box
+        inside = (box[0] >= camera.left + inset and box[2] <= camera.left + camera.width - inset and
+                  box[1] >= camera.top + inset and box[3] <= camera.top + camera.height - inset)
+        findings.append(flag(f"{what} whole in the view ({box_text(box)})", inside))
         if name not in discs:
             findings.append(flag(f"{name}'s pose received", False))
             continue
         gaps = {body: max(0.0, box_distance(box, centre) - radius) for body, (centre, radius) in discs.items()}
+        if ns == "board":
+            nearest = min(gaps, key=lambda body: gaps[body])
+            findings.append(flag(f"{what} touching no body ({nearest} {gaps[nearest]:.0f} px)", gaps[nearest] > 0))
+            continue
         nearest = min(gaps, key=lambda body: (gaps[body], body != name))
         beside = nearest == name and all(gaps[name] < gap for body, gap in gaps.items() if body != name)
-        findings.append(Open(f"{name}'s label nearest its body ({gaps[name]:.0f} px; {nearest} "
-                             f"{gaps[nearest]:.0f} px)", "-", 1, int(beside), 1))
+        findings.append(flag(f"{what} nearest its body ({gaps[name]:.0f} px; {nearest} {gaps[nearest]:.0f} px)",
+                             beside))
     named = sorted(boxes.items())
     for i, (a, box_a) in enumerate(named):
         for b, box_b in named[i + 1:]:
             apart = box_a[2] < box_b[0] or box_b[2] < box_a[0] or box_a[3] < box_b[1] or box_b[3] < box_a[1]
-            findings.append(Open(f"labels of {a} and {b} apart on screen", "-", 1, int(apart), 1))
+            findings.append(flag(f"{a} and {b} apart on screen", apart))
     return findings
 
 
@@ -179,3 +234,16 @@ def rod_floor(scene: Any, camera: pc.Camera, rod: str, unbounded: bool, grid: Di
         findings.append(flag(f"the grid (in {frame}, x {centre_x - half:.0f}..{centre_x + half:.0f}) under {rod}",
                              abs(x - centre_x) + 5.0 <= half))
     return findings
+
+
+def view_checks(scene: Any, camera: pc.Camera, specs: Sequence[Union[RodSpec, RollerSpec]],
+                grid: Dict[str, Any], inset: int = 0) -> List[Finding]:
+    """Every rule above on the published geometry: labels by their bodies, boards, all in the view (inset
+    pixels inside it) and apart; rollers large enough; slopes apart; each rod over its floor (and grid)."""
+    reaches = {spec.name: (spec.radius if isinstance(spec, RollerSpec) else 0.5 * spec.length) for spec in specs}
+    rollers = {spec.name: spec.radius for spec in specs if isinstance(spec, RollerSpec)}
+    found = labels(scene, camera, reaches, inset) + body_sizes(scene, camera, rollers) + lanes(scene, camera)
+    for spec in specs:
+        if isinstance(spec, RodSpec):
+            found += rod_floor(scene, camera, spec.name, spec.floor_length <= 0.0, grid)
+    return found

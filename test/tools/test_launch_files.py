@@ -17,8 +17,8 @@ import xml.etree.ElementTree as ElementTree
 from typing import Dict, List, Tuple
 
 Args = Dict[str, Tuple[str, str]]  # name: (default, doc)
-LESSON_VIEW = ("$(eval find('rigid_body_sim') + '/rviz/lesson_' + ('rod' if arg('part') == 'rod' else 'race') + "
-               "'.rviz')")
+LESSON_VIEW = ("$(eval find('rigid_body_sim') + '/rviz/lesson_' + {'rod': 'rod', 'above': 'above'}.get(arg('part'), "
+               "'race') + '.rviz')")
 
 
 def launch_args(path: str) -> Args:

@@ -101,15 +101,15 @@ class Frames(unittest.TestCase):
 
 
 class FinishLabels(unittest.TestCase):
-    """The node's labels of a race, as test_scene holds the form of a finished racer's."""
+    """The node's boards of a race, as test_scene holds the form of a finished racer's."""
 
     def test_a_finished_racer_gives_its_place_and_times(self) -> None:
-        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s (closed form 2.0439 s)"),
+        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s\n(closed form 2.0439 s)"),
                          ("sphere", "1st, 2.0439 s (closed form 2.0439 s)"))
         self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"), ("ring_2", "12th, 10.5000 s"))
 
     def test_any_other_label_is_no_finish(self) -> None:
-        for text in ("ring: rolling, critical angle 21.8 deg", "rod: E = 20.600 J", "ring: rolling, E = 0.000 J"):
+        for text in ("ring: rolling\ncritical angle 21.8 deg", "rod: E = 20.600 J", "ring: rolling\nE = 0.000 J"):
             self.assertEqual(finish_of_label(text), (text.split(":")[0], None))
 
 

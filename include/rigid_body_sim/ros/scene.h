@@ -50,8 +50,6 @@ struct BodyPlacement {
   Eigen::Isometry3d world_from_frame;
   double slope_length = 0.0;  // m; 0 for a rod's floor
   double floor_length = 0.0;  // m of a rod's bounded floor; 0 for an unbounded floor and for a slope
-  double label_above = 0.0;   // m between the body's top and its label: higher in each further lane
-  double front_y = 0.0;       // world y of the nearest lane side by side with a roller's (its own at least)
   std::string ground_frame;   // <body>_ground of a rod on an unbounded floor; empty for any other body
 };
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix = "");
@@ -60,9 +58,6 @@ struct Lane {
   double top_x = 0.0;    // world x of its slope's top
   double y = 0.0;        // world y
   std::size_t rank = 0;  // 0 for the nearest lane (the smallest y)
-  // y of the nearest lane that this one and the lanes between lie side by side with (one spacing apart):
-  // its own unless a nearer lane is a spacing nearer. A lane placed further back stands above them.
-  double front_y = 0.0;
 };
 std::vector<Lane> placeLanes(const std::vector<Body>& bodies);
 // Where a ground frame is for the body at its current place (the placement must have one).
@@ -127,8 +122,7 @@ class Scene {
   std::map<std::string, Trail> trails_;
   std::vector<int> removed_slots_;  // of bodies gone since the last changes()
   std::vector<int> moved_slots_;    // of bodies whose fixed frame moved: their trails go
-  double slopes_from_ = 0.0;        // world x the slopes span: the rollers' labels stay over it
-  double slopes_to_ = 0.0;
+  double board_offset_ = 0.0;       // m along x from a slope's top back to the end of its lane's board
   int next_slot_ = 0;
 };
 
