@@ -53,7 +53,9 @@ constexpr double kLabelAbove = 0.25;  // between a rod's top and its label
 constexpr double kLabelHeight = 0.22;
 constexpr double kTagGap = 0.05;    // between a roller and its name tag, on its right
 constexpr double kClearance = 0.1;  // seen by the views, between a lane's body or tag and another lane's
-constexpr double kBoardGap = 0.2;   // between a body at its slope's top and its lane's board, uphill of it
+constexpr double kBoardGap = 0.2;   // between a body at the first slope's top and the boards, uphill of it
+constexpr double kBoardLines = 2.0;
+constexpr double kLineHeight = 1.2;  // of rviz's text, over its height
 // rviz's text: a glyph's width over the text's height, with a margin (measured 0.5 to 0.56, wider where
 // the system's font is: Debian 13's), so that a label kept over the slopes' stretch stays whole in the view.
 constexpr double kGlyphWidth = 0.6;
@@ -356,6 +358,38 @@ visualization_msgs::Marker deleteAll(const std::string& frame, const ros::Time& 
   return m;
 }
 
+// Where each roller's board ends (its right end's centre; a rod's entry unused): in its lane's plane, before
+// the first slope's top, clear of every body there; at its body's height at its slope's top, or higher, so
+// that, seen from the front looking down kViewPitch, it stands a board and kClearance above the nearer
+// lane's board.
+std::vector<Eigen::Vector3d> boardEnds(const std::vector<BodyPlacement>& placements, const LaneLoad& load) {
+  std::vector<std::size_t> lanes;
+  double first_top = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < placements.size(); ++i) {
+    if (placements[i].slope_length <= 0.0) continue;
+    lanes.push_back(i);
+    first_top = std::min(first_top, placements[i].world_from_frame.translation().x());
+  }
+  std::sort(lanes.begin(), lanes.end(), [&](std::size_t a, std::size_t b) {
+    return placements[a].world_from_frame.translation().y() <
+           placements[b].world_from_frame.translation().y();
+  });
+  std::vector<Eigen::Vector3d> ends(placements.size(), Eigen::Vector3d::Zero());
+  const double board_height = kBoardLines * kLineHeight * kLabelHeight;
+  const Eigen::Vector3d* nearer = nullptr;
+  for (const std::size_t i : lanes) {
+    const Eigen::Vector3d top = placements[i].world_from_frame.translation();
+    Eigen::Vector3d end(first_top - load.radius - kBoardGap, top.y(), top.z() + load.radius);
+    if (nearer) {
+      const double above = board_height + kClearance - (end.y() - nearer->y()) * std::sin(kViewPitch);
+      end.z() = std::max(end.z(), nearer->z() + above / std::cos(kViewPitch));
+    }
+    ends[i] = end;
+    nearer = &ends[i];
+  }
+  return ends;
+}
+
 Eigen::Vector3d worldPosition(const BodyPlacement& placement, const Body& body) {
   return (placement.world_from_frame * frameFromBody(body)).translation();
 }
@@ -517,7 +551,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
   trails_ = std::move(kept);
 
   const LaneLoad load = laneLoad(bodies);
-  board_offset_ = load.radius + kBoardGap;
+  board_ends_ = boardEnds(placements_, load);
 
   visualization_msgs::MarkerArray scene;
   scene.markers.push_back(deleteAll(world_frame_, ros::Time()));
@@ -604,9 +638,7 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     array.markers.push_back(std::move(tag));
     auto board = textMarker(kNsBoard, trail.slot, labelText(body, marker_options_.critical_angles), stamp,
                             world_frame_);
-    const Eigen::Vector3d top = placements_[i].world_from_frame.translation();
-    board.pose.position =
-        toPoint(top - Eigen::Vector3d(board_offset_ + 0.5 * textWidth(board.text), 0.0, -radiusOf(body)));
+    board.pose.position = toPoint(board_ends_[i] - Eigen::Vector3d(0.5 * textWidth(board.text), 0.0, 0.0));
     array.markers.push_back(std::move(board));
   }
   return array;

@@ -24,15 +24,19 @@ PACKAGE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file
 sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
 from sim_tools import body_spec, load_config  # noqa: E402
 
-# (view, config, changes as the panel makes them: {body: {key: value}}) for each saved view with slopes, as
-# its launch opens it. The demo's is not among them: its rod flies off its floor and its bowler out of its
-# view by design (pictures_rviz_screenshot checks it at one moment).
+# (view, config, changes as the panel makes them: {body: {key: value}}) for each saved view as its launch
+# opens it, and with a change of each kind. The demo's is not among them: its rod flies off its floor and
+# its bowler out of its view by design (pictures_rviz_screenshot checks it at one moment).
 CASES: List[Tuple[str, str, Dict[str, Dict[str, float]]]] = [
     ("lesson_race.rviz", "race_below.yaml", {}),
     ("lesson_race.rviz", "race_below.yaml", {"cylinder": {"incline_angle": 0.6}}),
+    ("lesson_race.rviz", "race_below.yaml", {"sphere": {"incline_length": 3.5}, "ring": {"radius": 0.2}}),
     ("lesson_race.rviz", "race_slip.yaml", {}),
     ("lesson_above.rviz", "race_above.yaml", {}),
     ("incline.rviz", "incline.yaml", {}),
+    ("rod.rviz", "rod.yaml", {}),
+    ("lesson_rod.rviz", "rod.yaml", {}),
+    ("lesson_rod.rviz", "rod.yaml", {"rod": {"floor_mu": 0.3}}),
 ]
 SHOWN = 5  # failures printed per rule and case
 
@@ -49,14 +53,19 @@ def case_config(case: int, config: str, changes: Dict[str, Dict[str, float]], wo
     return path
 
 
-def check_run(bag: str, camera: pc.Camera, specs: List[Any], grid: Dict[str, Any]) -> Tuple[int, Dict[str, List[str]]]:
+def check_run(bag: str, view: Dict[str, Any], specs: List[Any],
+              grid: Dict[str, Any]) -> Tuple[int, Dict[str, List[str]]]:
     """(instants checked, {rule: lines of its failures}): the rules at every instant the node sent labels,
-    once everything of that instant (its transforms) is in."""
+    once everything of that instant (its transforms) is in, through the view's camera (following its Target
+    Frame, as rviz does)."""
     scene = rules.PublishedScene()
     failed: Dict[str, List[str]] = {}
     instants = 0
+    target = view.get("Target Frame", "<Fixed Frame>")
 
     def check(t: Any) -> None:
+        followed = scene.frames[target][1] if target in scene.frames else (0.0, 0.0, 0.0)
+        camera = pc.Camera.from_rviz(view, rules.RENDER_AT_1600X900, followed)
         for finding in rules.view_checks(scene, camera, specs, grid, rules.RENDER_SLACK):
             if not finding.ok:
                 rule = finding.what.split(" (")[0]
@@ -101,10 +110,10 @@ def main() -> int:
                 return 1
             with open(os.path.join(PACKAGE, "rviz", view_name)) as f:
                 manager = yaml.safe_load(f)["Visualization Manager"]
-            camera = pc.Camera.from_rviz(manager["Views"]["Current"], rules.RENDER_AT_1600X900)
             grid: Dict[str, Any] = next((d for d in manager["Displays"] if d.get("Class") == "rviz/Grid"), {})
             loaded = load_config(config)
-            instants, failed = check_run(bag, camera, [body_spec(loaded, name) for name in loaded["bodies"]], grid)
+            specs = [body_spec(loaded, name) for name in loaded["bodies"]]
+            instants, failed = check_run(bag, manager["Views"]["Current"], specs, grid)
             print(f"{view_name} on {config_name}{' with ' + str(changes) if changes else ''}: {instants} instants "
                   f"of {args.duration:g} s, {sum(map(len, failed.values()))} failures")
             for lines in failed.values():

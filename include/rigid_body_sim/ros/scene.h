@@ -120,9 +120,9 @@ class Scene {
   std::vector<BodyPlacement> placements_;
   visualization_msgs::MarkerArray scene_;
   std::map<std::string, Trail> trails_;
-  std::vector<int> removed_slots_;  // of bodies gone since the last changes()
-  std::vector<int> moved_slots_;    // of bodies whose fixed frame moved: their trails go
-  double board_offset_ = 0.0;       // m along x from a slope's top back to the end of its lane's board
+  std::vector<int> removed_slots_;           // of bodies gone since the last changes()
+  std::vector<int> moved_slots_;             // of bodies whose fixed frame moved: their trails go
+  std::vector<Eigen::Vector3d> board_ends_;  // by placement: where a roller's board ends (its right, centre)
   int next_slot_ = 0;
 };
 
