@@ -57,7 +57,7 @@ constexpr double kBoardGap = 0.2;   // between a body at the first slope's top a
 constexpr double kBoardLines = 2.0;
 constexpr double kLineHeight = 1.2;  // of rviz's text, over its height
 // rviz's text: a glyph's width over the text's height, with a margin (measured 0.5 to 0.56, wider where
-// the system's font is: Debian 13's), so that a label kept over the slopes' stretch stays whole in the view.
+// the system's font is: Debian 13's), so that the room left for a text (lanes, boards) holds it.
 constexpr double kGlyphWidth = 0.6;
 
 // Marker namespaces: fixed, so that a user can toggle them in rviz.
@@ -173,12 +173,12 @@ LaneLoad laneLoad(const std::vector<Body>& bodies) {
   return load;
 }
 
+double leastSpacing(const LaneLoad& load) { return std::max(kMinLaneSpacing, kLaneRadii * load.radius); }
+
 // Between two lanes side by side, so that the saved views (from the front, looking down kViewPitch) see
 // each body and its tag (on its right, at its height) kClearance from the other lane's, wherever each is
 // on its slope: the other body, as far along x as a tag and two bodies reach, is lower on screen by its
 // drop on the steeper slope (no more than that slope's height), and the lanes lie that much further apart.
-double leastSpacing(const LaneLoad& load) { return std::max(kMinLaneSpacing, kLaneRadii * load.radius); }
-
 double laneSpacing(const LaneLoad& load, double steeper_angle, double steeper_height) {
   const double reach = load.tag + 2.0 * load.radius + kTagGap + kClearance;
   const double least = leastSpacing(load);
