@@ -3,10 +3,11 @@
 incline.launch with their own views) on this X display, steps the simulation a few simulated seconds, takes a
 screenshot (ImageMagick's import) and checks the picture against what the node published: the floor, every
 slope, every roller and the rod must show their colours where rviz's camera puts them, each body must measure
-at least MIN_BODY_PX across (a rod MIN_ROD_PX along), each label's text MIN_LABEL_PX high and clear of the
-others, and rviz must report no error. With --change BODY.KEY=VALUE (a look: a slope's angle or length, a
-radius, a rod's length), set through the body's reconfigure server while paused before the picture, the
-picture must show the new look and nothing of a changed slope where it was.
+at least MIN_BODY_PX across (a rod MIN_ROD_PX along), each text's ink as high as its projected size says and
+clear of the others, the view's rules (view_rules.py) must hold, and rviz must report no error. With
+--change BODY.KEY=VALUE (a look: a slope's angle or length, a radius, a rod's length), set through the body's
+reconfigure server while paused before the picture, the picture must show the new look and nothing of a
+changed slope where it was.
 
 Run under Xvfb (test/pictures/rviz_screenshot.sh does). Exit 0 when every check passes, 1 otherwise.
 Writes OUT (the screenshot), OUT's stem + "_regions.png" (the regions checked, outlined) and
@@ -36,14 +37,13 @@ from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_c
                        rospy_on_python39, wait_for, world_value)
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
-# What a class must see from the back row at 1600x900: bodies this many pixels across, a rod this long,
-# label text this high (ink, from its tallest letter to its lowest).
-MIN_BODY_PX = 20
+# What a class must see from the back row at 1600x900: bodies this many pixels across, a rod this long (the
+# texts' size: view_rules.MIN_TEXT_PX).
+MIN_BODY_PX = rules.MIN_BODY_PX
 MIN_ROD_PX = 150
-# ... but in the demo's view, which holds both problems at once (the rod before four lanes far enough apart
+# ... but in the demo's view, which holds both problems at once (the rod beside four lanes far enough apart
 # for their names and boards): there the rod's own saved view, rod.launch's and the lesson's show it at 150.
 MIN_ROD_PX_BY_VIEW = {"sim.rviz": 100}
-MIN_LABEL_PX = 14
 SETTLED_S = 2.0  # the 3-D view unchanged this long: rviz has drawn everything it was sent
 MARKER_RATE = 10.0  # Hz: the node's default marker_rate, at which the labels are sent
 # The config and rviz view each launch file runs with its defaults (the wrappers take no config argument).
@@ -190,6 +190,7 @@ class Checker:
         self.view[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = True
         self.findings: List[Finding] = []
         self.outlines: List[Outline] = []
+        self.text_heights: Dict[str, float] = {}  # each text's projected height (pixels, all its lines)
 
     def hull_of(self, corners: np.ndarray) -> Optional[List[Pixel]]:
         pixels, depth = self.camera.project(corners)
@@ -233,15 +234,19 @@ class Checker:
                                                   (col + half_w, row + half_h), (col - half_w, row + half_h)])
             what = rules.text_name(ns, m)
             found[what] = pc.ink_box(white, region)
+            self.text_heights[what] = height * len(lines)
             self.outlines.append(("box", found[what]))
         return found
 
     def label_sizes(self) -> None:
-        """Each label's and board's text at least MIN_LABEL_PX high, and no two texts' ink boxes touching."""
+        """Each label's and board's ink at least rules.INK_SHARE of the height its lines are drawn at (rviz drew
+        it as large as the geometry says, which view_rules holds to rules.MIN_TEXT_PX a line), and no two
+        texts' ink boxes touching."""
         boxes = self.label_boxes()
         for name, box in boxes.items():
             height = 0 if box is None else box[2] - box[0] + 1
-            self.findings.append(Measure(f"{name}: text height", "white", 1, height, MIN_LABEL_PX))
+            needed = math.ceil(rules.INK_SHARE * self.text_heights[name])
+            self.findings.append(Measure(f"{name}: ink height", "white", 1, height, needed))
         named = [(name, box) for name, box in boxes.items() if box is not None]
         for i, (a, box_a) in enumerate(named):
             for b, box_b in named[i + 1:]:

@@ -1,9 +1,9 @@
 """What a class must see in a saved view at any moment, checked on the geometry the node published (its
 markers and transforms, projected with the view's camera), not on pixels:
-- each label (a roller's name, a rod's energy) whole in the 3-D view and beside its own body, on screen
+- each label (a roller's name, a rod's name and energy) whole in the 3-D view and beside its own body, on screen
   nearer to it than to any other body; each board (a roller's mode and figures, at its lane's lower end)
   whole in the view and touching no body; no two of these texts touching;
-- each body at least MIN_BODY_PX across;
+- each body at least MIN_BODY_PX across, each text's characters MIN_TEXT_PX high;
 - a rod over its floor (a floor marker under its centre, in the view) and, on an unbounded floor, rviz's Grid
   drawn in the rod's ground frame;
 - no slope crossing another's lane (their top faces apart on screen).
@@ -24,8 +24,14 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
 from sim_tools import RodSpec, RollerSpec  # noqa: E402
 
 MIN_BODY_PX = 20
-# rviz's text (its font over a label's height): a glyph's width and the ink's height. Measured on rviz's
-# pictures at 1600x900: 0.5 to 0.56 of the height per glyph, ink 0.8 of it; a margin on either.
+# Each text's characters at least this high (a line's height: rviz draws a text's scale.z as its character
+# height), the size of the plots' axis titles. rviz's ink is a font's share of it, measured at 1600x900:
+# 0.52 (Debian 13) to 0.6 (Debian 12) for a word with no descender ("bowler"), 0.67 to 0.74 with one; the
+# picture tests hold the ink to INK_SHARE of the height the geometry gives (0.52 less a pixel's rounding).
+MIN_TEXT_PX = 20
+INK_SHARE = 0.45
+# rviz's text: a glyph's width over the text's height. Measured on rviz's pictures at 1600x900: 0.5 to 0.56,
+# with a margin.
 GLYPH_WIDTH = 0.6
 Box = Tuple[float, float, float, float]  # left, top, right, bottom (pixels)
 
@@ -164,6 +170,17 @@ def box_text(box: Box) -> str:
     return f"{box[0]:.0f}..{box[2]:.0f} x {box[1]:.0f}..{box[3]:.0f}"
 
 
+def text_sizes(scene: Any, camera: pc.Camera) -> List[Finding]:
+    """Each label's and board's characters at least MIN_TEXT_PX high on screen (a line's projected height)."""
+    findings = []
+    for (ns, _), m in sorted(scene.markers.items()):
+        box = label_box(scene, camera, m) if ns in TEXT_KINDS else None
+        if box is not None:
+            line = int((box[3] - box[1]) / len(m.text.split("\n")))
+            findings.append(pc.Finding(f"{text_name(ns, m)}: characters {line} px high", "-", 1, line, MIN_TEXT_PX))
+    return findings
+
+
 def body_sizes(scene: Any, camera: pc.Camera, rollers: Dict[str, float]) -> List[Finding]:
     """Each roller at least MIN_BODY_PX across, by its projected radius."""
     return [pc.Finding(f"{name}: {2 * radius:.0f} px across (projected)", "-", 1, int(2 * radius), MIN_BODY_PX)
@@ -242,7 +259,8 @@ def view_checks(scene: Any, camera: pc.Camera, specs: Sequence[Union[RodSpec, Ro
     pixels inside it) and apart; rollers large enough; slopes apart; each rod over its floor (and grid)."""
     reaches = {spec.name: (spec.radius if isinstance(spec, RollerSpec) else 0.5 * spec.length) for spec in specs}
     rollers = {spec.name: spec.radius for spec in specs if isinstance(spec, RollerSpec)}
-    found = labels(scene, camera, reaches, inset) + body_sizes(scene, camera, rollers) + lanes(scene, camera)
+    found = labels(scene, camera, reaches, inset) + text_sizes(scene, camera) + body_sizes(scene, camera, rollers)
+    found += lanes(scene, camera)
     for spec in specs:
         if isinstance(spec, RodSpec):
             found += rod_floor(scene, camera, spec.name, spec.floor_length <= 0.0, grid)
