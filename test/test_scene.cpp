@@ -236,13 +236,13 @@ TEST(Scene, LabelsGiveTheCriticalAngleWhenAsked) {
   };
   std::set<std::string> labels;
   const MarkerArray sent = lesson.changes(ros::Time(1.0), world.bodies());
-  for (const Marker* m : inNamespace(sent, "label")) labels.insert(m->text.substr(0, m->text.find(" E = ")));
+  for (const Marker* m : inNamespace(sent, "label")) labels.insert(m->text.substr(0, m->text.find("\nE = ")));
   EXPECT_EQ(labels, (std::set<std::string>{"ball", "hoop", "rod:"}));
   const auto asked = byBody(lesson.changes(ros::Time(1.0), world.bodies()));
   const auto usual = byBody(plain.changes(ros::Time(1.0), world.bodies()));
   ASSERT_EQ(asked.size(), 3u);
   EXPECT_EQ(asked.at("rod"), usual.at("rod"));
-  EXPECT_EQ(usual.at("rod").rfind("rod: E = ", 0), 0u) << usual.at("rod");
+  EXPECT_EQ(usual.at("rod").rfind("rod:\nE = ", 0), 0u) << usual.at("rod");
   // ball: a sphere with mu_s 0.3, tan(phi_c) = 3.5 * 0.3; hoop: a ring, tan(phi_c) = 2 * 0.3
   EXPECT_EQ(asked.at("ball"), "ball: slipping\ncritical angle 46.4 deg");
   EXPECT_EQ(asked.at("hoop"), "hoop: rolling\ncritical angle 31.0 deg");

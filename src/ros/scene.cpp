@@ -264,7 +264,8 @@ std::string finishText(const Body& body, const RaceFinish& finish) {
   return body.name + ": " + text;
 }
 
-// A rod's label; a roller's board, in two lines (half as wide: the view holds the slopes and the boards).
+// A rod's label and a roller's board, in two lines (half as wide: the demo's view holds the lanes, their
+// boards and the rod beside them).
 std::string labelText(const Body& body, bool critical_angle) {
   if (body.finish) return finishText(body, *body.finish);
   char energy[48];
@@ -281,7 +282,7 @@ std::string labelText(const Body& body, bool critical_angle) {
                   criticalAngle(params.mu_s, params.inertia_factor) * 180 / kPi);
     return head + critical;
   }
-  return body.name + ": " + energy;
+  return body.name + ":\n" + energy;
 }
 
 visualization_msgs::Marker floorMarker(const std::string& world_frame,
@@ -622,10 +623,12 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
     }
     const Eigen::Vector3d at = worldPosition(placements_[i], body);
     if (std::holds_alternative<Rod>(body.model)) {
-      // Above the rod, in its own plane.
+      // Above the rod, in its own plane: its lower line's centre kLabelAbove over the rod's reach.
       auto label = textMarker(kNsLabel, trail.slot, labelText(body, marker_options_.critical_angles), stamp,
                               world_frame_);
-      label.pose.position = toPoint(at + Eigen::Vector3d(0.0, 0.0, reachOf(body) + kLabelAbove));
+      const double above =
+          reachOf(body) + kLabelAbove + 0.5 * (kBoardLines - 1.0) * kLineHeight * kLabelHeight;
+      label.pose.position = toPoint(at + Eigen::Vector3d(0.0, 0.0, above));
       array.markers.push_back(std::move(label));
       continue;
     }

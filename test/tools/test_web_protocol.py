@@ -109,7 +109,7 @@ class FinishLabels(unittest.TestCase):
         self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"), ("ring_2", "12th, 10.5000 s"))
 
     def test_any_other_label_is_no_finish(self) -> None:
-        for text in ("ring: rolling\ncritical angle 21.8 deg", "rod: E = 20.600 J", "ring: rolling\nE = 0.000 J"):
+        for text in ("ring: rolling\ncritical angle 21.8 deg", "rod:\nE = 20.600 J", "ring: rolling\nE = 0.000 J"):
             self.assertEqual(finish_of_label(text), (text.split(":")[0], None))
 
 
