@@ -1,7 +1,7 @@
 # Pictures, into docs/images (README and docs/physics.md):
 #   make screenshot   rviz under Xvfb: each launch's view (sim, rod, incline, lesson) checked as the ctests
 #                     pictures_rviz_*_view check them, and the panel's Plots tab at the end of pictures_rviz_panel
-#   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rod, rollers, energy),
+#   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rollers, energy),
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
 #   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them
@@ -26,7 +26,7 @@ screenshot: build
 pictures: screenshot
 	$(SIMULATE) config/demo.yaml --duration 10 --sample-rate 1000 --out-dir $(PICTURES_OUT)/demo >/dev/null
 	python3 scripts/plot_run.py config/demo.yaml $(PICTURES_OUT)/demo --out-dir $(PICTURES_OUT)/plots \
-	  --prefix demo_ --figures rod,rollers,energy
+	  --prefix demo_ --figures rollers,energy
 	$(SIMULATE) config/incline.yaml --duration 2 --sample-rate 1000 --out-dir $(PICTURES_OUT)/incline >/dev/null
 	python3 scripts/plot_run.py config/incline.yaml $(PICTURES_OUT)/incline --out-dir $(PICTURES_OUT)/plots \
 	  --prefix incline_ --figures race
@@ -34,9 +34,8 @@ pictures: screenshot
 	  --out-dir $(PICTURES_OUT)/theta0 >/dev/null
 	python3 scripts/plot_run.py config/rod.yaml $(PICTURES_OUT)/theta0 --out-dir $(PICTURES_OUT)/plots \
 	  --prefix theta0_
-	cp $(PICTURES_OUT)/plots/demo_rod.png $(PICTURES_OUT)/plots/demo_rollers.png \
-	  $(PICTURES_OUT)/plots/demo_energy.png $(PICTURES_OUT)/plots/incline_race.png \
-	  $(PICTURES_OUT)/plots/theta0_sweep_rod.png docs/images/
+	cp $(PICTURES_OUT)/plots/demo_rollers.png $(PICTURES_OUT)/plots/demo_energy.png \
+	  $(PICTURES_OUT)/plots/incline_race.png $(PICTURES_OUT)/plots/theta0_sweep_rod.png docs/images/
 	ls -l docs/images
 
 # The figures docs/physics.md and docs/sweeps.md state about runs, computed from those runs and written into
