@@ -143,12 +143,14 @@ TEST(SimNodeInteractive, DropsSetInitialConditionsLikeAReconfigure) {
       10.0))
       << "no interactive markers or server values";
   {  // the markers start at the config's initial conditions, in the bodies' fixed frames
+    const RodMotion start = rodOf(world).initial();
     std::lock_guard<std::mutex> lock(watch.mutex_);
-    EXPECT_EQ(0.0, watch.poses_["rod"].position.x);
-    EXPECT_EQ(4.0, watch.poses_["rod"].position.y);
-    EXPECT_NEAR(0.3, 2 * std::atan2(watch.poses_["rod"].orientation.z, watch.poses_["rod"].orientation.w),
-                1e-12);
-    EXPECT_EQ(2.0 * kVelocityArrowScale, watch.poses_["rod/velocity"].position.x);  // vx0 = 2
+    EXPECT_EQ(start.x, watch.poses_["rod"].position.x);
+    EXPECT_EQ(start.y, watch.poses_["rod"].position.y);
+    EXPECT_NEAR(start.theta,
+                2 * std::atan2(watch.poses_["rod"].orientation.z, watch.poses_["rod"].orientation.w), 1e-12);
+    EXPECT_EQ(start.x + start.vx * kVelocityArrowScale, watch.poses_["rod/velocity"].position.x);
+    EXPECT_EQ(start.y + start.vy * kVelocityArrowScale, watch.poses_["rod/velocity"].position.y);
   }
 
   // Paused, and the local World brought to the node's step (step(1) tells the time).

@@ -185,13 +185,19 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   EXPECT_NEAR(3.0, rods.back().y, 1e-3);
   stepAndCompare(c, world, 300, "300 steps after y0 = 3");
 
-  // --- a bounded floor: the rod (about 0.6 m along now) runs off a 1 m floor and restarts, as in the core
+  // --- a bounded floor: pushed at 2 m/s from its x0, the rod runs off a floor that ends 0.6 m further and
+  // restarts, as in the core
+  setAccepted("rod", "vx0", 2.0);
+  initial.vx = 2.0;
+  rodOf(world, "rod").setInitial(initial);
+  stepAndCompare(c, world, 1, "one step after vx0 = 2");
   world.takeEvents();
-  setAccepted("rod", "floor_length", 1.0);
+  const double floor_end = initial.x + 0.6;
+  setAccepted("rod", "floor_length", floor_end);
   RodParams bounded = rodOf(world, "rod").params();
-  bounded.floor_length = 1.0;
+  bounded.floor_length = floor_end;
   rodOf(world, "rod").setParams(bounded);
-  stepAndCompare(c, world, 1500, "after floor_length = 1");
+  stepAndCompare(c, world, 1500, "after floor_length = x0 + 0.6");
   int restarts = 0;
   for (const auto& event : world.takeEvents()) restarts += event.body == "rod";
   EXPECT_GE(restarts, 2) << "the rod did not run off its floor";

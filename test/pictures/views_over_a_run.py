@@ -25,9 +25,11 @@ sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
 from sim_tools import body_spec, load_config  # noqa: E402
 
 # (view, config, changes as the panel makes them: {body: {key: value}}) for each saved view as its launch
-# opens it, and with a change of each kind. The demo's is not among them: its rod flies off its floor and
-# its bowler out of its view by design (pictures_rviz_screenshot checks it at one moment).
+# opens it, and with a change of each kind (the demo's: pictures_rviz_look_change's).
 CASES: List[Tuple[str, str, Dict[str, Dict[str, float]]]] = [
+    ("sim.rviz", "demo.yaml", {}),
+    ("sim.rviz", "demo.yaml", {"sphere": {"incline_angle": 0.85}, "cylinder": {"incline_length": 3.5},
+                               "ring": {"radius": 0.16}, "rod": {"length": 1.5}}),
     ("lesson_race.rviz", "race_below.yaml", {}),
     ("lesson_race.rviz", "race_below.yaml", {"cylinder": {"incline_angle": 0.6}}),
     ("lesson_race.rviz", "race_below.yaml", {"sphere": {"incline_length": 3.5}, "ring": {"radius": 0.2}}),

@@ -176,7 +176,7 @@ class WebView(unittest.TestCase):
         self.assertEqual(browser.evaluate("location.search"), "", "the token stays on the address bar")
         self.assertTrue(browser.evaluate("rbs.control && !document.getElementById('controls').hidden"))
 
-        # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.80 s after its launch). Meanwhile a page
+        # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.57 s after its launch). Meanwhile a page
         # that reads nothing is open: the browser's page gets every state all the same.
         frozen = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
                                              origin=f"http://127.0.0.1:{self.web_port}",
