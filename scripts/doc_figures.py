@@ -152,6 +152,12 @@ def bowler_closed_form(r: Runs) -> List[str]:
     return [f"{u0:g}", f"{abs(du_dt):.4f}"]
 
 
+def bowler_rolls_at(r: Runs) -> str:
+    """The closed form's slip-to-roll instant of the demo's bowler, as the panel's note gives it (ms)."""
+    u0, rate = bowler_closed_form(r)
+    return f"{float(u0) / float(rate):.3f}"
+
+
 def rod_first_lap(r: Runs) -> Dict[str, np.ndarray]:
     """The demo rod's samples until it leaves its floor and restarts (the whole run: it bounces in place)."""
     d = r["demo"]["rod"]
@@ -225,6 +231,12 @@ FIGURES = [
     Figure("docs/physics.md", r"bottom, t = (\S+) s\)",
            lambda r: [f"{finish_times(r['demo']['bowler'], spec(r, 'demo', 'bowler').slope)[0]:.4f}"]),
     Figure("docs/physics.md", r"u0 / \|du/dt\| = (\S+) / (\S+) s", bowler_closed_form),
+    Figure("docs/rviz.md", r"`slip → roll at \S+ s \(closed form (\S+) s\)`", lambda r: [bowler_rolls_at(r)]),
+    Figure("docs/testing.md", r"between the closed form's instant\s+\((\S+) s\) and one state period later",
+           lambda r: [bowler_rolls_at(r)]),
+    Figure("docs/testing.md", r"\(1 \+ c\)/c − g sin φ\) = (\S+) s", lambda r: [bowler_rolls_at(r)]),
+    Figure("docs/testing.md", r"the closed form's\s+instant after the Reset \(rviz_panel.py's formula, (\S+) s\)",
+           lambda r: [bowler_rolls_at(r)]),
     Figure("docs/physics.md", r"33\.0°, tan φ = (\S+),",
            lambda r: [f"{math.tan(spec(r, 'incline', 'sphere').angle):.3f}"]),
     Figure("docs/physics.md", r"\| sphere \| 2/5 \| 3\.5 μs = (\S+) \| (\S+)° \| rolls \| g sin φ/\(1\+c\) = (\S+) \| "
