@@ -421,7 +421,7 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
         dynamic_reconfigure::Reconfigure srv;
         srv.request.config = asked;
         Answer answer;
-        answer.called = ros::service::call(service, srv);
+        answer.called = CallQueue::services().call(service, srv);
         answer.shown = srv.response.config;
         return answer;
       },

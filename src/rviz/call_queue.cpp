@@ -6,6 +6,11 @@ namespace rigid_body_sim {
 
 CallQueue::CallQueue() : worker_([this] { work(); }) {}
 
+ServiceCalls& CallQueue::services() {
+  thread_local ServiceCalls calls;  // one set per thread: the worker's, ended with it
+  return calls;
+}
+
 CallQueue::~CallQueue() {
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -335,7 +335,7 @@ void SimPanel::callEmpty(const std::string& service, const QString& done) {
       this,
       [name] {
         std_srvs::Empty srv;
-        return ros::service::call(name, srv);
+        return CallQueue::services().call(name, srv);
       },
       [this, name, done](const bool& ok) {
         if (ok) {
@@ -355,7 +355,8 @@ void SimPanel::pauseReplay(bool pause) {
       [service, pause] {
         std_srvs::SetBool srv;
         srv.request.data = pause;
-        if (!ros::service::call(service, srv)) return std::make_pair(false, "no answer from " + service);
+        if (!CallQueue::services().call(service, srv))
+          return std::make_pair(false, "no answer from " + service);
         return std::make_pair(true, std::string(pause ? "paused" : "running"));
       },
       [this, service, pause](const std::pair<bool, std::string>& answer) {
@@ -380,7 +381,7 @@ void SimPanel::step() {
         std_srvs::Empty paused;
         Step srv;
         srv.request.steps = steps;
-        if (!ros::service::call(pause, paused) || !ros::service::call(step, srv))
+        if (!CallQueue::services().call(pause, paused) || !CallQueue::services().call(step, srv))
           return "no answer from " + step;
         std::ostringstream text;
         text << (srv.response.success ? "paused after " + std::to_string(steps) + " steps, t = "
@@ -413,7 +414,8 @@ void SimPanel::callChange(const std::string& service, Service srv, const std::st
   calls_->post<std::pair<bool, std::string>>(
       this,
       [service, srv, done]() mutable {
-        if (!ros::service::call(service, srv)) return std::make_pair(false, "no answer from " + service);
+        if (!CallQueue::services().call(service, srv))
+          return std::make_pair(false, "no answer from " + service);
         return std::make_pair(bool(srv.response.success), srv.response.success ? done : srv.response.message);
       },
       [this](const std::pair<bool, std::string>& answer) {

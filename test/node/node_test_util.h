@@ -28,6 +28,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/ros/messages.h"
+#include "rigid_body_sim/ros/service_calls.h"
 
 namespace rigid_body_sim {
 namespace test {
@@ -293,15 +294,21 @@ inline std::string configPath() {
   return path;
 }
 
+// The test's service calls, over kept connections (service_calls.h says why).
+inline ServiceCalls& serviceCalls() {
+  static ServiceCalls calls;
+  return calls;
+}
+
 inline bool callEmpty(const std::string& service) {
   std_srvs::Empty srv;
-  return ros::service::call(service, srv);
+  return serviceCalls().call(service, srv);
 }
 
 inline Step callStep(std::uint32_t steps, bool* called = nullptr) {
   Step srv;
   srv.request.steps = steps;
-  const bool ok = ros::service::call("/sim/step", srv);
+  const bool ok = serviceCalls().call("/sim/step", srv);
   if (called) *called = ok;
   return srv;
 }
@@ -325,7 +332,7 @@ inline dynamic_reconfigure::Config callReconfigure(
     p.value = value;
     srv.request.config.strs.push_back(p);
   }
-  *called = ros::service::call("/sim/" + body + "/set_parameters", srv);
+  *called = serviceCalls().call("/sim/" + body + "/set_parameters", srv);
   return srv.response.config;
 }
 

@@ -222,7 +222,7 @@ TEST(SimNodeBadInputRuntime, RefusedOnceLoggedNothingChangedNodeAlive) {
     Spawn spawn;
     spawn.request.name = name;
     spawn.request.body = "{type: rod}";
-    ASSERT_TRUE(ros::service::call("/sim/spawn", spawn)) << "the node no longer answers";
+    ASSERT_TRUE(serviceCalls().call("/sim/spawn", spawn)) << "the node no longer answers";
     EXPECT_FALSE(spawn.response.success);
     EXPECT_NE(spawn.response.message.find("'" + name + "'"), std::string::npos) << spawn.response.message;
     const auto lines = errors.take();

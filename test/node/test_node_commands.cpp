@@ -84,25 +84,25 @@ std::pair<bool, std::string> call(const BadRequest& request) {
     Spawn srv;
     srv.request.name = request.name;
     srv.request.body = request.yaml;
-    EXPECT_TRUE(ros::service::call("/sim/spawn", srv));
+    EXPECT_TRUE(serviceCalls().call("/sim/spawn", srv));
     return {srv.response.success, srv.response.message};
   }
   if (request.service == "delete") {
     Delete srv;
     srv.request.name = request.name;
-    EXPECT_TRUE(ros::service::call("/sim/delete", srv));
+    EXPECT_TRUE(serviceCalls().call("/sim/delete", srv));
     return {srv.response.success, srv.response.message};
   }
   SetState srv;
   srv.request.name = request.name;
   srv.request.state = request.yaml;
-  EXPECT_TRUE(ros::service::call("/sim/set_state", srv));
+  EXPECT_TRUE(serviceCalls().call("/sim/set_state", srv));
   return {srv.response.success, srv.response.message};
 }
 
 std::string getConfig() {
   GetConfig srv;
-  EXPECT_TRUE(ros::service::call("/sim/get_config", srv));
+  EXPECT_TRUE(serviceCalls().call("/sim/get_config", srv));
   return srv.response.yaml;
 }
 
@@ -189,7 +189,7 @@ TEST(SimNodeCommands, ChangesEqualTheCoreAndBadRequestsChangeNothing) {
   Spawn spawn;
   spawn.request.name = "hoop";
   spawn.request.body = "{type: roller, shape: ring, incline_angle: 0.4, x0: 0.5}";
-  ASSERT_TRUE(ros::service::call("/sim/spawn", spawn));
+  ASSERT_TRUE(serviceCalls().call("/sim/spawn", spawn));
   ASSERT_TRUE(spawn.response.success) << spawn.response.message;
   WorldCommand spawned = commandOf(WorldCommand::Kind::Spawn, world, "hoop");
   spawned.config = parseBodyText("hoop", spawn.request.body);
@@ -198,7 +198,7 @@ TEST(SimNodeCommands, ChangesEqualTheCoreAndBadRequestsChangeNothing) {
   SetState set;
   set.request.name = "rod";
   set.request.state = "{y: 2.5, omega: -1.5}";
-  ASSERT_TRUE(ros::service::call("/sim/set_state", set));
+  ASSERT_TRUE(serviceCalls().call("/sim/set_state", set));
   ASSERT_TRUE(set.response.success) << set.response.message;
   WorldCommand moved = commandOf(WorldCommand::Kind::SetState, world, "rod");
   moved.state = {{"y", 2.5}, {"omega", -1.5}};
@@ -206,7 +206,7 @@ TEST(SimNodeCommands, ChangesEqualTheCoreAndBadRequestsChangeNothing) {
 
   Delete del;
   del.request.name = "cylinder";
-  ASSERT_TRUE(ros::service::call("/sim/delete", del));
+  ASSERT_TRUE(serviceCalls().call("/sim/delete", del));
   ASSERT_TRUE(del.response.success) << del.response.message;
   world.apply(commandOf(WorldCommand::Kind::Delete, world, "cylinder"));
 
@@ -250,7 +250,7 @@ TEST(SimNodeCommands, SpawnsAnswerTheTimeOfTheirCommand) {
     Spawn spawn;
     spawn.request.name = "ring" + std::to_string(i);
     spawn.request.body = "{type: roller, shape: ring, incline_angle: 0.4, x0: 0.5}";
-    ASSERT_TRUE(ros::service::call("/sim/spawn", spawn));
+    ASSERT_TRUE(serviceCalls().call("/sim/spawn", spawn));
     ASSERT_TRUE(spawn.response.success) << spawn.response.message;
     answers.emplace_back(spawn.request.name, spawn.response.t);
   }

@@ -71,7 +71,7 @@ TEST(NodeServices, HandEachRequestToTheNode) {
   Spawn spawn;
   spawn.request.name = "ball";
   spawn.request.body = "{type: roller, shape: ring}";
-  ASSERT_TRUE(ros::service::call("/sim/spawn", spawn));
+  ASSERT_TRUE(test::serviceCalls().call("/sim/spawn", spawn));
   EXPECT_TRUE(spawn.response.success);
   EXPECT_EQ(spawn.response.message, "ok");
   EXPECT_EQ(spawn.response.t, 1.25) << "the time the node says it applied at";
@@ -82,7 +82,7 @@ TEST(NodeServices, HandEachRequestToTheNode) {
   Spawn bad;
   bad.request.name = "cube";
   bad.request.body = "{type: cube}";
-  ASSERT_TRUE(ros::service::call("/sim/spawn", bad));
+  ASSERT_TRUE(test::serviceCalls().call("/sim/spawn", bad));
   EXPECT_FALSE(bad.response.success);
   EXPECT_EQ(bad.response.message.rfind("refused: ", 0), 0u) << bad.response.message;
   EXPECT_NE(bad.response.message.find("cube"), std::string::npos) << bad.response.message;
@@ -90,14 +90,14 @@ TEST(NodeServices, HandEachRequestToTheNode) {
   SetState set_state;
   set_state.request.name = "rod";
   set_state.request.state = "{y: 2.5}";
-  ASSERT_TRUE(ros::service::call("/sim/set_state", set_state));
+  ASSERT_TRUE(test::serviceCalls().call("/sim/set_state", set_state));
   EXPECT_TRUE(set_state.response.success) << set_state.response.message;
   ASSERT_EQ(node.applied.size(), 2u);
   EXPECT_EQ(toYaml(node.applied[1].state), toYaml(parseStateText("rod", "{y: 2.5}")));
 
   Delete remove;
   remove.request.name = "cylinder";
-  ASSERT_TRUE(ros::service::call("/sim/delete", remove));
+  ASSERT_TRUE(test::serviceCalls().call("/sim/delete", remove));
   EXPECT_TRUE(remove.response.success);
   EXPECT_TRUE(test::callEmpty("/sim/reset"));
   EXPECT_EQ(node.kinds_asked, (std::vector<std::string>{"spawn ball", "spawn cube", "set_state rod",
@@ -107,7 +107,7 @@ TEST(NodeServices, HandEachRequestToTheNode) {
   EXPECT_EQ(node.applied[3].kind, WorldCommand::Kind::Reset);
 
   GetConfig get_config;
-  ASSERT_TRUE(ros::service::call("/sim/get_config", get_config));
+  ASSERT_TRUE(test::serviceCalls().call("/sim/get_config", get_config));
   EXPECT_EQ(get_config.response.yaml, toYaml(node.world.config())) << "the world as it runs";
 
   EXPECT_TRUE(test::callEmpty("/sim/pause"));

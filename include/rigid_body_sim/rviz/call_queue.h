@@ -10,12 +10,17 @@
 
 #include <QObject>
 
+#include "rigid_body_sim/ros/service_calls.h"
+
 namespace rigid_body_sim {
 
 class CallQueue {
  public:
   CallQueue();
   ~CallQueue();  // waits for the call under way; drops the others
+
+  // The worker's service clients: for the calls `post` runs (service_calls.h says why a kept connection).
+  static ServiceCalls& services();
 
   // Runs `call` on the worker, then `done` on the GUI thread (if `receiver` still exists).
   template <class Result>

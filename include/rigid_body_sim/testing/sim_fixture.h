@@ -34,6 +34,7 @@
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/Step.h"
+#include "rigid_body_sim/ros/service_calls.h"
 
 // In rigid_body_sim itself, not in a namespace `testing`: a test's `using namespace rigid_body_sim` would
 // make gtest's `testing::` ambiguous.
@@ -117,7 +118,7 @@ class SimFixture {
     if (!ros::service::waitForService(full, static_cast<int>(deadline_ * 1000))) {
       return ::testing::AssertionFailure() << "no service " << full << " within " << deadline_ << " s";
     }
-    if (!ros::service::call(full, srv)) return ::testing::AssertionFailure() << full << " did not answer";
+    if (!calls_.call(full, srv)) return ::testing::AssertionFailure() << full << " did not answer";
     return ::testing::AssertionSuccess();
   }
 
@@ -153,6 +154,7 @@ class SimFixture {
 
   std::string name_;
   double deadline_;
+  mutable ServiceCalls calls_;  // a fixture's calls come from its test's thread
 };
 
 // Every state of one body from the subscription on, in the order they came. State: RodState or RollerState,
