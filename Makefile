@@ -35,13 +35,16 @@ demo: build
 
 # ctest runs from the build folder: `ctest --test-dir` needs CMake 3.20 (Debian 11 has 3.18, Noetic 3.16).
 # --no-tests=error (CMake 3.17): a run that finds no test (a label or registration gone) fails.
+# -j: JOBS tests at once; each starts its own master on a free port. Those that render in software (rviz,
+# Chromium: RENDERS in test/CMakeLists.txt) run one at a time.
+CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(JOBS) --no-tests=error --output-on-failure
 test: lint build $(EXTRA_TESTS)
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
-	cd $(BUILD) && env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest --no-tests=error --output-on-failure
+	cd $(BUILD) && $(CTEST)
 
 check: build
 	cmake --build $(BUILD) --target unit_tests -j$(JOBS) -- --no-print-directory
-	cd $(BUILD) && ctest -L '^unit$$' --no-tests=error --output-on-failure
+	cd $(BUILD) && ctest -j$(JOBS) -L '^unit$$' --no-tests=error --output-on-failure
 
 # Python scripts without a .py ending (scripts/slurm_sweep): their first line names python. flake8 and mypy
 # find only *.py files in the folders they are given, so these are named to them one by one.

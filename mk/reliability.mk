@@ -38,4 +38,4 @@ asan: deps
 	  -DCMAKE_CXX_FLAGS="-O1 $(SANITIZE)" -DCMAKE_EXE_LINKER_FLAGS="$(SANITIZE)" \
 	  -DCMAKE_SHARED_LINKER_FLAGS="$(SANITIZE)" >/dev/null
 	cmake --build $(ASAN_BUILD) -j$(JOBS) --target unit_tests -- --no-print-directory
-	cd $(ASAN_BUILD) && ctest -L '^unit$$' --no-tests=error --output-on-failure
+	cd $(ASAN_BUILD) && ctest -j$(JOBS) -L '^unit$$' --no-tests=error --output-on-failure

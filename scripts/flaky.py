@@ -2,7 +2,8 @@
 """make flaky: runs the suites that start a master (ctest labels node, script, pictures) RUNS times and prints,
 per test, its failures out of RUNS and its time; exits 1 if any test failed once.
 
-Every round is one ctest run as `make test` runs it (serially, a fresh ROS_HOME, the loopback by address).
+Every round is one ctest run as `make test` runs it (--jobs tests at once, rviz and Chromium alone, a fresh
+ROS_HOME, the loopback by address).
 The output of every failed test is kept in KEEP/round<i>/ (ctest's log and its JUnit file).
 With --hog N, N processes spin on the CPU for the whole run: the busy machine the tests must pass on.
 """
@@ -53,7 +54,7 @@ def read_junit(path: Path) -> List[Outcome]:
     return outcomes
 
 
-def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
+def run_round(build: Path, labels: str, jobs: int, folder: Path) -> List[Outcome]:
     """One ctest run of the labelled tests; its log, JUnit file and ROS_HOME (the nodes' logs) go to `folder`."""
     home = str(folder / "ros_home")
     # Debian's python3 first (rostest's nodes import ROS's modules), as the Makefile does.
@@ -61,7 +62,8 @@ def run_round(build: Path, labels: str, folder: Path) -> List[Outcome]:
     env.pop("ROS_HOSTNAME", None)
     junit = folder / "ctest.xml"
     with open(folder / "ctest.log", "w") as log:
-        subprocess.run(["ctest", "-L", labels, "--output-on-failure", "--output-junit", str(junit.resolve())],
+        subprocess.run(["ctest", "-j", str(jobs), "-L", labels, "--output-on-failure", "--output-junit",
+                        str(junit.resolve())],
                        cwd=build, env=env, stdout=log, stderr=subprocess.STDOUT)
     if not junit.exists():
         raise SystemExit(f"flaky: ctest wrote no {junit}; see {folder / 'ctest.log'}")
@@ -103,6 +105,8 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
     parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
     parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                        help="ctest -j: tests at once, as `make test` runs them (default: every core)")
     parser.add_argument("--hog", type=int, default=0, help="processes that keep a core busy each, all along")
     return parser.parse_args()
 
@@ -115,7 +119,7 @@ def main() -> int:
     records: Dict[str, Record] = {}
     began = time.monotonic()
     with cpu_hogs(args.hog):
-        run_rounds(args.runs, build, args.labels, keep, records)
+        run_rounds(args.runs, build, args.labels, args.jobs, keep, records)
     busy = f", {args.hog} cores kept busy" if args.hog else ""
     print(table(records, args.runs, time.monotonic() - began) + busy)
     flaky = [name for name, record in records.items() if record.failures]
@@ -124,13 +128,13 @@ def main() -> int:
     return 1 if flaky else 0
 
 
-def run_rounds(runs: int, build: Path, labels: str, keep: Path, records: Dict[str, Record]) -> None:
+def run_rounds(runs: int, build: Path, labels: str, jobs: int, keep: Path, records: Dict[str, Record]) -> None:
     """Every round, its outcomes added to `records`; a round's logs kept if a test failed in it."""
     for index in range(1, runs + 1):
         folder = keep / f"round{index}"
         folder.mkdir(parents=True)
         round_began = time.monotonic()
-        outcomes = run_round(build, labels, folder)
+        outcomes = run_round(build, labels, jobs, folder)
         for outcome in outcomes:
             record = records.setdefault(outcome.name, Record())
             record.runs += 1
