@@ -29,6 +29,7 @@
 #include "rigid_body_sim/io/config_loader.h"
 #include "rigid_body_sim/ros/messages.h"
 #include "rigid_body_sim/ros/service_calls.h"
+#include "rigid_body_sim/testing/sim_fixture.h"  // callNode, publishesHere
 
 namespace rigid_body_sim {
 namespace test {
@@ -36,7 +37,7 @@ namespace test {
 // Every state message of every body of a world, in arrival order per body.
 class StateCollector {
  public:
-  StateCollector(ros::NodeHandle& nh, const World& world, const std::string& ns = "/sim") {
+  StateCollector(ros::NodeHandle& nh, const World& world, const std::string& ns = "/sim") : node_(ns) {
     for (const auto& body : world.bodies()) {
       const std::string topic = ns + "/" + body.name + "/state";
       if (std::holds_alternative<Rod>(body.model)) {
@@ -50,12 +51,13 @@ class StateCollector {
   // The subscriptions end before the containers their callbacks fill.
   ~StateCollector() { stop(); }
 
-  // Waits until every subscription has a publisher.
+  // Waits until the node publishes every state topic to this node (publishesHere): from then on every state
+  // it sends arrives.
   bool waitConnected(double timeout) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
     while (ros::WallTime::now() < end) {
       bool all = true;
-      for (const auto& sub : subs_) all = all && sub.getNumPublishers() > 0;
+      for (const auto& sub : subs_) all = all && publishesHere(node_, sub.getTopic());
       if (all) return true;
       ros::WallDuration(0.02).sleep();
     }
@@ -176,41 +178,9 @@ class StateCollector {
   std::map<std::string, std::vector<RollerState>> rollers_;
   std::size_t count_ = 0;
   // Last, and so destroyed first: unsubscribing waits for a callback under way, which still finds the maps.
+  std::string node_;  // the node that publishes the states
   std::vector<ros::Subscriber> subs_;
 };
-
-// Calls `method` of a node's own XML-RPC API (with this node as the caller); false if that fails.
-inline bool callNode(const std::string& node, const std::string& method, XmlRpc::XmlRpcValue& result) {
-  XmlRpc::XmlRpcValue args, lookup, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, lookup, payload, false)) return false;
-  std::string host;
-  std::uint32_t port = 0;
-  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return false;
-  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
-  XmlRpc::XmlRpcValue caller;
-  caller[0] = ros::this_node::getName();
-  return client.execute(method.c_str(), caller, result) &&
-         result.getType() == XmlRpc::XmlRpcValue::TypeArray && result.size() >= 3;
-}
-
-// Whether `node` has a connection of its own that publishes `topic` to this node (its getBusInfo). From then
-// on all it publishes there reaches this node: a subscription's publisher count alone is no proof, as it
-// also counts this node's own publisher of the topic (every node publishes /rosout).
-inline bool publishesHere(const std::string& node, const std::string& topic) {
-  XmlRpc::XmlRpcValue result;
-  if (!callNode(node, "getBusInfo", result)) return false;
-  XmlRpc::XmlRpcValue& connections = result[2];  // [id, peer, direction, transport, topic, connected, ...]
-  for (int i = 0; i < connections.size(); ++i) {
-    XmlRpc::XmlRpcValue& c = connections[i];
-    if (c.size() >= 6 && static_cast<std::string>(c[1]) == ros::this_node::getName() &&
-        static_cast<std::string>(c[2]) == "o" && static_cast<std::string>(c[4]) == topic &&
-        static_cast<bool>(c[5]))
-      return true;
-  }
-  return false;
-}
 
 // Every line a node sends to /rosout, in the order it logged them: the node has one /rosout publisher and
 // this one connection to it, so a line logged after another always arrives after it.

@@ -27,8 +27,11 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <ros/callback_queue.h>
+#include <ros/master.h>
+#include <ros/network.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
+#include <xmlrpcpp/XmlRpc.h>
 
 #include "rigid_body_sim/GetConfig.h"
 #include "rigid_body_sim/RodState.h"
@@ -43,6 +46,41 @@ namespace rigid_body_sim {
 constexpr double kFixtureDeadline = 10.0;  // wall seconds of every wait unless told otherwise
 // A state's t is a step count over rate: the one meant at t may come out a rounding below it.
 constexpr double kStateTimeTolerance = 1e-9;
+
+// Calls `method` of a node's own XML-RPC API (with this node as the caller); false if that fails.
+inline bool callNode(const std::string& node, const std::string& method, XmlRpc::XmlRpcValue& result) {
+  XmlRpc::XmlRpcValue args, lookup, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  if (!ros::master::execute("lookupNode", args, lookup, payload, false)) return false;
+  std::string host;
+  std::uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return false;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue caller;
+  caller[0] = ros::this_node::getName();
+  return client.execute(method.c_str(), caller, result) &&
+         result.getType() == XmlRpc::XmlRpcValue::TypeArray && result.size() >= 3;
+}
+
+// Whether `node` has a connection of its own that publishes `topic` to this node (its getBusInfo). From then
+// on all it publishes there reaches this node. A subscription's publisher count alone is no proof: roscpp
+// counts a publisher once it has sent its request, before the publisher has taken it (what the publisher
+// sends in between is lost), and it counts this node's own publisher of the topic (every node publishes
+// /rosout).
+inline bool publishesHere(const std::string& node, const std::string& topic) {
+  XmlRpc::XmlRpcValue result;
+  if (!callNode(node, "getBusInfo", result)) return false;
+  XmlRpc::XmlRpcValue& connections = result[2];  // [id, peer, direction, transport, topic, connected, ...]
+  for (int i = 0; i < connections.size(); ++i) {
+    XmlRpc::XmlRpcValue& c = connections[i];
+    if (c.size() >= 6 && static_cast<std::string>(c[1]) == ros::this_node::getName() &&
+        static_cast<std::string>(c[2]) == "o" && static_cast<std::string>(c[4]) == topic &&
+        static_cast<bool>(c[5]))
+      return true;
+  }
+  return false;
+}
 
 // The running node `name` (sim.launch's: /sim; with ns:=left, /left/sim).
 class SimFixture {
@@ -163,7 +201,10 @@ template <class State>
 class StateLog {
  public:
   StateLog(const SimFixture& sim, const std::string& body)
-      : topic_(sim.name() + "/" + body + "/state"), deadline_(sim.deadline()), spinner_(1, &queue_) {
+      : node_(sim.name()),
+        topic_(sim.name() + "/" + body + "/state"),
+        deadline_(sim.deadline()),
+        spinner_(1, &queue_) {
     nh_.setCallbackQueue(&queue_);
     subscriber_ = nh_.subscribe<State>(topic_, 10000, [this](const typename State::ConstPtr& state) {
       const std::lock_guard<std::mutex> lock(mutex_);
@@ -179,10 +220,10 @@ class StateLog {
   StateLog(const StateLog&) = delete;
   StateLog& operator=(const StateLog&) = delete;
 
-  // Until the node's publisher has connected: every state it publishes from then on arrives.
+  // Until the node publishes the states to this node (publishesHere): every state from then on arrives.
   ::testing::AssertionResult waitConnected() {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(deadline_);
-    while (subscriber_.getNumPublishers() == 0) {
+    while (!publishesHere(node_, topic_)) {
       if (std::chrono::steady_clock::now() > end || !ros::ok()) {
         return ::testing::AssertionFailure() << "no publisher of " << topic_ << " connected within "
                                              << deadline_ << " s (is the node running?)";
@@ -224,6 +265,7 @@ class StateLog {
   }
 
  private:
+  std::string node_;
   std::string topic_;
   double deadline_;
   mutable std::mutex mutex_;
