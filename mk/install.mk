@@ -12,8 +12,8 @@ install-check: deps
 	@ws=$$(mktemp -d /tmp/rigid_body_sim_ws.XXXXXX) && trap 'rm -rf "$$ws"' EXIT && \
 	mkdir "$$ws/src" && ln -s "$(CURDIR)" "$$ws/src/rigid_body_sim" && \
 	echo "install-check: catkin_make install in $$ws (log: $$ws/build.log)" && \
-	{ (cd "$$ws" && catkin_make install -DCATKIN_ENABLE_TESTING=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	    -j$(JOBS)) >"$$ws/build.log" 2>&1 || { tail -40 "$$ws/build.log"; exit 1; }; } && \
+	{ (cd "$$ws" && catkin_make install -DCATKIN_ENABLE_TESTING=OFF $(RELEASE_FLAGS) -j$(JOBS)) \
+	    >"$$ws/build.log" 2>&1 || { tail -40 "$$ws/build.log"; exit 1; }; } && \
 	bash test/install/check_rosrun.sh "$$ws/devel" && bash test/install/check_rosrun.sh "$$ws/install" && \
 	bash test/install/check_install.sh "$$ws/install" && \
 	bash test/install/check_example.sh "$$ws/install" examples/sim_fixture_example
