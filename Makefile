@@ -23,7 +23,7 @@ RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBIN
 EXTRA_TESTS :=
 include $(sort $(wildcard mk/*.mk))
 
-.PHONY: all deps build demo test check lint clean
+.PHONY: all deps build demo test test-build check lint clean
 
 all: build
 
@@ -43,9 +43,17 @@ demo: build
 # -j: JOBS tests at once; each starts its own master on a free port. Those that render in software (rviz,
 # Chromium: RENDERS in test/CMakeLists.txt) run one at a time.
 CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(JOBS) --no-tests=error --output-on-failure
-test: lint build $(EXTRA_TESTS)
-	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
+# After the build, the suites with builds or workspaces of their own (EXTRA_TESTS) and the build of the tests
+# run two at a time, the longest (asan) first: the single-core and waiting parts of one (the fuzzer, the
+# checks of the install space, a test run) leave a core that the other takes. Each one's output comes whole
+# when it ends (--output-sync); the first to fail stops the rest from starting.
+test: lint build
+	$(MAKE) --no-print-directory -j2 --output-sync=target \
+	  $(filter asan,$(EXTRA_TESTS)) test-build $(filter-out asan,$(EXTRA_TESTS))
 	cd $(BUILD) && $(CTEST)
+
+test-build: build
+	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
 
 check: build
 	cmake --build $(BUILD) --target unit_tests -j$(JOBS) -- --no-print-directory
