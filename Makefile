@@ -46,7 +46,8 @@ CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(JO
 # After the build, the suites with builds or workspaces of their own (EXTRA_TESTS) and the build of the tests
 # run two at a time, the longest (asan) first: the single-core and waiting parts of one (the fuzzer, the
 # checks of the install space, a test run) leave a core that the other takes. Each one's output comes whole
-# when it ends (--output-sync); the first to fail stops the rest from starting.
+# when it ends (--output-sync); the first to fail stops the rest from starting. Each build keeps its own JOBS
+# jobs (gmake says so: "-jN forced in submake: resetting jobserver mode").
 test: lint build
 	$(MAKE) --no-print-directory -j2 --output-sync=target \
 	  $(filter asan,$(EXTRA_TESTS)) test-build $(filter-out asan,$(EXTRA_TESTS))
