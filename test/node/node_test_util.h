@@ -177,8 +177,8 @@ class StateCollector {
   std::map<std::string, std::vector<RodState>> rods_;
   std::map<std::string, std::vector<RollerState>> rollers_;
   std::size_t count_ = 0;
-  // Last, and so destroyed first: unsubscribing waits for a callback under way, which still finds the maps.
   std::string node_;  // the node that publishes the states
+  // Last, and so destroyed first: unsubscribing waits for a callback under way, which still finds the maps.
   std::vector<ros::Subscriber> subs_;
 };
 

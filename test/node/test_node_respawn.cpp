@@ -37,7 +37,7 @@ TEST(SimNodeRespawn, KilledNodeComesBackWithFreshTimeAndTfFollows) {
   tf2_ros::Buffer buffer;  // the default 10 s cache
   tf2_ros::TransformListener listener(buffer);
   StateCollector collector(nh, world);
-  ASSERT_TRUE(collector.waitConnected(20.0)) << "no publisher of the state topics";
+  ASSERT_TRUE(collector.waitConnected(20.0)) << "the node does not publish every state to this test";
   double first_run = 3.0;
   ros::param::get("~first_run", first_run);
   ASSERT_TRUE(collector.waitFor(

@@ -123,7 +123,7 @@ TEST(SimNodeStamps, CurrentForListenersOnWallTime) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
   Arrivals arrivals(nh, world);
-  ASSERT_TRUE(arrivals.waitConnected(30.0)) << "no publisher of the state topics";
+  ASSERT_TRUE(arrivals.waitConnected(30.0)) << "the node does not publish every state to this test";
   const auto per_second = static_cast<std::size_t>(config.publish_rate);
   ASSERT_TRUE(arrivals.waitEach(1, 30.0)) << "no state of some body";
   arrivals.take();  // from the first state on: stepping has started

@@ -225,8 +225,9 @@ class StateLog {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(deadline_);
     while (!publishesHere(node_, topic_)) {
       if (std::chrono::steady_clock::now() > end || !ros::ok()) {
-        return ::testing::AssertionFailure() << "no publisher of " << topic_ << " connected within "
-                                             << deadline_ << " s (is the node running?)";
+        return ::testing::AssertionFailure()
+               << node_ << " does not publish " << topic_ << " to this node within " << deadline_
+               << " s (is the node running?)";
       }
       std::unique_lock<std::mutex> lock(mutex_);
       arrived_.wait_for(lock, std::chrono::milliseconds(10));
