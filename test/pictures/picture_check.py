@@ -5,6 +5,7 @@ Pure functions (numpy only), so that they can be tried on any PNG: the projectio
 OrbitViewController (camera at focal + distance (cos yaw cos pitch, sin yaw cos pitch, sin pitch),
 z up, vertical field of view), and colours are told apart by hue and saturation, which rviz's
 lighting (a white light scaling each colour) leaves unchanged."""
+import weakref
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
@@ -30,8 +31,26 @@ COLOUR_CLASSES: Dict[str, Tuple[Tuple[float, float], Tuple[float, float], float]
 SHAPE_CLASS = {"sphere": "red", "cylinder": "green", "ring": "orange", "spherical_shell": "purple"}
 
 
+# The checks of one picture ask for many colours (about 40 masks in a lesson's picture): a read-only picture
+# (read_png's) has its hue, saturation and value computed once, and each colour's mask, which is read-only too.
+# [a weak reference to that picture, its hsv, its masks by colour]
+_picture: List[Any] = [None, None, {}]
+
+
+def _cache_of(image: np.ndarray) -> Optional[List[Any]]:
+    """The cache of a read-only picture (a new one replaces the last); None for a picture that may change."""
+    if image.flags.writeable:
+        return None
+    if _picture[0] is None or _picture[0]() is not image:
+        _picture[:] = [weakref.ref(image), None, {}]
+    return _picture
+
+
 def hsv(image: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Hue in degrees [0, 360), saturation and value in [0, 1] of an RGB(A) float image."""
+    cache = _cache_of(image)
+    if cache is not None and cache[1] is not None:
+        return cache[1]
     rgb = image[..., :3].astype(float)
     if rgb.max() > 1.0:
         rgb = rgb / 255.0
@@ -42,14 +61,25 @@ def hsv(image: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     hue = np.where(top == r, ((g - b) / safe) % 6, np.where(top == g, (b - r) / safe + 2, (r - g) / safe + 4))
     hue = 60.0 * hue
     saturation = np.where(top > 0, span / np.where(top > 0, top, 1.0), 0.0)
+    if cache is not None:
+        for channel in (hue, saturation, top):
+            channel.flags.writeable = False
+        cache[1] = (hue, saturation, top)
     return hue, saturation, top
 
 
 def colour_mask(image: np.ndarray, name: str) -> np.ndarray:
+    cache = _cache_of(image)
+    if cache is not None and name in cache[2]:
+        return cache[2][name]
     (h0, h1), (s0, s1), v0 = COLOUR_CLASSES[name]
     hue, sat, val = hsv(image)
     in_hue = (hue >= h0) & (hue <= h1) if h0 <= h1 else (hue >= h0) | (hue <= h1)
-    return in_hue & (sat >= s0) & (sat <= s1) & (val >= v0)
+    mask = in_hue & (sat >= s0) & (sat <= s1) & (val >= v0)
+    if cache is not None:
+        mask.flags.writeable = False
+        cache[2][name] = mask
+    return mask
 
 
 @dataclass
@@ -115,16 +145,26 @@ def polygon_mask(shape: Tuple[int, int], polygon: Optional[Sequence[Pixel]]) -> 
     the camera has none)."""
     if polygon is None:
         return np.zeros(shape, dtype=bool)
-    rows, cols = np.mgrid[0:shape[0], 0:shape[1]]
-    inside = np.ones(shape, dtype=bool)
     n = len(polygon)
     area: float = sum(polygon[i][0] * polygon[(i + 1) % n][1] - polygon[(i + 1) % n][0] * polygon[i][1]
                       for i in range(n))
+    # A convex polygon lies within its bounding box: only the box's pixels are tested. A flat polygon (area
+    # 0: every pixel passes its half-planes) or one with a vertex at infinity: every pixel.
+    box = (slice(0, shape[0]), slice(0, shape[1]))
+    corners = np.asarray(polygon, dtype=float)
+    if area != 0 and np.isfinite(corners).all():
+        (c0, r0), (c1, r1) = np.floor(corners.min(axis=0)), np.floor(corners.max(axis=0)) + 1
+        box = (slice(int(np.clip(r0, 0, shape[0])), int(np.clip(r1, 0, shape[0]))),
+               slice(int(np.clip(c0, 0, shape[1])), int(np.clip(c1, 0, shape[1]))))
+    rows, cols = np.mgrid[box]
+    inside = np.ones(rows.shape, dtype=bool)
     for i in range(n):
         (x0, y0), (x1, y1) = polygon[i], polygon[(i + 1) % n]
         cross = (x1 - x0) * (rows - y0) - (y1 - y0) * (cols - x0)
         inside &= cross * np.sign(area) >= 0
-    return inside
+    mask = np.zeros(shape, dtype=bool)
+    mask[box] = inside
+    return mask
 
 
 def convex_hull(points: Any) -> List[Pixel]:

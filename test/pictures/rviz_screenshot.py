@@ -724,6 +724,7 @@ def control(image: np.ndarray, scene: Scene, camera: pc.Camera, config: Config, 
     colour everywhere), every check of a marker fails."""
     empty = image.copy()
     empty[camera.top:camera.top + camera.height, camera.left:camera.left + camera.width] = background
+    empty.flags.writeable = False  # as a screenshot: its colour masks computed once
     passed = [f.what for f in check_picture(empty, scene, camera, config)[0] if f.ok and f.colour != "-"]
     return flag("control: an empty view fails every marker check" +
                 (f" (passed: {', '.join(passed)})" if passed else ""), not passed)
@@ -764,9 +765,12 @@ def rviz_error_lines() -> List[str]:
 
 
 def read_png(path: str) -> np.ndarray:
+    """The picture's RGB, read-only: the checks share its colour masks (picture_check.colour_mask)."""
     import matplotlib.image
     image = matplotlib.image.imread(path)
-    return (image[..., :3] * 255).round().astype(np.uint8) if image.dtype != np.uint8 else image[..., :3]
+    rgb = (image[..., :3] * 255).round().astype(np.uint8) if image.dtype != np.uint8 else image[..., :3]
+    rgb.flags.writeable = False
+    return rgb
 
 
 if __name__ == "__main__":
