@@ -7,6 +7,7 @@ z up, vertical field of view), and colours are told apart by hue and saturation,
 lighting (a white light scaling each colour) leaves unchanged."""
 import weakref
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -82,7 +83,7 @@ def colour_mask(image: np.ndarray, name: str) -> np.ndarray:
     return mask
 
 
-@dataclass
+@dataclass(frozen=True)
 class Camera:
     """rviz's Orbit view, rendered into a window of width x height pixels at (left, top) on screen."""
     focal: np.ndarray
@@ -103,21 +104,27 @@ class Camera:
         return cls(focal, float(view["Distance"]), float(view["Pitch"]), float(view["Yaw"]),
                    float(view.get("Field of View", 0.785398)), *window)
 
+    @cached_property
     def basis(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Eye, forward, right and up in the world: once per camera (a run projects every label at 600
+        instants)."""
         cp = np.cos(self.pitch)
         eye = self.focal + self.distance * np.array(
             [np.cos(self.yaw) * cp, np.sin(self.yaw) * cp, np.sin(self.pitch)])
         forward = (self.focal - eye) / np.linalg.norm(self.focal - eye)
         right = np.cross(forward, [0.0, 0.0, 1.0])
         right /= np.linalg.norm(right)
-        return eye, forward, right, np.cross(right, forward)
+        vectors = eye, forward, right, np.cross(right, forward)
+        for vector in vectors:
+            vector.flags.writeable = False  # shared by every projection
+        return vectors
 
     def pixels_per_metre_at(self, depth: Any) -> Any:
         return 0.5 * self.height / np.tan(0.5 * self.fov) / depth
 
     def project(self, points: Any) -> Tuple[np.ndarray, np.ndarray]:
         """Screen pixels (column, row) and depth of world points, shape (n, 3)."""
-        eye, forward, right, up = self.basis()
+        eye, forward, right, up = self.basis
         rel = np.atleast_2d(points) - eye
         depth = rel @ forward
         f = self.pixels_per_metre_at(1.0)
