@@ -40,17 +40,19 @@ demo: build
 
 # ctest runs from the build folder: `ctest --test-dir` needs CMake 3.20 (Debian 11 has 3.18, Noetic 3.16).
 # --no-tests=error (CMake 3.17): a run that finds no test (a label or registration gone) fails.
-# -j: JOBS tests at once; each starts its own master on a free port. Those that render in software (rviz,
-# Chromium: RENDERS in test/CMakeLists.txt) run one at a time.
-CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(JOBS) --no-tests=error --output-on-failure
-# After the build, the suites with builds or workspaces of their own (EXTRA_TESTS) and the build of the tests
-# run two at a time, the longest (asan) first: the single-core and waiting parts of one (the fuzzer, the
-# checks of the install space, a test run) leave a core that the other takes. Each one's output comes whole
-# when it ends (--output-sync); the first to fail stops the rest from starting. Each build keeps its own JOBS
-# jobs (gmake says so: "-jN forced in submake: resetting jobserver mode").
-test: lint build
+# -j: TEST_JOBS tests at once, one more than the cores: most tests wait (for a master, a node, a deadline), and
+# at JOBS tests ctest kept 64 % of 2 cores busy. Each starts its own master on a free port. Those that render
+# in software (rviz, Chromium: RENDERS in test/CMakeLists.txt) run two at a time at most.
+TEST_JOBS ?= $(shell echo $$(($(JOBS) + 1)))
+CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(TEST_JOBS) --no-tests=error --output-on-failure
+# After the build, the suites with builds or workspaces of their own (EXTRA_TESTS), the lint and the build of
+# the tests run two at a time, the longest (asan) first: the single-core and waiting parts of one (the lint,
+# the fuzzer, the checks of the install space, a test run) leave a core that the other takes. Each one's
+# output comes whole when it ends (--output-sync); the first to fail stops the rest from starting. Each build
+# keeps its own JOBS jobs (gmake says so: "-jN forced in submake: resetting jobserver mode").
+test: build
 	$(MAKE) --no-print-directory -j2 --output-sync=target \
-	  $(filter asan,$(EXTRA_TESTS)) test-build $(filter-out asan,$(EXTRA_TESTS))
+	  $(filter asan,$(EXTRA_TESTS)) lint test-build $(filter-out asan,$(EXTRA_TESTS))
 	cd $(BUILD) && $(CTEST)
 
 test-build: build

@@ -12,4 +12,4 @@ FLAKY_LABELS ?= node|script|pictures|web
 flaky: build
 	cmake --build $(BUILD) --target tests -j$(JOBS) -- --no-print-directory
 	/usr/bin/python3 scripts/flaky.py --build $(BUILD) --runs $(RUNS) --labels '$(FLAKY_LABELS)' \
-	  --keep $(BUILD)/flaky --hog $(HOG) --jobs $(JOBS)
+	  --keep $(BUILD)/flaky --hog $(HOG) --jobs $(TEST_JOBS)

@@ -2,7 +2,7 @@
 """make flaky: runs the suites that start a master (ctest labels node, script, pictures) RUNS times and prints,
 per test, its failures out of RUNS and its time; exits 1 if any test failed once.
 
-Every round is one ctest run as `make test` runs it (--jobs tests at once, rviz and Chromium alone, a fresh
+Every round is one ctest run as `make test` runs it (--jobs tests at once, two rviz or Chromium at most, a fresh
 ROS_HOME, the loopback by address).
 The output of every failed test is kept in KEEP/round<i>/ (ctest's log and its JUnit file).
 With --hog N, N processes spin on the CPU for the whole run: the busy machine the tests must pass on.
@@ -105,8 +105,8 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
     parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
     parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
-    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
-                        help="ctest -j: tests at once, as `make test` runs them (default: every core)")
+    parser.add_argument("--jobs", type=int, default=(os.cpu_count() or 1) + 1,
+                        help="ctest -j: tests at once, as `make test` runs them (default: one more than the cores)")
     parser.add_argument("--hog", type=int, default=0, help="processes that keep a core busy each, all along")
     return parser.parse_args()
 
