@@ -8,11 +8,11 @@ SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 BUILD ?= build
 # The devel space lives beside build/, not in it: rosrun runs nothing under <package>/build/ (its find skips
-# that folder). Every other build (mk/: build/asan, build/fuzz, build/bench) lives there, so that rosrun
-# finds the release programs only.
+# that folder). Every other build (mk/: build/asan, build/fuzz, build/bench) and the install space
+# (build/install) live there, so that rosrun finds the release programs of the devel space only.
 DEVEL ?= $(CURDIR)/devel
 JOBS ?= $(shell nproc)
-# The release builds (make build, install-check): optimized, with debug line tables only (-g1): a backtrace
+# The release build (make build, which install-check installs): optimized, with debug line tables only (-g1): a backtrace
 # (gdb, a crash) still names every function, file and line. Full -g (gdb's local variables) makes a file of
 # the ros layer take 1.6 times as long to compile (src/ros/reconfigure_servers.cpp: 8.8 s, 5.6 s with -g1):
 # `make build DEBUG_INFO=-g` for that.
@@ -31,7 +31,8 @@ deps:
 	bash scripts/install-deps all
 
 build: deps
-	cmake -S . -B $(BUILD) -DCATKIN_DEVEL_PREFIX=$(DEVEL) -DCATKIN_ENABLE_TESTING=ON $(RELEASE_FLAGS) >/dev/null
+	cmake -S . -B $(BUILD) -DCATKIN_DEVEL_PREFIX=$(DEVEL) -DCMAKE_INSTALL_PREFIX=$(INSTALL_SPACE) \
+	  -DCATKIN_ENABLE_TESTING=ON $(RELEASE_FLAGS) >/dev/null
 	touch $(DEVEL)/CATKIN_IGNORE  # keeps catkin_lint out of it, as catkin does for build/
 	cmake --build $(BUILD) -j$(JOBS) -- --no-print-directory
 
