@@ -8,8 +8,8 @@ SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 BUILD ?= build
 # The devel space lives beside build/, not in it: rosrun runs nothing under <package>/build/ (its find skips
-# that folder). Every other build (mk/: build/asan, build/fuzz, build/bench) and the install space
-# (build/install) live there, so that rosrun finds the release programs of the devel space only.
+# that folder). Every other build (mk/: build/asan, build/fuzz, build/bench) lives there, so that rosrun
+# finds the release programs only.
 DEVEL ?= $(CURDIR)/devel
 JOBS ?= $(shell nproc)
 # The release build (make build, which install-check installs): optimized, with debug line tables only (-g1): a backtrace
@@ -46,14 +46,17 @@ demo: build
 # in software (rviz, Chromium: RENDERS in test/CMakeLists.txt) run two at a time at most.
 TEST_JOBS ?= $(shell echo $$(($(JOBS) + 1)))
 CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(TEST_JOBS) --no-tests=error --output-on-failure
-# After the build, the suites with builds or workspaces of their own (EXTRA_TESTS), the lint and the build of
-# the tests run two at a time, the longest (asan) first: the single-core and waiting parts of one (the lint,
-# the fuzzer, the checks of the install space, a test run) leave a core that the other takes. Each one's
-# output comes whole when it ends (--output-sync); the first to fail stops the rest from starting. Each build
-# keeps its own JOBS jobs (gmake says so: "-jN forced in submake: resetting jobserver mode").
+# After the build, the suites of mk/ (EXTRA_TESTS), the lint and the build of the tests run two at a time:
+# the single-core and waiting parts of one (the lint, the fuzzer, the install space's launches and rostests,
+# a test run) leave a core that the other takes. The longest (asan) first, and beside its build the install
+# check, which mostly waits. Each one's output comes whole when it ends (--output-sync); the first to fail
+# stops the rest from starting. Each build keeps its own JOBS jobs (gmake says so: "-jN forced in submake:
+# resetting jobserver mode").
+FIRST_SUITES := $(filter asan install-check,$(EXTRA_TESTS))
 test: build
 	$(MAKE) --no-print-directory -j2 --output-sync=target \
-	  $(filter asan,$(EXTRA_TESTS)) lint test-build $(filter-out asan,$(EXTRA_TESTS))
+	  $(filter asan,$(FIRST_SUITES)) $(filter install-check,$(FIRST_SUITES)) lint test-build \
+	  $(filter-out $(FIRST_SUITES),$(EXTRA_TESTS))
 	cd $(BUILD) && $(CTEST)
 
 test-build: build
