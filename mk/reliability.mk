@@ -16,7 +16,7 @@ EXTRA_TESTS += fuzz asan
 
 .PHONY: fuzz asan
 
-$(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h)
+$(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h) | deps
 	mkdir -p $(FUZZ_BUILD) && touch $(FUZZ_BUILD)/CATKIN_IGNORE  # keeps catkin_lint out of it
 	clang++ -std=c++17 -g -O1 -fsanitize=fuzzer $(SANITIZE) -Iinclude $(FUZZ_SOURCES) -lyaml-cpp -o $@
 
