@@ -48,17 +48,16 @@ TEST_JOBS ?= $(shell echo $$(($(JOBS) + 1)))
 CTEST = env -u ROS_HOSTNAME ROS_IP=127.0.0.1 ROS_HOME=$$(mktemp -d) ctest -j$(TEST_JOBS) --no-tests=error --output-on-failure
 # After the build, the suites of mk/ (EXTRA_TESTS), the lint and the build of the tests run two at a time:
 # the single-core and waiting parts of one (the lint, the fuzzer, the install space's launches and rostests,
-# a test run) leave a core that the other takes. The longest (asan) first, and beside its build the install
-# check, which mostly waits. deps and build are done: -o keeps the sub-make from running them again (and
+# the Slurm test, a test run) leave a core that the other takes. The longest build (asan) first; beside it
+# the suites that wait or take one core, then the build of the tests: the last two running are builds,
+# which keep both cores busy. deps and build are done: -o keeps the sub-make from running them again (and
 # from starting the suites that need them last, as gmake does with a goal whose prerequisite was running).
 # Each one's output comes whole when it ends (--output-sync); the first to fail stops the rest from
 # starting. Each build keeps its own JOBS jobs (gmake says so: "-jN forced in submake: resetting jobserver
 # mode").
-FIRST_SUITES := $(filter asan install-check,$(EXTRA_TESTS))
 test: build
 	$(MAKE) --no-print-directory -j2 --output-sync=target -o deps -o build \
-	  $(filter asan,$(FIRST_SUITES)) $(filter install-check,$(FIRST_SUITES)) lint test-build \
-	  $(filter-out $(FIRST_SUITES),$(EXTRA_TESTS))
+	  $(filter asan,$(EXTRA_TESTS)) $(filter-out asan,$(EXTRA_TESTS)) lint test-build
 	cd $(BUILD) && $(CTEST)
 
 test-build: build
