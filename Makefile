@@ -12,10 +12,10 @@ BUILD ?= build
 # finds the release programs only.
 DEVEL ?= $(CURDIR)/devel
 JOBS ?= $(shell nproc)
-# The release build (make build, which install-check installs): optimized, with debug line tables only (-g1): a backtrace
-# (gdb, a crash) still names every function, file and line. Full -g (gdb's local variables) makes a file of
-# the ros layer take 1.6 times as long to compile (src/ros/reconfigure_servers.cpp: 8.8 s, 5.6 s with -g1):
-# `make build DEBUG_INFO=-g` for that.
+# The release build (make build, which install-check installs): optimized, with debug line tables only
+# (-g1): a backtrace (gdb, a crash) still names every function, file and line. Full -g (gdb's local
+# variables) makes a file of the ros layer take 1.6 times as long to compile
+# (src/ros/reconfigure_servers.cpp: 8.8 s, 5.6 s with -g1): `make build DEBUG_INFO=-g` for that.
 DEBUG_INFO ?= -g1
 RELEASE_FLAGS = -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 $(DEBUG_INFO) -DNDEBUG"
 # Suites with a build of their own (sanitizers, fuzzing) that `make test` runs before ctest's main suite;

@@ -1,8 +1,8 @@
 # The install space as a user gets it: the release build (make build) installed by `cmake --install` into
 # INSTALL_SPACE (make build's CMAKE_INSTALL_PREFIX), emptied first so that no file of an earlier install
-# stands in for a rule gone; then, with only its
-# setup.bash sourced, rosrun (test/install/check_rosrun.sh), the tools, launch files and panel
-# (check_install.sh), and another package's rostests on it (check_example.sh, examples/sim_fixture_example).
+# stands in for a rule gone; then, with only its setup.bash sourced, rosrun (test/install/check_rosrun.sh),
+# the tools, launch files and panel (check_install.sh), and another package's rostests on it
+# (check_example.sh, examples/sim_fixture_example).
 # And the package in a catkin workspace of its own with the tests off (a temporary folder outside the
 # repository, so that no crawler finds the package twice), configured as catkin_make configures it: the
 # package needs no test dependency. `make test` runs it before ctest's main suite; `make install-check` alone.
