@@ -96,6 +96,12 @@ class Camera:
     width: int
     height: int
 
+    def __post_init__(self) -> None:
+        # A read-only copy of its own: the cached basis is computed from it once.
+        focal = np.array(self.focal, dtype=float)
+        focal.flags.writeable = False
+        object.__setattr__(self, "focal", focal)
+
     @classmethod
     def from_rviz(cls, view: Dict[str, Any], window: Tuple[int, int, int, int],
                   target: Any = (0.0, 0.0, 0.0)) -> "Camera":
