@@ -105,8 +105,8 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
     parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
     parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
-    parser.add_argument("--jobs", type=int, default=(os.cpu_count() or 1) + 1,
-                        help="ctest -j: tests at once, as `make test` runs them (default: one more than the cores)")
+    parser.add_argument("--jobs", type=int, default=(os.cpu_count() or 1) + 2,
+                        help="ctest -j: tests at once, as `make test` runs them (default: two more than the cores)")
     parser.add_argument("--hog", type=int, default=0, help="processes that keep a core busy each, all along")
     return parser.parse_args()
 
