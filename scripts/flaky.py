@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""make flaky: runs the suites that start a master (ctest labels node, script, pictures) RUNS times and prints,
-per test, its failures out of RUNS and its time; exits 1 if any test failed once.
+"""make flaky: runs the suites that start a master (ctest labels node, script, pictures, web) RUNS times and
+prints, per test, its failures out of RUNS and its time; exits 1 if any test failed once.
 
 Every round is one ctest run as `make test` runs it (--jobs tests at once, two rviz or Chromium at most, a fresh
 ROS_HOME, the loopback by address).
@@ -103,7 +103,7 @@ def parse_args() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build", default="build", help="the build folder, its tests built")
     parser.add_argument("--runs", type=int, default=10, help="rounds (default 10)")
-    parser.add_argument("--labels", default="node|script|pictures", help="ctest -L: the labels to run")
+    parser.add_argument("--labels", default="node|script|pictures|web", help="ctest -L: the labels to run")
     parser.add_argument("--keep", default="build/flaky", help="where the logs of the rounds with a failure go")
     parser.add_argument("--jobs", type=int, default=(os.cpu_count() or 1) + 2,
                         help="ctest -j: tests at once, as `make test` runs them (default: two more than the cores)")
