@@ -42,7 +42,7 @@ void steps(World& world, int count) {
 // Every reported field bit for bit (a roller's mode as its text).
 void expectSameState(const Body& a, const Body& b) {
   ASSERT_EQ(a.name, b.name);
-  ASSERT_EQ(kindOf(a), kindOf(b));
+  ASSERT_EQ(typeName(a), typeName(b));
   const auto compare = [&](const auto& x, const auto& y) {
     for (std::size_t i = 0; i < x.size(); ++i) {
       EXPECT_EQ(std::memcmp(&x[i].number, &y[i].number, sizeof(double)), 0)
@@ -50,11 +50,11 @@ void expectSameState(const Body& a, const Body& b) {
       EXPECT_EQ(x[i].text, y[i].text) << a.name << " " << x[i].name;
     }
   };
-  if (kindOf(a) == BodyKind::Rod) {
-    compare(stateFields(std::get<Rod>(a.model)), stateFields(std::get<Rod>(b.model)));
-  } else {
-    compare(stateFields(std::get<Roller>(a.model)), stateFields(std::get<Roller>(b.model)));
-  }
+  std::visit(
+      [&](const auto& x) {
+        compare(stateFields(x), stateFields(std::get<std::decay_t<decltype(x)>>(b.model)));
+      },
+      a.model);
 }
 
 void expectSameWorld(const World& a, const World& b) {
@@ -196,10 +196,10 @@ TEST(Commands, SetStateRefusesAnyOtherFieldAndChangesNothing) {
 
 // A set field takes the range of its initial condition: the key whose state field it is.
 TEST(Commands, EverySettableFieldHasAnInitialCondition) {
-  for (const auto& name : settableStateFields(BodyKind::Rod)) {
+  for (const auto& name : stateFieldNames<RodType>(true)) {
     EXPECT_NE(keyOfStateField<RodConfig>(name), nullptr) << name;
   }
-  for (const auto& name : settableStateFields(BodyKind::Roller)) {
+  for (const auto& name : stateFieldNames<RollerType>(true)) {
     EXPECT_NE(keyOfStateField<RollerConfig>(name), nullptr) << name;
   }
 }
@@ -390,7 +390,7 @@ TEST(Commands, KindsHaveTheirNames) {
     EXPECT_EQ(commandKindFromString(toString(kind)), kind);
   }
   EXPECT_FALSE(commandKindFromString("teleport"));
-  EXPECT_EQ(settableStateFields(BodyKind::Rod),
+  EXPECT_EQ(stateFieldNames<RodType>(true),
             (std::vector<std::string>{"x", "y", "theta", "vx", "vy", "omega"}));
-  EXPECT_EQ(settableStateFields(BodyKind::Roller), (std::vector<std::string>{"x", "v", "theta", "omega"}));
+  EXPECT_EQ(stateFieldNames<RollerType>(true), (std::vector<std::string>{"x", "v", "theta", "omega"}));
 }

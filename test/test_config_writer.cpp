@@ -49,7 +49,7 @@ void expectSameKeys(const Config& a, const Config& b) {
 
 void expectSameBody(const BodyConfig& a, const BodyConfig& b) {
   ASSERT_EQ(a.name, b.name);
-  ASSERT_EQ(kindOf(a), kindOf(b));
+  ASSERT_EQ(typeName(a), typeName(b));
   std::visit([&](const auto& x) { expectSameKeys(x, std::get<std::decay_t<decltype(x)>>(b.config)); },
              a.config);
 }

@@ -113,19 +113,21 @@ std::string drawBody(std::mt19937_64& random, bool seeded, Config& config) {
   return text + (seeded ? ", seed: " + seed : "") + "}";
 }
 
-// A random world: `rods` rods (the first with a seed) and `rollers` rollers, every key drawn.
-WorldConfig drawWorld(std::mt19937_64& random, int rods, int rollers, std::string* text) {
+// A random world: `count` bodies of each type (the first rod with a seed), every key drawn.
+WorldConfig drawWorld(std::mt19937_64& random, int count, std::string* text) {
   *text = "rate: " + formatNumber(kRate) + "\npublish_rate: 50\ngravity: " +
           formatNumber(1.0 + 19.0 * std::uniform_real_distribution<double>(0, 1)(random)) +
           "\nrace: " + (random() % 2 ? "true" : "false") + "\nbodies:\n";
-  for (int i = 0; i < rods; ++i) {
-    RodConfig rod;
-    *text += "  rod" + std::to_string(i) + ": " + drawBody(random, i == 0, rod) + "\n";
-  }
-  for (int i = 0; i < rollers; ++i) {
-    RollerConfig roller;
-    *text += "  roller" + std::to_string(i) + ": " + drawBody(random, false, roller) + "\n";
-  }
+  BodyTypes::forEach([&](auto type) {
+    using Type = decltype(type);
+    for (int i = 0; i < count; ++i) {
+      typename Type::Config config;
+      // The first of a type with a seed key gives it instead of theta0.
+      const bool seeded = i == 0 && findKey(Type::description().keys, "seed") != nullptr;
+      *text += "  " + std::string(Type::kName) + std::to_string(i) + ": " + drawBody(random, seeded, config) +
+               "\n";
+    }
+  });
   return parseWorldConfigText(*text, "drawn");
 }
 
@@ -143,7 +145,7 @@ void expectSameWorld(const WorldConfig& a, const WorldConfig& b, const std::stri
   EXPECT_EQ(a.race, b.race) << what;
   for (std::size_t i = 0; i < a.bodies.size(); ++i) {
     ASSERT_EQ(a.bodies[i].name, b.bodies[i].name);
-    ASSERT_EQ(kindOf(a.bodies[i]), kindOf(b.bodies[i]));
+    ASSERT_EQ(typeName(a.bodies[i]), typeName(b.bodies[i]));
     std::visit(
         [&](const auto& x) {
           const auto& y = std::get<std::decay_t<decltype(x)>>(b.bodies[i].config);
@@ -193,28 +195,31 @@ class KeyRoundTrips : public FolderTest {
 
 // Every key a description lists is a number with a field and range, or a text with a reader; every state
 // field that set_state takes has the key whose range it takes.
-template <class Config>
-void expectWellDescribed(BodyKind kind) {
+template <class Type>
+void expectWellDescribed() {
+  using Config = typename Type::Config;
   for (const auto& key : bodyType<Config>().keys) {
     SCOPED_TRACE(key.name);
     EXPECT_TRUE(key.isNumber() || key.read) << "neither a number nor a text";
     EXPECT_FALSE(key.allowed().empty());
     EXPECT_NE(std::string(key.meaning), "");
   }
-  for (const auto& field : settableStateFields(kind))
+  for (const auto& field : stateFieldNames<Type>(true))
     EXPECT_NE(keyOfStateField<Config>(field), nullptr) << field;
 }
 
 TEST(BodyTypes, EveryKeyIsReadableAndEveryStateFieldHasItsKey) {
-  expectWellDescribed<RodConfig>(BodyKind::Rod);
-  expectWellDescribed<RollerConfig>(BodyKind::Roller);
+  BodyTypes::forEach([](auto type) {
+    SCOPED_TRACE(decltype(type)::kName);
+    expectWellDescribed<decltype(type)>();
+  });
 }
 
 // config text -> load -> writer (what ~get_config returns, the command log's config) -> load.
 TEST_F(KeyRoundTrips, ConfigFileWriterAndLoaderKeepEveryKey) {
   for (int world = 0; world < 200; ++world) {
     std::string text;
-    const WorldConfig loaded = drawWorld(random_, 2, 2, &text);
+    const WorldConfig loaded = drawWorld(random_, 2, &text);
     SCOPED_TRACE(text);
     expectReadAsWritten(loaded, text);
     const WorldConfig again = parseWorldConfigText(toYaml(loaded), "written");
@@ -248,7 +253,7 @@ TEST_F(KeyRoundTrips, CommandPayloadsKeepEveryKey) {
     std::string text;
     WorldCommand config;
     config.kind = WorldCommand::Kind::Config;
-    config.world = drawWorld(random_, 1, 1, &text);
+    config.world = drawWorld(random_, 1, &text);
     const WorldCommand back = commandFromText("config", 0, "", payloadYaml(config));
     expectSameWorld(config.world, back.world, "config command");
     for (const auto& body : config.world.bodies) {
@@ -275,7 +280,7 @@ TEST_F(KeyRoundTrips, CommandPayloadsKeepEveryKey) {
 TEST_F(KeyRoundTrips, RunFromTheWrittenConfigIsTheSameRun) {
   for (int draw = 0; draw < 20; ++draw) {
     std::string text;
-    const WorldConfig config = drawWorld(random_, 2, 2, &text);
+    const WorldConfig config = drawWorld(random_, 2, &text);
     World original(config);
     World restored(parseWorldConfigText(toYaml(config), "written"));
     for (int step = 0; step < 500; ++step) {
@@ -297,10 +302,10 @@ TEST_F(KeyRoundTrips, ReplayFromTheCommandLogIsTheSameRun) {
     std::string text;
     std::vector<WorldCommand> commands(1);
     commands[0].kind = WorldCommand::Kind::Config;
-    commands[0].world = drawWorld(random_, 1, 1, &text);
+    commands[0].world = drawWorld(random_, 1, &text);
     std::int64_t step = 100;
     std::string drawn;
-    for (const auto& body : drawWorld(random_, 1, 1, &drawn).bodies) {
+    for (const auto& body : drawWorld(random_, 1, &drawn).bodies) {
       WorldCommand reconfigure;
       reconfigure.kind = WorldCommand::Kind::Reconfigure;
       reconfigure.body = body.name;

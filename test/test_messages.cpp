@@ -75,21 +75,22 @@ World demoWorld() {
 }  // namespace
 
 TEST(StateMessages, FieldsAreTheCoreTableInItsOrderWithItsTypesAndUnits) {
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RodState>()), expectedFields(kRodStateFields));
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RollerState>()), expectedFields(kRollerStateFields));
+  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RodState>()), expectedFields(RodType::kStateFields));
+  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RollerState>()),
+            expectedFields(RollerType::kStateFields));
 }
 
 TEST(StateMessages, CarryTheValuesOfTheCoreFields) {
   const World world = demoWorld();
   const Rod& rod = std::get<Rod>(world.bodies()[0].model);
-  const RodState rod_msg = toRodStateMsg(world.time(), rod);
+  const RodState rod_msg = toStateMsg(world.time(), rod);
   const auto rod_fields = stateFields(rod);
   const double rod_values[] = {rod_msg.x,  rod_msg.y,     rod_msg.theta, rod_msg.vx,
                                rod_msg.vy, rod_msg.omega, rod_msg.energy};
   for (std::size_t i = 0; i < rod_fields.size(); ++i) EXPECT_EQ(rod_values[i], rod_fields[i].number) << i;
 
   const Roller& ball = std::get<Roller>(world.bodies()[1].model);
-  const RollerState ball_msg = toRollerStateMsg(world.time(), ball);
+  const RollerState ball_msg = toStateMsg(world.time(), ball);
   const auto ball_fields = stateFields(ball);
   const double ball_values[] = {ball_msg.x, ball_msg.v,        ball_msg.theta,  ball_msg.omega,
                                 0.0,        ball_msg.friction, ball_msg.normal, ball_msg.energy};

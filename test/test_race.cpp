@@ -152,7 +152,7 @@ TEST(Race, RandomLaunchesFinishAtTheClosedFormTimes) {
     while (world.time() < 30.0 && world.bodies()[0].finish == std::nullopt) {
       world.step();
       for (const auto& event : world.takeEvents()) {
-        if (event.kind == WorldEvent::Kind::StartedRolling && !rolled) rolled = event.t;
+        if (event.kind == WorldEvent::Kind::Gripped && !rolled) rolled = event.t;
       }
       if (world.bodies()[0].finish) break;
     }
@@ -243,11 +243,11 @@ TEST(Race, TheSlipLessonRollsAtTheSlipPhaseClosedForm) {
       const Body& body = world.bodies()[event.body == "sphere" ? 0 : event.body == "cylinder" ? 1 : 2];
       ASSERT_EQ(body.name, event.body);
       if (event.kind == WorldEvent::Kind::Restarted) lap_start[event.body] = event.t;
-      if (event.kind == WorldEvent::Kind::StartedRolling) {
+      if (event.kind == WorldEvent::Kind::Gripped) {
         EXPECT_NEAR(event.t - lap_start[event.body], rolls_at.at(event.body), kTimeTolerance);
         ++rolled[event.body];
       }
-      if (event.kind == WorldEvent::Kind::StartedSlipping) ADD_FAILURE() << "slips again after rolling";
+      if (event.kind == WorldEvent::Kind::LostGrip) ADD_FAILURE() << "slips again after rolling";
       if (event.kind == WorldEvent::Kind::Finished)
         EXPECT_NEAR(body.finish->time, *body.finish->closed_form, kTimeTolerance);
     }

@@ -87,9 +87,9 @@ void expectKeyTableDocumented() {
 
 }  // namespace
 
-TEST(Docs, RodKeysAreTheDescriptions) { expectKeyTableDocumented<RodConfig>(); }
-
-TEST(Docs, RollerKeysAreTheDescriptions) { expectKeyTableDocumented<RollerConfig>(); }
+TEST(Docs, EveryBodyTypesKeysAreTheDescriptions) {
+  BodyTypes::forEach([](auto type) { expectKeyTableDocumented<typename decltype(type)::Config>(); });
+}
 
 TEST(Docs, WorldNumbersAreTheCores) {
   const auto rows = tableAfter(kConfigurationDoc, "## The world");
@@ -121,10 +121,10 @@ std::string joined(const std::vector<std::string>& names, const std::string& sep
 // "  - rod: `t,x,...`": the CSV header simulate writes, t and the table's fields.
 TEST(Docs, CsvColumnsAreTheCoreFields) {
   for (const char* file : {"README.md", "docs/DESIGN.md"}) {
-    for (const auto& [kind, name] :
-         {std::pair{BodyKind::Rod, "rod"}, std::pair{BodyKind::Roller, "roller"}}) {
-      const std::string start = std::string("  - ") + name + ": `";
-      const std::string expected = start + "t," + joined(stateFieldNames(kind), ",") + "`";
+    BodyTypes::forEach([&](auto type) {
+      using Type = decltype(type);
+      const std::string start = std::string("  - ") + Type::kName + ": `";
+      const std::string expected = start + "t," + joined(stateFieldNames<Type>(), ",") + "`";
       int found = 0;
       for (const auto& line : lines(slurp(packageFile(file)))) {
         if (line.rfind(start, 0) != 0) continue;
@@ -132,13 +132,13 @@ TEST(Docs, CsvColumnsAreTheCoreFields) {
         EXPECT_EQ(line.substr(0, expected.size()), expected) << file;
       }
       EXPECT_EQ(found, 1) << file << ": " << expected;
-    }
+    });
   }
 }
 
 TEST(Docs, SetStateFieldsAreTheSettableOnes) {
-  const std::string rod = joined(settableStateFields(BodyKind::Rod), ", ");
-  const std::string roller = joined(settableStateFields(BodyKind::Roller), ", ");
+  const std::string rod = joined(stateFieldNames<RodType>(true), ", ");
+  const std::string roller = joined(stateFieldNames<RollerType>(true), ", ");
   const std::string commands = slurp(packageFile("docs/commands.md"));
   EXPECT_NE(commands.find("(rod `" + rod + "`; roller `" + roller + "`)"), std::string::npos);
   const std::string srv = slurp(packageFile("srv/SetState.srv"));
@@ -181,11 +181,11 @@ TEST(Docs, DesignsExampleConfigIsTheDefaults) {
       ASSERT_EQ(world_numbers.count(key), 1u);
       EXPECT_EQ(std::stod(value), world_numbers.at(key));
     } else if (type == "rod") {
-      const auto* numeric = findKey(rodType().keys, key);
+      const auto* numeric = findKey(bodyType<RodConfig>().keys, key);
       ASSERT_TRUE(numeric && numeric->isNumber());
       EXPECT_EQ(std::stod(value), numeric->number(rod));
     } else {
-      const auto* numeric = findKey(rollerType().keys, key);
+      const auto* numeric = findKey(bodyType<RollerConfig>().keys, key);
       ASSERT_TRUE(numeric && numeric->isNumber());
       EXPECT_EQ(std::stod(value), numeric->number(roller));
     }

@@ -56,7 +56,7 @@ TEST(World, ReportsTheSlipToRollInstantInsideTheStep) {
   }
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].body, "ball");
-  EXPECT_EQ(events[0].kind, WorldEvent::Kind::StartedRolling);
+  EXPECT_EQ(events[0].kind, WorldEvent::Kind::Gripped);
   EXPECT_NEAR(events[0].t, expected, 1e-12 * expected);
   EXPECT_TRUE(world.takeEvents().empty());
 }

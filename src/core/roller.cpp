@@ -45,7 +45,14 @@ std::optional<Shape> shapeFromString(const std::string& name) {
   return std::nullopt;
 }
 
-std::string toString(RollMode mode) { return mode == RollMode::Rolling ? "rolling" : "slipping"; }
+std::string toString(RollMode mode) {
+  switch (mode) {
+    case RollMode::Rolling: return "rolling";
+    case RollMode::Slipping: return "slipping";
+    case RollMode::Finished: break;
+  }
+  return "finished";
+}
 
 double criticalTangent(double mu_s, double inertia_factor) {
   return mu_s * (1.0 + inertia_factor) / inertia_factor;
@@ -86,14 +93,12 @@ void Roller::reset() {
   enterModeFromState();
   laps_ = 0;
   pending_started_slipping_ = false;
-  finished_ = false;
 }
 
 void Roller::restartLap() {
   state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
   enterModeFromState();
   ++laps_;
-  finished_ = false;
 }
 
 void Roller::setState(const RollerMotion& state) {
@@ -108,7 +113,6 @@ void Roller::restore(const Progress& progress) {
   slip_sign_ = progress.slip_sign;
   laps_ = progress.laps;
   pending_started_slipping_ = progress.pending_started_slipping;
-  finished_ = progress.finished;
 }
 
 void Roller::enterModeFromState() {
@@ -131,6 +135,7 @@ double Roller::normalForce() const { return params_.mass * params_.gravity * cos
 
 double Roller::frictionForce() const {
   const double c = params_.inertia_factor;
+  if (mode_ == RollMode::Finished) return 0.0;  // waiting at the line: nothing pushes it along the slope
   if (mode_ == RollMode::Rolling) {
     return -params_.mass * params_.gravity * sin_angle_ * c / (1.0 + c);
   }
@@ -183,20 +188,10 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr int kMaxPasses = 3;
 }  // namespace
 
-double exitTime(double x, double v, double a, double h, double length) {
-  const double end = x + v * h + 0.5 * a * h * h > length ? length : 0.0;
-  // a s^2 / 2 + v s - (end - x) = 0: s = 2 d / (v + sign(v) sqrt(v^2 + 2 a d)) avoids the cancellation of
-  // -v + sqrt(...) when a s is small beside v; with v = 0 the root is sqrt(2 d / a).
-  const double d = end - x;
-  const double root = std::sqrt(std::max(0.0, v * v + 2.0 * a * d));
-  const double s = v == 0.0 ? std::sqrt(std::max(0.0, 2.0 * d / a)) : 2.0 * d / (v + std::copysign(root, v));
-  return std::clamp(s, 0.0, h);
-}
-
 RollerStepEvents Roller::step(double dt) {
   RollerStepEvents events;
   events.started_slipping = std::exchange(pending_started_slipping_, false);
-  if (!(dt > 0.0) || finished_) return events;  // time only runs forward; a finished racer waits
+  if (!(dt > 0.0) || finished()) return events;  // time only runs forward; a finished racer waits
   double elapsed = 0.0;
   // Each pass either ends the step or handles one u = 0 instant. After such an instant the body rolls
   // or slips forward with du/dt > 0 (see below), so two passes suffice; the bound only guards against
@@ -217,10 +212,13 @@ RollerStepEvents Roller::step(double dt) {
     if (x_after > params_.incline_length || x_after < 0.0) {
       const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
       events.left_at = elapsed + s;
-      if (hold_at_end_) {  // a racer stops at the line: the instant it passes it
+      if (hold_at_end_) {  // a racer stops at the line, the instant it passes it, and waits there at rest
         advance(s, a, alpha);
         state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
-        finished_ = true;
+        events.arrival_speed = state_.v;
+        state_.v = 0.0;
+        state_.omega = 0.0;
+        mode_ = RollMode::Finished;
         return events;
       }
     }
@@ -253,27 +251,6 @@ RollerStepEvents Roller::step(double dt) {
 }  // namespace rigid_body_sim
 
 namespace rigid_body_sim {
-
-namespace {
-
-// The first t in [0, duration] at which x + v t + a t^2 / 2 leaves [0, length], if any: the smallest
-// non-negative root of reaching either end, each end's roots in their cancellation-free form.
-std::optional<double> firstExit(double x, double v, double a, double duration, double length) {
-  std::optional<double> first;
-  for (const double end : {length, 0.0}) {
-    const double d = end - x;  // a t^2 / 2 + v t - d = 0
-    const double discriminant = v * v + 2.0 * a * d;
-    if (discriminant < 0.0) continue;
-    const double q = -0.5 * (v + std::copysign(std::sqrt(discriminant), v == 0.0 ? 1.0 : v));
-    // Roots: q / (a / 2) and -d / q (Numerical Recipes' form of the quadratic formula).
-    for (const double t : {a != 0.0 ? q / (0.5 * a) : -1.0, q != 0.0 ? -d / q : -1.0}) {
-      if (t > 0.0 && t <= duration && (!first || t < *first)) first = t;
-    }
-  }
-  return first;
-}
-
-}  // namespace
 
 // Section 16.3.2 in continuous time, phase by phase: slipping (sigma = sign of u = v + omega R) until u
 // reaches 0, then rolling where static friction holds (else slipping forward); between the events every

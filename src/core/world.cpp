@@ -9,27 +9,29 @@ namespace rigid_body_sim {
 namespace {
 
 // Builds the model of one body; the world's gravity overrides whatever the body config carried.
-// A race's rollers stop at the end of their slopes until every one has finished.
-std::variant<Rod, Roller> makeModel(const BodyConfig& body, double gravity, bool race) {
-  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    RodParams params = rod->params;
-    params.gravity = gravity;
-    return Rod(params, rod->initial);
-  }
-  const auto& roller = std::get<RollerConfig>(body.config);
-  RollerParams params = roller.params;
-  params.gravity = gravity;
-  Roller model(params, roller.initial);
-  model.setHoldAtEnd(race);
-  return model;
+// A race's racers stop at the end of their slopes until every one has finished.
+AnyModel makeModel(const BodyConfig& body, double gravity, bool race) {
+  return std::visit(
+      [&](const auto& config) -> AnyModel {
+        using Type = TypeOfConfig<decltype(config)>;
+        auto params = config.params;
+        params.gravity = gravity;
+        typename Type::Model model(params, config.initial);
+        if constexpr (Type::kRaces) model.setHoldAtEnd(race);
+        return model;
+      },
+      body.config);
+}
+
+template <class Model>
+constexpr bool races(const Model&) {
+  return TypeOfModel<Model>::kRaces;
 }
 
 BodyConfig withGravity(BodyConfig body, double gravity) {
   std::visit([&](auto& config) { config.params.gravity = gravity; }, body.config);
   return body;
 }
-
-std::string kindName(BodyKind kind) { return kind == BodyKind::Rod ? "rod" : "roller"; }
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
@@ -43,28 +45,21 @@ template <class Model>
 auto fieldOf(const Model& model, const std::string& body, const StateValue& value) {
   const auto member = settableMember(model, value.field);
   if (member == nullptr) {
-    const BodyKind kind = std::is_same_v<Model, Rod> ? BodyKind::Rod : BodyKind::Roller;
-    throw ConfigError(
-        body, value.field, formatNumber(value.value),
-        "no such state field of a " + kindName(kind) + "; its fields: " + joined(settableStateFields(kind)));
+    using Type = TypeOfModel<Model>;
+    throw ConfigError(body, value.field, formatNumber(value.value),
+                      std::string("no such state field of a ") + Type::kName +
+                          "; its fields: " + joined(stateFieldNames<Type>(true)));
   }
   return member;
 }
 
-// A state field takes the range of its initial condition (x: x0, omega: omega0, ...); a roller's x must also
-// be on its slope. Throws ConfigError naming the body, the field and the value.
+// A state field takes the range of its initial condition (x: x0, omega: omega0, ...). Throws ConfigError
+// naming the body, the field and the value.
 template <class Config>
-void checkStateValue(const std::string& body, const StateValue& value, const Config& config) {
+void checkStateValue(const std::string& body, const StateValue& value) {
   const BodyKey<Config>* key = keyOfStateField<Config>(value.field);
   if (!key->range.contains(value.value)) {
     throw ConfigError(body, value.field, formatNumber(value.value), key->range.describe());
-  }
-  if constexpr (std::is_same_v<Config, RollerConfig>) {
-    if (value.field == "x" && value.value > config.params.incline_length) {
-      throw ConfigError(body, "x", formatNumber(value.value),
-                        "a position on the slope, in [0, incline_length = " +
-                            formatNumber(config.params.incline_length) + "]");
-    }
   }
 }
 
@@ -93,8 +88,8 @@ std::optional<WorldCommand::Kind> commandKindFromString(const std::string& name)
 
 std::string toString(WorldEvent::Kind kind) {
   switch (kind) {
-    case WorldEvent::Kind::StartedRolling: return "started rolling";
-    case WorldEvent::Kind::StartedSlipping: return "started slipping";
+    case WorldEvent::Kind::Gripped: return "gripped (started rolling, or came to rest)";
+    case WorldEvent::Kind::LostGrip: return "lost its grip (started slipping or sliding)";
     case WorldEvent::Kind::Restarted: return "restarted (the end of its slope or floor, or a race's new lap)";
     case WorldEvent::Kind::Finished: return "finished the race's lap";
   }
@@ -136,23 +131,22 @@ void World::apply(const WorldCommand& command) {
     case WorldCommand::Kind::Reconfigure: {
       const std::size_t index = existingIndex(command);
       const BodyConfig wanted = bodyOf(command);
-      if (kindOf(wanted) != kindOf(config_.bodies[index])) {
-        throw ConfigError(command.body, "type", kindName(kindOf(wanted)),
-                          "the body's own type, " + kindName(kindOf(config_.bodies[index])));
+      if (wanted.config.index() != config_.bodies[index].config.index()) {
+        throw ConfigError(command.body, "type", typeName(wanted),
+                          "the body's own type, " + typeName(config_.bodies[index]));
       }
       WorldConfig would_be = config_;
       would_be.bodies[index] = wanted;
       validateWouldBe(would_be);
       std::visit(
           [&](auto& model) {
-            using Config = std::conditional_t<std::is_same_v<std::decay_t<decltype(model)>, Rod>, RodConfig,
-                                              RollerConfig>;
-            const auto& next = std::get<Config>(wanted.config);
+            using Config = typename TypeOfModel<decltype(model)>::Config;
+            const auto& next = std::get<Config>(wanted.config);  // the same type: checked above
             model.setParams(next.params);
             if (initialChanged(next, std::get<Config>(config_.bodies[index].config))) {
               model.setInitial(next.initial);
               bodies_[index].finish.reset();
-              if (std::is_same_v<Config, RollerConfig>) restartRace();  // a racer that restarts restarts all
+              if (races(model)) restartRace();  // a racer that restarts restarts all
             }
           },
           bodies_[index].model);
@@ -166,7 +160,8 @@ void World::apply(const WorldCommand& command) {
       validateWouldBe(would_be);
       bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race), std::nullopt});
       config_.bodies.push_back(wanted);
-      if (kindOf(wanted) == BodyKind::Roller) restartRace();  // the newcomer starts with the others
+      // A racer that joins starts with the others.
+      if (std::visit([](const auto& model) { return races(model); }, bodies_.back().model)) restartRace();
       return;
     }
     case WorldCommand::Kind::Delete: {
@@ -207,11 +202,12 @@ void World::setState(std::size_t index, const std::vector<StateValue>& state) {
   const std::string& name = bodies_[index].name;
   if (state.empty()) {
     throw ConfigError(name, "(state)", "(no field)",
-                      "at least one of " + joined(settableStateFields(kindOf(bodies_[index]))));
+                      "at least one of " + joined(settableStateFields(bodies_[index])));
   }
-  const auto& config = config_.bodies[index].config;
   std::visit(
       [&](auto& model) {
+        using Type = TypeOfModel<decltype(model)>;
+        const auto& config = std::get<typename Type::Config>(config_.bodies[index].config);
         auto motion = model.state();
         for (std::size_t i = 0; i < state.size(); ++i) {
           const StateValue& value = state[i];
@@ -221,10 +217,12 @@ void World::setState(std::size_t index, const std::vector<StateValue>& state) {
               throw ConfigError(name, value.field, formatNumber(value.value), "each field once");
             }
           }
-          std::visit([&](const auto& body_config) { checkStateValue(name, value, body_config); }, config);
+          checkStateValue<typename Type::Config>(name, value);
           motion.*field = value.value;
         }
-        model.setState(motion);  // only once every value passed: a refusal changes nothing
+        Type::checkState(name, config, motion);  // where it may be: on its floor or slope
+        model.setState(motion);                  // only once every value passed: a refusal changes nothing
+        bodies_[index].finish.reset();           // a racer moved on leaves the lap's results
       },
       bodies_[index].model);
 }
@@ -233,23 +231,13 @@ double World::time() const { return static_cast<double>(steps_) / rate_; }
 
 void World::step() {
   const double t0 = time();
-  for (auto& body : bodies_) {
-    if (auto* rod = std::get_if<Rod>(&body.model)) {
-      if (rod->step(dt_)) events_.push_back({t0 + dt_, body.name, WorldEvent::Kind::Restarted});
-      continue;
-    }
-    auto& roller = std::get<Roller>(body.model);
-    const RollerStepEvents happened = roller.step(dt_);
-    if (happened.started_slipping) {
-      events_.push_back({t0, body.name, WorldEvent::Kind::StartedSlipping});
-    }
-    if (happened.stuck_at) {
-      events_.push_back({t0 + *happened.stuck_at, body.name, WorldEvent::Kind::StartedRolling});
-    }
-    if (happened.left_at && roller.finished()) finish(body, t0 + *happened.left_at);
-    if (happened.restarted) {
-      events_.push_back({t0 + dt_, body.name, WorldEvent::Kind::Restarted});
-    }
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    std::visit(
+        [&](auto& model) {
+          const auto happened = model.step(dt_);
+          report(i, t0, model, happened);
+        },
+        bodies_[i].model);
   }
   ++steps_;
   if (!config_.race || !raceOver()) return;
@@ -257,25 +245,67 @@ void World::step() {
   if (static_cast<double>(steps_ - *race_over_step_) < kRaceResultsShown * rate_) return;
   restartRace();
   for (const auto& body : bodies_) {
-    if (kindOf(body) == BodyKind::Roller) events_.push_back({time(), body.name, WorldEvent::Kind::Restarted});
+    if (std::visit([](const auto& model) { return races(model); }, body.model)) {
+      events_.push_back({time(), body.name, WorldEvent::Kind::Restarted, "started the race's next lap"});
+    }
   }
 }
 
-void World::finish(Body& body, double t) {
-  int place = 1;
-  for (const auto& other : bodies_) place += other.finish ? 1 : 0;
-  const auto& roller = std::get<Roller>(body.model);
+void World::event(double t, std::size_t index, WorldEvent::Kind kind, std::string what) {
+  if (what.empty()) what = toString(kind);
+  events_.push_back({t, bodies_[index].name, kind, std::move(what)});
+}
+
+void World::report(std::size_t index, double t0, const Rod&, bool restarted) {
+  if (restarted) event(t0 + dt_, index, WorldEvent::Kind::Restarted, "restarted (off the end of its floor)");
+}
+
+template <class Model>
+void World::report(std::size_t index, double t0, const Model& model, const InclineStepEvents& happened) {
+  using Type = TypeOfModel<Model>;
+  if (happened.started_slipping) event(t0, index, WorldEvent::Kind::LostGrip, Type::kLostGripText);
+  if (happened.stuck_at) event(t0 + *happened.stuck_at, index, WorldEvent::Kind::Gripped, Type::kGrippedText);
+  if (happened.left_at && model.finished()) finish(index, t0 + *happened.left_at, happened.arrival_speed);
+  if (happened.restarted)
+    event(t0 + dt_, index, WorldEvent::Kind::Restarted, "restarted (off an end of its slope)");
+}
+
+void World::finish(std::size_t index, double t, double speed) {
+  Body& body = bodies_[index];
   const double lap_start = static_cast<double>(lap_start_step_) / rate_;
-  body.finish = RaceFinish{place, t - lap_start, closedFormRun(roller.params(), roller.initial()).finish};
-  events_.push_back({t, body.name, WorldEvent::Kind::Finished});
+  const std::optional<double> closed_form = std::visit(
+      [&](const auto& config) -> std::optional<double> {
+        using Type = TypeOfConfig<decltype(config)>;
+        if constexpr (Type::kRaces) return Type::closedFormFinish(config);
+        return std::nullopt;
+      },
+      config_.bodies[index].config);
+  body.finish = RaceFinish{1, t - lap_start, speed, closed_form};
+  // Places from the times, not from the order of the bodies: two finishing in one step may be in either
+  // order, and a tie shares its place.
+  for (auto& racer : bodies_) {
+    if (!racer.finish) continue;
+    racer.finish->place = 1;
+    for (const auto& other : bodies_) {
+      if (other.finish && other.finish->time < racer.finish->time - kTieTime) ++racer.finish->place;
+    }
+  }
+  event(t, index, WorldEvent::Kind::Finished, "finished the race's lap");
 }
 
 bool World::raceOver() const {
   bool any = false;
   for (const auto& body : bodies_) {
-    const auto* roller = std::get_if<Roller>(&body.model);
-    if (roller && !roller->finished()) return false;
-    any = any || roller;
+    const bool waiting = std::visit(
+        [&](const auto& model) {
+          if constexpr (TypeOfModel<decltype(model)>::kRaces) {
+            any = true;
+            return model.finished();
+          }
+          return true;
+        },
+        body.model);
+    if (!waiting) return false;
   }
   return any;
 }
@@ -283,7 +313,11 @@ bool World::raceOver() const {
 void World::restartRace() {
   if (!config_.race) return;
   for (auto& body : bodies_) {
-    if (auto* roller = std::get_if<Roller>(&body.model)) roller->restartLap();
+    std::visit(
+        [](auto& model) {
+          if constexpr (TypeOfModel<decltype(model)>::kRaces) model.restartLap();
+        },
+        body.model);
     body.finish.reset();
   }
   lap_start_step_ = steps_;
@@ -323,10 +357,14 @@ double energyOf(const Body& body) {
   return std::visit([](const auto& model) { return model.energy(); }, body.model);
 }
 
-BodyKind kindOf(const Body& body) {
-  return std::holds_alternative<Rod>(body.model) ? BodyKind::Rod : BodyKind::Roller;
+std::string typeName(const Body& body) {
+  return std::visit([](const auto& model) -> std::string { return TypeOfModel<decltype(model)>::kName; },
+                    body.model);
 }
 
-std::string fixedFrameOf(const Body& body) { return fixedFrameOf(body.name, kindOf(body)); }
+std::string fixedFrameOf(const Body& body) {
+  return std::visit([&](const auto& model) { return fixedFrameOf<TypeOfModel<decltype(model)>>(body.name); },
+                    body.model);
+}
 
 }  // namespace rigid_body_sim

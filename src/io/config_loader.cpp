@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -123,11 +124,16 @@ Config parseKeys(const std::string& body, const YAML::Node& map) {
 
 BodyConfig parseBody(const std::string& name, const YAML::Node& map) {
   if (!map.IsMap()) throw ConfigError(name, "(body)", describe(map), "a map of the body's keys");
-  if (!map["type"]) throw ConfigError(name, "type", "(missing)", "rod or roller");
-  const std::string type = asString(name, "type", map["type"], "rod or roller");
-  if (type == rodType().type) return {name, parseKeys<RodConfig>(name, map)};
-  if (type == rollerType().type) return {name, parseKeys<RollerConfig>(name, map)};
-  throw ConfigError(name, "type", "'" + type + "'", "rod or roller");
+  const std::string types = oneOf(bodyTypeNames());
+  if (!map["type"]) throw ConfigError(name, "type", "(missing)", types);
+  const std::string type = asString(name, "type", map["type"], types);
+  std::optional<BodyConfig> body;
+  BodyTypes::forEach([&](auto each) {
+    using Type = decltype(each);
+    if (type == Type::kName) body = BodyConfig{name, parseKeys<typename Type::Config>(name, map)};
+  });
+  if (!body) throw ConfigError(name, "type", "'" + type + "'", types);
+  return *body;
 }
 
 std::vector<BodyConfig> parseBodies(const YAML::Node& bodies) {

@@ -36,7 +36,7 @@ std::string nonFiniteField(const Body& body) {
 
 std::string csvHeader(const Body& body) {
   std::string header = "t";
-  for (const auto& name : stateFieldNames(kindOf(body))) header += "," + name;
+  for (const auto& name : stateFieldNames(body)) header += "," + name;
   return header;
 }
 
@@ -57,14 +57,14 @@ CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies
 CsvWriter::File& CsvWriter::fileOf(const Body& body) {
   for (auto& file : files_) {
     if (file.name != body.name) continue;
-    if (file.kind != kindOf(body)) {
+    if (file.type != body.model.index()) {
       throw std::runtime_error("body '" + body.name + "' comes back as another type: its CSV has one header");
     }
     return file;
   }
   File file;
   file.name = body.name;
-  file.kind = kindOf(body);
+  file.type = body.model.index();
   file.final_path = (std::filesystem::path(out_dir_) / (body.name + ".csv")).string();
   file.temp_path = file.final_path + ".tmp";
   file.stream = std::make_unique<std::ofstream>(file.temp_path);
@@ -90,7 +90,7 @@ void CsvWriter::write(double t, const std::vector<Body>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     // The files of a run whose bodies never change are the bodies, in order: no look-up.
     const bool same =
-        i < files_.size() && files_[i].name == bodies[i].name && files_[i].kind == kindOf(bodies[i]);
+        i < files_.size() && files_[i].name == bodies[i].name && files_[i].type == bodies[i].model.index();
     File& file = same ? files_[i] : fileOf(bodies[i]);
     const std::string bad = nonFiniteField(bodies[i]);
     if (!bad.empty()) {

@@ -232,7 +232,7 @@ void SimNode::afterStep(World& world) {
                               << describeBody(held));
   }
   for (const auto& event : world.takeEvents()) {
-    ROS_DEBUG_STREAM(event.body << " " << toString(event.kind) << " at t = " << event.t << " s");
+    ROS_DEBUG_STREAM(event.body << " " << event.what << " at t = " << event.t << " s");
   }
 }
 

@@ -142,28 +142,69 @@ std::vector<InteractiveMarker> rodMarkers(const BodyConfig& body, const RodConfi
   return {place, throw_};
 }
 
-std::vector<InteractiveMarker> rollerMarkers(const BodyConfig& body, const RollerConfig& roller) {
-  const double r = roller.params.radius;
+// A body on a slope: a ghost of its shape (`ghost_type`, `ghost_size` across) to slide along the slope at
+// its initial position, its centre `half_height` above the slope, and a knob for its initial velocity.
+std::vector<InteractiveMarker> slopeMarkers(const BodyConfig& body, double x0, double v0, double half_height,
+                                            int ghost_type, double ghost_size) {
   InteractiveMarker place = baseMarker(body, body.name, body.name + ": slide along the slope");
-  place.pose.position = point(roller.initial.x0, r);
-  place.scale = static_cast<float>(std::max(0.5, 4.0 * r));
+  place.pose.position = point(x0, half_height);
+  place.scale = static_cast<float>(std::max(0.5, 4.0 * half_height));
   InteractiveMarkerControl slide = xAxisControl("slide");
   Marker ghost;
-  ghost.type = Marker::SPHERE;
-  ghost.scale.x = ghost.scale.y = ghost.scale.z = 2.4 * r;
+  ghost.type = ghost_type;
+  ghost.scale.x = ghost.scale.y = ghost.scale.z = ghost_size;
   ghost.color = colour(1.0f, 0.9f, 0.2f);
   slide.markers.push_back(ghost);
   place.controls = {slide};
 
-  const double dx = roller.initial.v0 * kVelocityArrowScale;
+  const double dx = v0 * kVelocityArrowScale;
   InteractiveMarker throw_ = baseMarker(body, body.name + kVelocitySuffix, "");
-  throw_.pose.position = point(roller.initial.x0 + dx, r);
+  throw_.pose.position = point(x0 + dx, half_height);
   throw_.scale = 0.3f;
   InteractiveMarkerControl aim = xAxisControl("aim");
   aim.markers = {knob(), velocityArrow(dx, 0.0)};
   throw_.controls = {aim};
   return {place, throw_};
 }
+
+// Each type's markers, and the keys a drop of them sets: one overload a config type.
+std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const RodConfig& rod) {
+  return rodMarkers(body, rod);
+}
+std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const RollerConfig& roller) {
+  const double r = roller.params.radius;
+  return slopeMarkers(body, roller.initial.x0, roller.initial.v0, r, Marker::SPHERE, 2.4 * r);
+}
+std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const BlockConfig& block) {
+  const double size = block.params.size;
+  return slopeMarkers(body, block.initial.x0, block.initial.v0, 0.5 * size, Marker::CUBE, 1.2 * size);
+}
+
+// A drop at (x, y) of the body's marker (or, `velocity`, of its knob): a rod's place and angle, or its
+// velocity; a body on a slope's position along it, or its velocity.
+std::map<std::string, double> droppedKeys(const RodConfig& rod, bool velocity, double x, double y,
+                                          const geometry_msgs::Pose& pose) {
+  const RodMotion& a = rod.initial;
+  if (velocity) return {{"vx0", (x - a.x) / kVelocityArrowScale}, {"vy0", (y - a.y) / kVelocityArrowScale}};
+  return {{"x0", x}, {"y0", y}, {"theta0", angleAboutZ(pose.orientation)}};
+}
+std::map<std::string, double> slopeDrop(double x0, bool velocity, double x) {
+  if (velocity) return {{"v0", (x - x0) / kVelocityArrowScale}};
+  return {{"x0", x}};
+}
+std::map<std::string, double> droppedKeys(const RollerConfig& roller, bool velocity, double x, double,
+                                          const geometry_msgs::Pose&) {
+  return slopeDrop(roller.initial.x0, velocity, x);
+}
+std::map<std::string, double> droppedKeys(const BlockConfig& block, bool velocity, double x, double,
+                                          const geometry_msgs::Pose&) {
+  return slopeDrop(block.initial.x0, velocity, x);
+}
+
+// Whether the body's marker turns (its drop reads an orientation): a rod's only.
+bool turns(const RodConfig&) { return true; }
+bool turns(const RollerConfig&) { return false; }
+bool turns(const BlockConfig&) { return false; }
 
 }  // namespace
 
@@ -175,14 +216,8 @@ std::map<std::string, double> InteractiveControls::dropped(const BodyConfig& bod
                                                            const geometry_msgs::Pose& pose) {
   const bool velocity = marker == body.name + kVelocitySuffix;
   const double x = pose.position.x, y = pose.position.y;
-  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    const RodMotion& a = rod->initial;
-    if (velocity) return {{"vx0", (x - a.x) / kVelocityArrowScale}, {"vy0", (y - a.y) / kVelocityArrowScale}};
-    return {{"x0", x}, {"y0", y}, {"theta0", angleAboutZ(pose.orientation)}};
-  }
-  const RollerInitial& a = std::get<RollerConfig>(body.config).initial;
-  if (velocity) return {{"v0", (x - a.x0) / kVelocityArrowScale}};
-  return {{"x0", x}};
+  return std::visit([&](const auto& config) { return droppedKeys(config, velocity, x, y, pose); },
+                    body.config);
 }
 
 void InteractiveControls::show(const WorldConfig& config) {
@@ -202,9 +237,7 @@ void InteractiveControls::show(const WorldConfig& config) {
 }
 
 void InteractiveControls::insert(const BodyConfig& body) {
-  auto markers = std::holds_alternative<RodConfig>(body.config)
-                     ? rodMarkers(body, std::get<RodConfig>(body.config))
-                     : rollerMarkers(body, std::get<RollerConfig>(body.config));
+  auto markers = std::visit([&](const auto& config) { return markersOf(body, config); }, body.config);
   for (auto& marker : markers) {
     marker.header.frame_id = frame_prefix_ + fixedFrameOf(body);
     server_.insert(
@@ -224,7 +257,8 @@ void InteractiveControls::onFeedback(const visualization_msgs::InteractiveMarker
     return;
   }
   const BodyConfig body = found->second;  // the handler may replace bodies_ (through show)
-  const bool reads_orientation = std::holds_alternative<RodConfig>(body.config) && marker == body.name;
+  const bool reads_orientation =
+      std::visit([](const auto& config) { return turns(config); }, body.config) && marker == body.name;
   const std::string fault = poseFault(reads_orientation, feedback->pose);
   if (!fault.empty()) ROS_WARN_STREAM("drop of marker '" << marker << "' refused: " << fault);
   std::string why;

@@ -4,7 +4,7 @@ namespace rigid_body_sim {
 
 ros::Time simStamp(double t) { return ros::Time(0, 1) + ros::Duration(t); }
 
-RodState toRodStateMsg(double t, const Rod& rod) {
+RodState toStateMsg(double t, const Rod& rod) {
   RodState msg;
   msg.t = t;
   msg.x = rod.state().x;
@@ -17,7 +17,7 @@ RodState toRodStateMsg(double t, const Rod& rod) {
   return msg;
 }
 
-RollerState toRollerStateMsg(double t, const Roller& roller) {
+RollerState toStateMsg(double t, const Roller& roller) {
   RollerState msg;
   msg.t = t;
   msg.x = roller.state().x;
@@ -31,9 +31,20 @@ RollerState toRollerStateMsg(double t, const Roller& roller) {
   return msg;
 }
 
+BlockState toStateMsg(double t, const Block& block) {
+  BlockState msg;
+  msg.t = t;
+  msg.x = block.state().x;
+  msg.v = block.state().v;
+  msg.mode = toString(block.mode());
+  msg.friction = block.frictionForce();
+  msg.normal = block.normalForce();
+  msg.energy = block.energy();
+  return msg;
+}
+
 StateMsg toStateMsg(double t, const Body& body) {
-  if (const auto* rod = std::get_if<Rod>(&body.model)) return toRodStateMsg(t, *rod);
-  return toRollerStateMsg(t, std::get<Roller>(body.model));
+  return std::visit([t](const auto& model) -> StateMsg { return toStateMsg(t, model); }, body.model);
 }
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& point) {

@@ -72,9 +72,12 @@ NodePublisher::NodePublisher(ros::NodeHandle node, ros::NodeHandle private_node,
 
 void NodePublisher::advertiseState(const Body& body) {
   const std::string topic = node_interface::stateTopic(body.name);
-  states_.push_back(kindOf(body) == BodyKind::Rod
-                        ? advertiseCounted<RodState>(private_node_, topic, kStateQueue)
-                        : advertiseCounted<RollerState>(private_node_, topic, kStateQueue));
+  states_.push_back(std::visit(
+      [&](const auto& model) {
+        using Msg = typename RosBodyType<TypeOfModel<decltype(model)>>::StateMsg;
+        return advertiseCounted<Msg>(private_node_, topic, kStateQueue);
+      },
+      body.model));
   state_bodies_.push_back(body.name);
 }
 

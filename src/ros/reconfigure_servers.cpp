@@ -86,19 +86,17 @@ void ReconfigureServers::startNext() {
 // the first callback then finds nothing to change.
 void ReconfigureServers::start(const BodyConfig& body) {
   const ros::NodeHandle body_node(private_node_, body.name);
-  BodyServer& server = servers_[body.name];
   const std::string name = body.name;
-  if (const auto* rod = std::get_if<RodConfig>(&body.config)) {
-    server.rod = std::make_unique<RodServer>(mutex_, body_node);
-    server.rod->updateConfig(toReconfigure(*rod));
-    server.rod->setCallback(
-        [this, name](RodReconfigureConfig& request, uint32_t) { onRequest<RodConfig>(name, request); });
-  } else {
-    server.roller = std::make_unique<RollerServer>(mutex_, body_node);
-    server.roller->updateConfig(toReconfigure(std::get<RollerConfig>(body.config)));
-    server.roller->setCallback(
-        [this, name](RollerReconfigureConfig& request, uint32_t) { onRequest<RollerConfig>(name, request); });
-  }
+  std::visit(
+      [&](const auto& config) {
+        using Config = std::decay_t<decltype(config)>;
+        using Request = typename RosBodyType<TypeOfConfig<Config>>::Reconfigure;
+        auto server = std::make_unique<dynamic_reconfigure::Server<Request>>(mutex_, body_node);
+        server->updateConfig(toReconfigure(config));
+        server->setCallback([this, name](Request& request, uint32_t) { onRequest<Config>(name, request); });
+        servers_[name] = std::move(server);
+      },
+      body.config);
 }
 
 // The request is rewritten to what runs, so that the server shows the truth.
@@ -115,10 +113,13 @@ void ReconfigureServers::follow(const WorldCommand& command) {
   if (command.kind == WorldCommand::Kind::Delete) servers_.erase(command.body);
   const auto server = servers_.find(command.body);  // none yet: it will start with the values that run then
   if (command.kind != WorldCommand::Kind::Reconfigure || server == servers_.end()) return;
-  if (server->second.rod)
-    server->second.rod->updateConfig(toReconfigure(std::get<RodConfig>(command.config.config)));
-  if (server->second.roller)
-    server->second.roller->updateConfig(toReconfigure(std::get<RollerConfig>(command.config.config)));
+  std::visit(
+      [&](const auto& config) {  // a reconfigure keeps the body's type (World::apply refuses another)
+        if (auto* running = std::get_if<ServerOf<TypeOfConfig<decltype(config)>>>(&server->second)) {
+          (*running)->updateConfig(toReconfigure(config));
+        }
+      },
+      command.config.config);
 }
 
 }  // namespace rigid_body_sim

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/ros/messages.h"
 
 namespace rigid_body_sim {
@@ -95,9 +97,12 @@ const std_msgs::ColorRGBA kSlopeColour = rgba(0.55f, 0.4f, 0.25f);
 const std_msgs::ColorRGBA kSpokeColour = rgba(0.1f, 0.1f, 0.1f);
 const std_msgs::ColorRGBA kLabelColour = rgba(1, 1, 1);
 
-std_msgs::ColorRGBA bodyColour(const Body& body) {
-  if (std::holds_alternative<Rod>(body.model)) return rgba(0.1f, 0.3f, 0.9f);
-  switch (std::get<Roller>(body.model).params().shape) {
+// Each body type's look, one overload a model type (a type without its own does not compile): its colour,
+// its slope if it is on one, how far it reaches from its centre, its pose in its fixed frame, its shape.
+std_msgs::ColorRGBA colourOf(const Rod&) { return rgba(0.1f, 0.3f, 0.9f); }
+std_msgs::ColorRGBA colourOf(const Block&) { return rgba(0.0f, 0.65f, 0.7f); }
+std_msgs::ColorRGBA colourOf(const Roller& roller) {
+  switch (roller.params().shape) {
     case Shape::Sphere: return rgba(0.9f, 0.1f, 0.1f);
     case Shape::Cylinder: return rgba(0.1f, 0.8f, 0.1f);
     case Shape::Ring: return rgba(1.0f, 0.6f, 0.0f);
@@ -107,15 +112,69 @@ std_msgs::ColorRGBA bodyColour(const Body& body) {
   return rgba(1, 1, 1);
 }
 
-double radiusOf(const Body& body) {
-  if (const auto* roller = std::get_if<Roller>(&body.model)) return roller->params().radius;
-  return kRodThickness;
+struct Incline {
+  double angle;
+  double length;
+};
+std::optional<Incline> inclineOf(const Rod&) { return std::nullopt; }
+std::optional<Incline> inclineOf(const Roller& roller) {
+  return Incline{roller.params().incline_angle, roller.params().incline_length};
+}
+std::optional<Incline> inclineOf(const Block& block) {
+  return Incline{block.params().incline_angle, block.params().incline_length};
 }
 
-// How far above its centre a body reaches whatever its angle: its label floats above that.
+// Its half width across the lane (a rod's thickness) and how far above its centre it reaches whatever its
+// angle (its label floats above that).
+double radiusOf(const Rod&) { return kRodThickness; }
+double radiusOf(const Roller& roller) { return roller.params().radius; }
+double radiusOf(const Block& block) { return 0.5 * block.params().size; }
+double reachOf(const Rod& rod) { return 0.5 * rod.params().length; }
+double reachOf(const Roller& roller) { return radiusOf(roller); }
+double reachOf(const Block& block) { return radiusOf(block); }
+
+// Its centre and rotation in its fixed frame (a body on a slope rests on it).
+Eigen::Isometry3d poseOf(const Rod& rod) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(rod.state().x, rod.state().y, 0.0));
+  pose.rotate(Eigen::AngleAxisd(rod.state().theta, Eigen::Vector3d::UnitZ()));
+  return pose;
+}
+Eigen::Isometry3d poseOf(const Roller& roller) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(roller.state().x, roller.params().radius, 0.0));
+  pose.rotate(Eigen::AngleAxisd(roller.state().theta, Eigen::Vector3d::UnitZ()));
+  return pose;
+}
+Eigen::Isometry3d poseOf(const Block& block) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translate(Eigen::Vector3d(block.state().x, 0.5 * block.params().size, 0.0));
+  return pose;
+}
+
+// A dark bar through the centre that turns with the body, so that rolling and slipping can be told apart
+// at a glance: a roller's only.
+bool hasSpoke(const Rod&) { return false; }
+// tan of the steepest slope its static friction holds (rolling, or at rest), for its board.
+std::optional<double> criticalTangentOf(const Rod&) { return std::nullopt; }
+std::optional<double> criticalTangentOf(const Roller& roller) {
+  return criticalTangent(roller.params().mu_s, roller.params().inertia_factor);
+}
+std::optional<double> criticalTangentOf(const Block& block) { return block.params().mu_s; }
+bool hasSpoke(const Roller&) { return true; }
+bool hasSpoke(const Block&) { return false; }
+
+std_msgs::ColorRGBA bodyColour(const Body& body) {
+  return std::visit([](const auto& model) { return colourOf(model); }, body.model);
+}
+std::optional<Incline> inclineOf(const Body& body) {
+  return std::visit([](const auto& model) { return inclineOf(model); }, body.model);
+}
+double radiusOf(const Body& body) {
+  return std::visit([](const auto& model) { return radiusOf(model); }, body.model);
+}
 double reachOf(const Body& body) {
-  if (const auto* rod = std::get_if<Rod>(&body.model)) return 0.5 * rod->params().length;
-  return radiusOf(body);
+  return std::visit([](const auto& model) { return reachOf(model); }, body.model);
 }
 
 visualization_msgs::Marker marker(const char* ns, int id, int type, const std::string& frame,
@@ -166,7 +225,7 @@ struct LaneLoad {
 LaneLoad laneLoad(const std::vector<Body>& bodies) {
   LaneLoad load;
   for (const auto& body : bodies) {
-    if (!std::holds_alternative<Roller>(body.model)) continue;
+    if (!inclineOf(body)) continue;
     load.radius = std::max(load.radius, radiusOf(body));
     load.tag = std::max(load.tag, textWidth(body.name));
   }
@@ -189,8 +248,24 @@ double laneSpacing(const LaneLoad& load, double steeper_angle, double steeper_he
   return std::max(least, std::min(clear, kMaxTagSpacing));
 }
 
-visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string& frame, int id) {
-  const RollerParams& p = std::get<Roller>(body.model).params();
+visualization_msgs::Marker shapeMarker(const Rod& rod, const std::string& frame, int id) {
+  auto m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame);
+  // A marker cylinder lies along its z; the rod lies along its frame's x.
+  m.pose.orientation.y = std::sin(kPi / 4);
+  m.pose.orientation.w = std::cos(kPi / 4);
+  m.scale.x = m.scale.y = kRodThickness;
+  m.scale.z = rod.params().length;
+  return m;
+}
+
+visualization_msgs::Marker shapeMarker(const Block& block, const std::string& frame, int id) {
+  auto cube = sceneMarker(kNsBody, id, visualization_msgs::Marker::CUBE, frame);
+  cube.scale.x = cube.scale.y = cube.scale.z = block.params().size;
+  return cube;
+}
+
+visualization_msgs::Marker shapeMarker(const Roller& roller, const std::string& frame, int id) {
+  const RollerParams& p = roller.params();
   const double d = 2.0 * p.radius;
   if (p.shape == Shape::Ring) {
     auto ring = sceneMarker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame);
@@ -212,24 +287,14 @@ visualization_msgs::Marker rollerShapeMarker(const Body& body, const std::string
 
 // Drawn in the body's own frame and locked to it: TF moves it, not the marker stream.
 visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id) {
-  visualization_msgs::Marker m;
-  if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame);
-    // A marker cylinder lies along its z; the rod lies along its frame's x.
-    m.pose.orientation.y = std::sin(kPi / 4);
-    m.pose.orientation.w = std::cos(kPi / 4);
-    m.scale.x = m.scale.y = kRodThickness;
-    m.scale.z = rod->params().length;
-  } else {
-    m = rollerShapeMarker(body, frame, id);
-  }
+  visualization_msgs::Marker m =
+      std::visit([&](const auto& model) { return shapeMarker(model, frame, id); }, body.model);
   m.color = bodyColour(body);
   m.frame_locked = true;
   return m;
 }
 
-// A dark bar through the centre along the body's x: it turns with the body, so rolling and slipping
-// can be told apart at a glance. A roller's only.
+// The spoke (hasSpoke), along the body's x.
 visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id) {
   const double r = radiusOf(body);
   auto spoke = sceneMarker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame);
@@ -271,18 +336,23 @@ std::string labelText(const Body& body, bool critical_angle) {
   char energy[48];
   const double e = energyOf(body);
   std::snprintf(energy, sizeof energy, "E = %.3f J", std::abs(e) < 5e-4 ? 0.0 : e);  // never "-0.000"
-  if (const auto* roller = std::get_if<Roller>(&body.model)) {
-    const std::string head = body.name + ": " + toString(roller->mode()) + "\n";
-    if (!critical_angle) return head + energy;
-    // Section 16.3.2's, for its mu_s and shape, in place of the energy (the panel plots it): a class sees
-    // why one body slips.
-    const RollerParams& params = roller->params();
-    char critical[48];
-    std::snprintf(critical, sizeof critical, "critical angle %.1f deg",
-                  criticalAngle(params.mu_s, params.inertia_factor) * 180 / kPi);
-    return head + critical;
-  }
-  return body.name + ":\n" + energy;
+  if (!inclineOf(body)) return body.name + ":\n" + energy;
+  std::string mode;
+  std::optional<double> critical_tangent;  // the steepest slope its static friction holds
+  std::visit(
+      [&](const auto& model) {
+        for (const auto& field : stateFields(model)) mode += field.text;  // its one text field
+        critical_tangent = criticalTangentOf(model);
+      },
+      body.model);
+  const std::string head = body.name + ": " + mode + "\n";
+  if (!critical_angle || !critical_tangent) return head + energy;
+  // Section 16.3.2's, for its mu_s and shape, in place of the energy (the panel plots it): a class sees
+  // why one body slips.
+  char critical[48];
+  std::snprintf(critical, sizeof critical, "critical angle %.1f deg",
+                std::atan(*critical_tangent) * 180 / kPi);
+  return head + critical;
 }
 
 visualization_msgs::Marker floorMarker(const std::string& world_frame,
@@ -424,11 +494,10 @@ std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
   };
   std::vector<Slope> slopes;
   for (const auto& body : bodies) {
-    if (const auto* roller = std::get_if<Roller>(&body.model)) {
-      const RollerParams& p = roller->params();
-      slopes.push_back({slopes.size(), p.incline_angle,
-                        std::max(0.0, p.incline_length * std::cos(p.incline_angle)),
-                        std::max(0.0, p.incline_length * std::sin(p.incline_angle))});
+    if (const auto incline = inclineOf(body)) {
+      slopes.push_back({slopes.size(), incline->angle,
+                        std::max(0.0, incline->length * std::cos(incline->angle)),
+                        std::max(0.0, incline->length * std::sin(incline->angle))});
     }
   }
   // Nearest the shallowest: seen from the side, a steeper slope whose lower end is at or beyond a shallower
@@ -472,23 +541,27 @@ std::vector<Lane> placeLanes(const std::vector<Body>& bodies) {
 std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const std::string& frame_prefix) {
   const std::vector<Lane> lanes = placeLanes(bodies);
   int rods = 0;
-  int rollers = 0;
+  int on_slopes = 0;
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
-    if (const auto* rod = std::get_if<Rod>(&body.model)) {
-      const double floor_length = rod->params().floor_length;
-      placements.push_back({frame_prefix + fixedFrameOf(body),
-                            uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
-                            floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
-      continue;
-    }
-    const RollerParams& p = std::get<Roller>(body.model).params();
-    const double top = p.incline_length * std::sin(p.incline_angle);
-    const Lane& lane = lanes[static_cast<std::size_t>(rollers)];
-    placements.push_back({frame_prefix + fixedFrameOf(body),
-                          uprightPlane({lane.top_x, lane.y, top}, p.incline_angle), p.incline_length, 0.0,
-                          ""});
-    ++rollers;
+    const std::string frame = frame_prefix + fixedFrameOf(body);
+    const auto on_slope = [&](const auto& model) {
+      const Incline incline = *inclineOf(model);
+      const double top = incline.length * std::sin(incline.angle);
+      const Lane& lane = lanes[static_cast<std::size_t>(on_slopes++)];
+      placements.push_back(
+          {frame, uprightPlane({lane.top_x, lane.y, top}, incline.angle), incline.length, 0.0, ""});
+    };
+    std::visit(
+        Overloaded{[&](const Rod& rod) {
+                     const double floor_length = rod.params().floor_length;
+                     placements.push_back(
+                         {frame, uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
+                          floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
+                   },
+                   [&](const Roller& roller) { on_slope(roller); },
+                   [&](const Block& block) { on_slope(block); }},
+        body.model);
   }
   return placements;
 }
@@ -501,16 +574,7 @@ Eigen::Isometry3d worldFromGround(const BodyPlacement& placement, const Body& bo
 }
 
 Eigen::Isometry3d frameFromBody(const Body& body) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  if (const auto* rod = std::get_if<Rod>(&body.model)) {
-    pose.translate(Eigen::Vector3d(rod->state().x, rod->state().y, 0.0));
-    pose.rotate(Eigen::AngleAxisd(rod->state().theta, Eigen::Vector3d::UnitZ()));
-    return pose;
-  }
-  const auto& roller = std::get<Roller>(body.model);
-  pose.translate(Eigen::Vector3d(roller.state().x, roller.params().radius, 0.0));
-  pose.rotate(Eigen::AngleAxisd(roller.state().theta, Eigen::Vector3d::UnitZ()));
-  return pose;
+  return std::visit([](const auto& model) { return poseOf(model); }, body.model);
 }
 
 int MarkerOptions::ring() const {
@@ -565,7 +629,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
     if (!placements_[i].ground_frame.empty()) scene.markers.push_back(groundMarker(placements_[i], id + 1));
     if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
     scene.markers.push_back(bodyMarker(bodies[i], frame, id));
-    if (std::holds_alternative<Roller>(bodies[i].model))
+    if (std::visit([](const auto& model) { return hasSpoke(model); }, bodies[i].model))
       scene.markers.push_back(spokeMarker(bodies[i], frame, id));
   }
   if (scene == scene_) return false;
@@ -622,7 +686,7 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
       }
     }
     const Eigen::Vector3d at = worldPosition(placements_[i], body);
-    if (std::holds_alternative<Rod>(body.model)) {
+    if (!inclineOf(body)) {
       // Above the rod, in its own plane: its lower line's centre kLabelAbove over the rod's reach.
       auto label = textMarker(kNsLabel, trail.slot, labelText(body, marker_options_.critical_angles), stamp,
                               world_frame_);
@@ -632,7 +696,7 @@ visualization_msgs::MarkerArray Scene::changes(const ros::Time& stamp, const std
       array.markers.push_back(std::move(label));
       continue;
     }
-    // A roller's name on its right, at its height: the lanes are apart enough for it (laneSpacing). What
+    // A name on a slope on its right, at its height: the lanes are apart enough for it (laneSpacing). What
     // it does (its mode and energy or critical angle, a racer's place and times) is on its lane's board,
     // ending before its slope's top, where no body goes.
     auto tag = textMarker(kNsLabel, trail.slot, body.name, stamp, world_frame_);

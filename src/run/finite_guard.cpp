@@ -22,13 +22,13 @@ void describeKeys(std::ostream& out, const Config& config) {
   out << "gravity=" << formatNumber(config.params.gravity);
 }
 
-void describeModel(std::ostream& out, const Rod& rod) {
-  describeKeys(out, RodConfig{rod.params(), rod.initial()});
-}
-
-void describeModel(std::ostream& out, const Roller& roller) {
-  describeKeys(out, RollerConfig{roller.params(), roller.initial()});
-  out << " mode=" << toString(roller.mode());
+// Its keys, then its texts (a mode).
+template <class Model>
+void describeModel(std::ostream& out, const Model& model) {
+  describeKeys(out, typename TypeOfModel<Model>::Config{model.params(), model.initial()});
+  for (const auto& field : stateFields(model)) {
+    if (!field.text.empty()) out << ' ' << field.name << '=' << field.text;
+  }
 }
 
 }  // namespace

@@ -229,8 +229,7 @@ std::string formatSummary(const OfflineSummary& summary) {
     out << "\n";
     if (summary.bounces[i] > 0) out << "  " << summary.bounces[i] << " bounces\n";
     for (const auto& event : summary.events) {
-      if (event.body == summary.bodies[i])
-        out << "  t = " << event.t << " s: " << toString(event.kind) << "\n";
+      if (event.body == summary.bodies[i]) out << "  t = " << event.t << " s: " << event.what << "\n";
     }
   }
   return out.str();

@@ -89,22 +89,26 @@ void setKey(BodyConfig& body, const std::string& key, double value) {
       body.config);
 }
 
-// The body's final state (its CSV columns), its energy drift, and its bounces (rod) or first slip-to-roll
-// instant (roller), each prefixed with "<body>.".
+SweepColumn sweepColumnOf(const BodyConfig& body) {
+  return std::visit([](const auto& config) { return TypeOfConfig<decltype(config)>::kSweepColumn; },
+                    body.config);
+}
+
+// The body's final state (its CSV columns), its energy drift, and its type's sweep column (a rod's bounces, a
+// roller's first slip-to-roll instant, a block's first stop), each prefixed with "<body>.".
 std::string bodyColumns(const BodyConfig& body) {
-  const BodyKind kind = kindOf(body);
-  std::vector<std::string> fields = stateFieldNames(kind);
+  std::vector<std::string> fields = stateFieldNames(body);
   fields.push_back("energy_drift");
-  fields.push_back(kind == BodyKind::Rod ? "bounces" : "slip_to_roll");
+  fields.push_back(sweepColumnOf(body).name);
   std::string columns;
   for (const auto& field : fields) columns += "," + body.name + "." + field;
   return columns;
 }
 
-// The first slip-to-roll instant of a body, or "" when there was none.
-std::string slipToRoll(const OfflineSummary& summary, const std::string& body) {
+// The first instant friction took hold of a body (slip to roll, a stop), or "" when there was none.
+std::string firstGrip(const OfflineSummary& summary, const std::string& body) {
   for (const auto& event : summary.events) {
-    if (event.body == body && event.kind == WorldEvent::Kind::StartedRolling) return formatNumber(event.t);
+    if (event.body == body && event.kind == WorldEvent::Kind::Gripped) return formatNumber(event.t);
   }
   return "";
 }
@@ -256,8 +260,8 @@ std::string sweepRow(const WorldConfig& base, std::int64_t variant, const std::v
     const std::string& state = summary.final_rows[b];
     row += state.substr(state.find(','));  // the CSV row without its t
     row += "," + formatNumber(summary.energy[b].final - summary.energy[b].initial);
-    const bool rod = kindOf(base.bodies[b]) == BodyKind::Rod;
-    row += "," + (rod ? std::to_string(summary.bounces[b]) : slipToRoll(summary, summary.bodies[b]));
+    const bool bounces = sweepColumnOf(base.bodies[b]).of == SweepColumn::Of::Bounces;
+    row += "," + (bounces ? std::to_string(summary.bounces[b]) : firstGrip(summary, summary.bodies[b]));
   }
   return row;
 }

@@ -251,11 +251,11 @@ void expectSameState(const Msg& expected, Msg got, const std::string& what) {
 
 inline RodState expectedRod(const World& world, const std::string& name) {
   const Body* body = const_cast<World&>(world).find(name);
-  return toRodStateMsg(world.time(), std::get<Rod>(body->model));
+  return toStateMsg(world.time(), std::get<Rod>(body->model));
 }
 inline RollerState expectedRoller(const World& world, const std::string& name) {
   const Body* body = const_cast<World&>(world).find(name);
-  return toRollerStateMsg(world.time(), std::get<Roller>(body->model));
+  return toStateMsg(world.time(), std::get<Roller>(body->model));
 }
 
 inline std::string configPath() {

@@ -179,7 +179,7 @@ TEST(SimNodeCommands, ChangesEqualTheCoreAndBadRequestsChangeNothing) {
   ASSERT_TRUE(c.waitAllAt(world, s1.response.t));
   expectSameState(expectedRod(world, "rod"), c.rod("rod").back(), "rod after the bad requests");
   for (const auto& body : world.bodies()) {
-    if (kindOf(body) == BodyKind::Roller) {
+    if (std::holds_alternative<Roller>(body.model)) {
       expectSameState(expectedRoller(world, body.name), c.roller(body.name).back(), body.name);
     }
   }

@@ -36,9 +36,9 @@ std::size_t expectWorldOrHeld(const std::vector<Msg>& got, const WorldConfig& co
     const Body& expected = held ? *held : *world.find(name);
     Msg want;
     if constexpr (std::is_same_v<Msg, RodState>) {
-      want = toRodStateMsg(msg.t, std::get<Rod>(expected.model));
+      want = toStateMsg(msg.t, std::get<Rod>(expected.model));
     } else {
-      want = toRollerStateMsg(msg.t, std::get<Roller>(expected.model));
+      want = toStateMsg(msg.t, std::get<Roller>(expected.model));
     }
     expectSameState(want, msg, name + " at t = " + std::to_string(msg.t));
     ++compared;

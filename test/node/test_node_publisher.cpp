@@ -117,10 +117,8 @@ TEST(NodePublisher, PublishesWhatSimulatesBagHolds) {
     topics.push_back(topic);
   };
   for (const auto& body : world.bodies()) {
-    if (kindOf(body) == BodyKind::Rod)
-      add(RodState(), "/sim/" + body.name + "/state");
-    else
-      add(RollerState(), "/sim/" + body.name + "/state");
+    std::visit([&](const auto& model) { add(toStateMsg(0.0, model), "/sim/" + body.name + "/state"); },
+               body.model);
   }
   add(RollerState(), "/sim/ball/state");  // spawned below
   add(tf2_msgs::TFMessage(), "/tf");

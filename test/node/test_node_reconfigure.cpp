@@ -215,7 +215,7 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   ASSERT_FALSE(assignments(command).empty()) << command;
   for (const auto& [key, value] : assignments(command)) {
     EXPECT_EQ(value, doubleOf(shown, key)) << command;
-    const auto* numeric = findKey(rollerType().keys, key);
+    const auto* numeric = findKey(bodyType<RollerConfig>().keys, key);
     ASSERT_TRUE(numeric && numeric->isNumber()) << key;
     numeric->field(wanted) = value;
   }

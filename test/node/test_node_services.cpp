@@ -161,13 +161,13 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
     world.step();
     const auto rods = c.rod("rod");
     for (const auto& m : rods) EXPECT_NE(m.t, t_before_reset) << "a second state at the reset's t";
-    expectSameState(toRodStateMsg(after_reset.response.t, std::get<Rod>(world.find("rod")->model)),
-                    rods.back(), "rod 1 step after reset");
+    expectSameState(toStateMsg(after_reset.response.t, std::get<Rod>(world.find("rod")->model)), rods.back(),
+                    "rod 1 step after reset");
     for (const auto& body : world.bodies()) {
       if (!std::holds_alternative<Roller>(body.model)) continue;
       const auto rollers = c.roller(body.name);
       ASSERT_FALSE(rollers.empty()) << body.name;
-      expectSameState(toRollerStateMsg(after_reset.response.t, std::get<Roller>(body.model)), rollers.back(),
+      expectSameState(toStateMsg(after_reset.response.t, std::get<Roller>(body.model)), rollers.back(),
                       body.name + " 1 step after reset");
     }
   }
@@ -180,7 +180,7 @@ TEST(SimNodeServices, PauseStepResetUnpause) {
     World world(config);
     for (int i = 0; i < 6; ++i) world.step();
     const Rod& rod = std::get<Rod>(world.find("rod")->model);
-    expectSameState(toRodStateMsg(s5.response.t, rod), rod_msg, "rod 6 steps after reset");
+    expectSameState(toStateMsg(s5.response.t, rod), rod_msg, "rod 6 steps after reset");
   }
 
   // --- unpause: time advances again at wall pace; ~step is refused while running. The node anchors its

@@ -1,5 +1,6 @@
-// Validated configuration of bodies and of the world: the one place that knows every key, its range
-// and what it is called in YAML, ROS parameters and dynamic_reconfigure.
+// Validated configuration of bodies and of the world: a body's config is one of the registered body types'
+// (core/body_types.h), whose descriptions know every key, its range and its names; here the world's keys and
+// the checks that concern the whole world.
 #pragma once
 
 #include <cstddef>
@@ -8,112 +9,11 @@
 #include <variant>
 #include <vector>
 
+#include "rigid_body_sim/core/body_key.h"
+#include "rigid_body_sim/core/body_types.h"
 #include "rigid_body_sim/core/constants.h"
-#include "rigid_body_sim/core/rod.h"
-#include "rigid_body_sim/core/roller.h"
 
 namespace rigid_body_sim {
-
-// A refused value. what() is one line naming the body, the key, the value and what is allowed: control
-// characters (a newline in a key, say) are escaped and an overlong value is cut, so that it stays one line.
-class ConfigError : public std::runtime_error {
- public:
-  ConfigError(const std::string& body, const std::string& key, const std::string& value,
-              const std::string& allowed);
-  explicit ConfigError(const std::string& message);  // for errors that concern no single key
-};
-
-// An interval of allowed values; an open end excludes its bound.
-struct Range {
-  double min;
-  double max;
-  bool min_open = false;
-  bool max_open = false;
-  bool contains(double value) const;  // false for NaN and infinities
-  std::string describe() const;       // e.g. "a number in (0, 1e+09]"
-};
-
-struct RodConfig {
-  RodParams params;
-  RodMotion initial;
-};
-
-struct RollerConfig {
-  RollerParams params;
-  RollerInitial initial;
-};
-
-// How a key's change applies to a running body: at the next step, or by restarting the body from its
-// initial conditions (the key is one of them). The levels of the reconfigure servers' .cfg files.
-enum class KeyChange { Apply = 0, Restart = 1 };
-
-// One key of a body type: its name, unit, meaning, how it is read and written and whether a change restarts
-// the body. A number lives in a double of the config (`field`) and is written in its shortest round-trip
-// form; a text (an enum name, `auto` or a count) is written by `write` and read by `read`. The loader, the
-// writer
-// (~get_config, the command log), the reconfigure conversion, the guard's report, the sweep's keys, the docs'
-// tables and the round-trip tests all walk these tables: a key added to one is added everywhere.
-template <class Config>
-struct BodyKey {
-  const char* name;
-  const char* unit;     // SI unit of a number ("" for a pure number or a text)
-  const char* meaning;  // one line: the docs' tables and the .cfg's descriptions
-  KeyChange change;
-  // A number: where it lives and its allowed range (null for a text).
-  double& (*field)(Config&) = nullptr;
-  Range range{};
-  // A text: its value as written (null: never written, as `seed`, which writes theta0), its reader (false:
-  // refused, the config as it was), and what it allows: the names of `choices` (an enum's), or allowed_text.
-  std::string (*write)(const Config&) = nullptr;
-  bool (*read)(Config&, const std::string&) = nullptr;
-  std::vector<std::string> (*choices)() = nullptr;
-  std::string (*allowed_text)() = nullptr;
-  // The state field whose initial value the key is (x0: "x"): a set_state value takes this key's range.
-  const char* state_field = nullptr;
-  // A text that takes whole numbers too (substeps): a sweep varies it as numbers.
-  bool counts = false;
-
-  bool isNumber() const { return field != nullptr; }
-  bool written() const { return field != nullptr || write != nullptr; }
-  double number(const Config& config) const { return field(const_cast<Config&>(config)); }
-  // As a config file writes it; a key that is never written gives "".
-  std::string text(const Config& config) const;
-  // What it allows, for messages and the docs.
-  std::string allowed() const;
-};
-
-// The description of a body type: its `type` name in a config file and its keys in the order files list them.
-// `complete` runs after a config file's keys are read, with the names of those given: what depends on which
-// keys a file gave (a roller's inertia_factor alone means shape custom; a rod's seed excludes theta0).
-template <class Config>
-struct BodyType {
-  const char* type;
-  std::vector<BodyKey<Config>> keys;
-  void (*complete)(const std::string& body, const std::vector<std::string>& given, Config& config);
-};
-
-const BodyType<RodConfig>& rodType();
-const BodyType<RollerConfig>& rollerType();
-// The type of a config: bodyType<RodConfig>() is rodType().
-template <class Config>
-const BodyType<Config>& bodyType();
-template <>
-inline const BodyType<RodConfig>& bodyType<RodConfig>() {
-  return rodType();
-}
-template <>
-inline const BodyType<RollerConfig>& bodyType<RollerConfig>() {
-  return rollerType();
-}
-
-// The key named `name`, or null.
-template <class Config>
-const BodyKey<Config>* findKey(const std::vector<BodyKey<Config>>& keys, const std::string& name) {
-  for (const auto& key : keys) {
-    if (name == key.name) return &key;
-  }
-  return nullptr;
-}
 
 // The key whose initial value state field `field` takes (x: x0), or null.
 template <class Config>
@@ -124,37 +24,13 @@ const BodyKey<Config>* keyOfStateField(const std::string& field) {
   return nullptr;
 }
 
-// Sets `key` of `config` from its text as a file writes it (a number: digits as formatNumber writes them, or
-// any form strtod reads); throws ConfigError naming the body, the key, the value and what is allowed.
-template <class Config>
-void setKeyText(const std::string& body, const BodyKey<Config>& key, const std::string& text, Config& config);
-
-// The theta0 drawn for a rod from `seed` when theta0 is not given: 2 pi u, u uniform in [0, 1) from
-// the first output of std::mt19937_64(seed) (portable, unlike std::uniform_real_distribution).
-double theta0FromSeed(unsigned long long seed);
-
-// Throw ConfigError on the first refused value (ranges, then relations between keys such as
-// mu_d <= mu_s, x0 on the slope, inertia_factor matching the shape).
-// A rod also needs its contact frequency sqrt(4 k / mass) <= maxContactFrequency(): its sub-stepping
-// costs about 10 sub-steps per rad/s and simulated second, and the step count per step must stay an int.
-void validate(const std::string& body, const RodConfig& config);
-void validate(const std::string& body, const RollerConfig& config);
-double maxContactFrequency();  // rad/s
-
-// What `substeps` allows, for messages: "auto or a whole number in [1, 1e+09]".
-std::string substepsAllowed();
-// A rod's fixed sub-step count must keep each sub-step stable at the world's rate: omega_c dt / N < 2
-// (validate(WorldConfig) checks it; the node again for a reconfigured rod). A roller has none.
-void validateSubsteps(const std::string& body, const RodConfig& config, double rate);
-inline void validateSubsteps(const std::string&, const RollerConfig&, double) {}
-
 struct BodyConfig {
   std::string name;  // also the TF frame and the topic namespace
-  std::variant<RodConfig, RollerConfig> config;
+  AnyBodyConfig config;
 };
 
-enum class BodyKind { Rod, Roller };
-BodyKind kindOf(const BodyConfig& body);
+// Its type's name: rod, roller or block.
+std::string typeName(const BodyConfig& body);
 
 // True when a key of level Restart differs (the body restarts), false when only parameters changed.
 template <class Config>
@@ -174,9 +50,9 @@ struct WorldConfig {
   double publish_rate = 50.0;        // samples per simulated second
   double gravity = kDefaultGravity;  // copied into every body
   std::string world_frame = "world";
-  // A race: the rollers start together, each stops at the end of its slope, and all start a new lap together
-  // once every one has finished and the results have stood 2 s (World::step); false: each restarts alone at
-  // the end of its slope.
+  // A race: the bodies on slopes (the types with kRaces) start together, each stops at the end of its slope,
+  // and all start a new lap together once every one has finished and the results have stood 2 s
+  // (World::step); false: each restarts alone at the end of its slope.
   bool race = false;
   std::vector<BodyConfig> bodies;
 };
@@ -196,8 +72,12 @@ inline constexpr std::size_t kMaxNameLength = 64;
 // kMaxNameLength characters.
 bool isValidName(const std::string& name);
 
-// The fixed frame in which a body's coordinates are measured: <name>_floor (rod) or <name>_slope (roller).
-std::string fixedFrameOf(const std::string& name, BodyKind kind);
+// The fixed frame in which a body's coordinates are measured: <name> and its type's suffix (a rod's
+// <name>_floor, a body on an incline's <name>_slope).
+template <class Type>
+std::string fixedFrameOf(const std::string& name) {
+  return name + Type::kFixedFrameSuffix;
+}
 std::string fixedFrameOf(const BodyConfig& body);
 // A rod's frame under it on an unbounded floor: <name>_ground.
 std::string groundFrameOf(const std::string& name);
@@ -222,26 +102,4 @@ std::vector<std::string> autoSubstepNotes(const WorldConfig& config);
 
 // True when `divisor` divides `rate` to rounding: rate / divisor is a whole number >= 1.
 bool dividesRate(double rate, double divisor);
-
-// Formats a double the way error messages and CSV files show it (shortest round-trip form).
-std::string formatNumber(double value);
-// A double with `decimals` digits after the point, for people to read (a panel, a chart's ticks): never
-// "-0.000", which reads as a sign that is not there; a value that rounds to zero is "0.000".
-std::string formatFixed(double value, int decimals);
-
-// "a, b or c".
-std::string oneOf(const std::vector<std::string>& names);
-
-template <class Config>
-std::string BodyKey<Config>::allowed() const {
-  if (isNumber()) return range.describe();
-  return choices ? oneOf(choices()) : allowed_text();
-}
-
-template <class Config>
-std::string BodyKey<Config>::text(const Config& config) const {
-  if (isNumber()) return formatNumber(number(config));
-  return write ? write(config) : "";
-}
-
 }  // namespace rigid_body_sim

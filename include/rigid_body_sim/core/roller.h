@@ -13,6 +13,7 @@
 #include <string>
 
 #include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/core/incline.h"
 
 namespace rigid_body_sim {
 
@@ -32,7 +33,8 @@ std::optional<Shape> shapeFromString(const std::string& name);
 double criticalTangent(double mu_s, double inertia_factor);
 double criticalAngle(double mu_s, double inertia_factor);
 
-enum class RollMode { Rolling, Slipping };
+// Finished: a racer waiting at rest at the end of its slope (setHoldAtEnd) until its next lap.
+enum class RollMode { Rolling, Slipping, Finished };
 std::string toString(RollMode mode);
 
 struct RollerParams {
@@ -61,14 +63,6 @@ struct RollerMotion {
   double omega = 0.0;
 };
 
-// What happened inside one call of Roller::step.
-struct RollerStepEvents {
-  std::optional<double> stuck_at;  // offset in [0, dt] at which slipping turned into rolling
-  bool started_slipping = false;   // a rolling body could not hold (only after setParams)
-  std::optional<double> left_at;   // offset in (0, dt] at which the centre passed an end of the slope
-  bool restarted = false;          // the centre left the slope and the body restarted
-};
-
 // The motion from the initial conditions in closed form (section 16.3.2, DESIGN.md): the instant at which
 // slipping turns into rolling, if it does, and the instant the centre passes an end of the slope, if it does.
 struct RollerRun {
@@ -76,10 +70,6 @@ struct RollerRun {
   std::optional<double> finish;        // s after the start
 };
 RollerRun closedFormRun(const RollerParams& params, const RollerInitial& initial);
-
-// The first s in (0, h] at which x + v s + a s^2 / 2 passes beyond [0, length] (above length, or below 0),
-// given that the position after h is beyond it; the root is taken in its cancellation-free form.
-double exitTime(double x, double v, double a, double h, double length);
 
 class Roller {
  public:
@@ -101,10 +91,10 @@ class Roller {
   // the lap count are kept.
   void setState(const RollerMotion& state);
 
-  // In a race: a centre that passes an end of the slope stops there (at the end, with the speed and spin of
-  // that instant: finished()) instead of restarting, until restartLap().
+  // In a race: a centre that passes an end of the slope stops there, at rest (mode Finished; the step's
+  // events carry its arrival speed), instead of restarting, until restartLap().
   void setHoldAtEnd(bool hold) { hold_at_end_ = hold; }
-  bool finished() const { return finished_; }
+  bool finished() const { return mode_ == RollMode::Finished; }
   // A new lap from the initial conditions, as at the end of the slope.
   void restartLap();
 
@@ -116,11 +106,8 @@ class Roller {
     int slip_sign;
     int laps;
     bool pending_started_slipping;
-    bool finished;
   };
-  Progress progress() const {
-    return {state_, mode_, slip_sign_, laps_, pending_started_slipping_, finished_};
-  }
+  Progress progress() const { return {state_, mode_, slip_sign_, laps_, pending_started_slipping_}; }
   void restore(const Progress& progress);
 
   const RollerParams& params() const { return params_; }
@@ -149,19 +136,20 @@ class Roller {
 
   RollerParams params_;
   // sin and cos of params_.incline_angle, and the constant accelerations of each mode (0: rolling,
-  // 1: slipping with u > 0, 2: with u < 0), computed when the parameters change rather than several
-  // times a step (the same expressions, so results are unchanged; see bench/bench_core.cpp).
+  // 1: slipping with u > 0, 2: with u < 0, 3: finished, at rest), computed when the parameters change rather
+  // than several times a step (the same expressions, so results are unchanged; see bench/bench_core.cpp).
   struct ModeAccelerations {
     double a = 0.0;
     double alpha = 0.0;
   };
   void cacheAccelerations();
   const ModeAccelerations& current() const {
+    if (mode_ == RollMode::Finished) return accelerations_[3];
     return accelerations_[mode_ == RollMode::Rolling ? 0 : (slip_sign_ > 0 ? 1 : 2)];
   }
   double sin_angle_ = 0.0;
   double cos_angle_ = 1.0;
-  ModeAccelerations accelerations_[3];
+  ModeAccelerations accelerations_[4];
   RollerInitial initial_;
   RollerMotion state_;
   RollMode mode_ = RollMode::Rolling;
@@ -169,7 +157,6 @@ class Roller {
   int laps_ = 0;
   bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
   bool hold_at_end_ = false;
-  bool finished_ = false;  // held at an end of the slope (hold_at_end_)
 };
 
 }  // namespace rigid_body_sim

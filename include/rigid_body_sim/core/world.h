@@ -10,30 +10,33 @@
 
 #include "rigid_body_sim/core/command.h"
 #include "rigid_body_sim/core/parameters.h"
-#include "rigid_body_sim/core/rod.h"
-#include "rigid_body_sim/core/roller.h"
 
 namespace rigid_body_sim {
 
 // A racer's result in the current lap of a race (WorldConfig::race).
 struct RaceFinish {
-  int place;                          // 1: the first over the line
-  double time;                        // s from the lap's start to the instant it passed the end of its slope
+  int place;     // 1: the first over the line; racers whose times are within kTieTime share a place
+  double time;   // s from the lap's start to the instant it passed the end of its slope
+  double speed;  // m/s along the slope at that instant (it then waits at rest)
   std::optional<double> closed_form;  // s: the same from the closed forms (closedFormRun)
 };
+// Finish times this close are a tie: they differ by the rounding of the steps that located them.
+inline constexpr double kTieTime = 1e-9;
 
 struct Body {
   std::string name;
-  std::variant<Rod, Roller> model;
+  AnyModel model;
   std::optional<RaceFinish> finish;  // a racer that finished the current lap
 };
 
 // Something worth telling that happened to a body at simulated time t.
 struct WorldEvent {
-  enum class Kind { StartedRolling, StartedSlipping, Restarted, Finished };
+  // Gripped: friction took hold (a roller started rolling, a block came to rest); LostGrip: it let go.
+  enum class Kind { Gripped, LostGrip, Restarted, Finished };
   double t;
   std::string body;
   Kind kind;
+  std::string what;  // in the body's own words: "started rolling", "came to rest", "restarted" ...
 };
 std::string toString(WorldEvent::Kind kind);
 
@@ -82,10 +85,14 @@ class World {
   BodyConfig bodyOf(const WorldCommand& command) const;
   void validateWouldBe(const WorldConfig& config) const;
   void setState(std::size_t index, const std::vector<StateValue>& state);
-  // A race (WorldConfig::race): a roller that passes the end of its slope at t finishes in its place; once
-  // every roller has, the results stand kRaceResultsShown simulated seconds, then all start a new lap
-  // together.
-  void finish(Body& body, double t);
+  // A race (WorldConfig::race): a racer (a type with kRaces) that passes the end of its slope at t with
+  // `speed` finishes; places follow the times (ties share one). Once every racer has, the results stand
+  // kRaceResultsShown simulated seconds, then all start a new lap together.
+  void finish(std::size_t index, double t, double speed);
+  void report(std::size_t index, double t0, const Rod& rod, bool restarted);
+  template <class Model>
+  void report(std::size_t index, double t0, const Model& model, const InclineStepEvents& happened);
+  void event(double t, std::size_t index, WorldEvent::Kind kind, std::string what = "");
   bool raceOver() const;
   void restartRace();
 
@@ -103,7 +110,7 @@ class World {
 // Total energy of a body (J), whatever its kind.
 double energyOf(const Body& body);
 
-BodyKind kindOf(const Body& body);
+std::string typeName(const Body& body);      // rod, roller or block
 std::string fixedFrameOf(const Body& body);  // <name>_floor or <name>_slope
 
 }  // namespace rigid_body_sim

@@ -31,7 +31,7 @@ class CsvWriter {
  private:
   struct File {
     std::string name;
-    BodyKind kind;
+    std::size_t type;  // the index of its type in the list of body types (AnyModel)
     std::string final_path;
     std::string temp_path;
     std::unique_ptr<std::ofstream> stream;

@@ -10,9 +10,8 @@
 #include <ros/time.h>
 #include <Eigen/Geometry>
 
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {
 
@@ -21,9 +20,9 @@ ros::Time simStamp(double t);
 
 // The state messages carry the fields of core/state_fields.h (test_messages checks the definitions); the
 // header is left to the caller.
-RodState toRodStateMsg(double t, const Rod& rod);
-RollerState toRollerStateMsg(double t, const Roller& roller);
-using StateMsg = std::variant<RodState, RollerState>;
+RodState toStateMsg(double t, const Rod& rod);
+RollerState toStateMsg(double t, const Roller& roller);
+BlockState toStateMsg(double t, const Block& block);
 StateMsg toStateMsg(double t, const Body& body);
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& point);

@@ -20,10 +20,9 @@
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 
-#include "rigid_body_sim/RodReconfigureConfig.h"
-#include "rigid_body_sim/RollerReconfigureConfig.h"
 #include "rigid_body_sim/core/command.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {
 
@@ -57,12 +56,15 @@ class ReconfigureServers {
   static BodyConfig withKeys(const BodyConfig& body, const std::map<std::string, double>& keys);
 
  private:
-  using RodServer = dynamic_reconfigure::Server<RodReconfigureConfig>;
-  using RollerServer = dynamic_reconfigure::Server<RollerReconfigureConfig>;
-  struct BodyServer {  // one of the two, by the body's type
-    std::unique_ptr<RodServer> rod;
-    std::unique_ptr<RollerServer> roller;
+  template <class Type>
+  using ServerOf = std::unique_ptr<dynamic_reconfigure::Server<typename RosBodyType<Type>::Reconfigure>>;
+  template <class List>
+  struct ServerVariant;
+  template <class... Types>
+  struct ServerVariant<BodyTypeList<Types...>> {
+    using type = std::variant<ServerOf<Types>...>;
   };
+  using BodyServer = ServerVariant<BodyTypes>::type;  // the server of the body's type
 
   void defer(std::function<void()> work);  // behind the callbacks waiting on the spinner thread
   void startNext();

@@ -35,7 +35,7 @@ struct NonFinite {
 };
 
 // Holds every body whose state became non-finite at its last finite state. It keeps what a step changes
-// (Rod::Progress, Roller::Progress), not whole bodies: a step changes nothing else.
+// (Model::Progress), not whole bodies: a step changes nothing else.
 class FiniteGuard {
  public:
   explicit FiniteGuard(const std::vector<Body>& bodies);  // the current states are the last finite ones
@@ -54,7 +54,7 @@ class FiniteGuard {
   void remove(std::size_t index);
 
  private:
-  using Progress = std::variant<Rod::Progress, Roller::Progress>;
+  using Progress = BodyTypes::Progresses;
   static Progress progressOf(const Body& body);
   static void restore(Body& body, const Progress& progress);
 

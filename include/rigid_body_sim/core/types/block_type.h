@@ -1,0 +1,56 @@
+// The block sliding on an incline as a body type: its config, the description of its keys, its state fields
+// and its frames (core/body_types.h registers it).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/block.h"
+#include "rigid_body_sim/core/body_key.h"
+#include "rigid_body_sim/core/state_field_def.h"
+
+namespace rigid_body_sim {
+
+struct BlockConfig {
+  BlockParams params;
+  BlockInitial initial;
+};
+
+std::string modeText(const Block& block);  // sticking | sliding | finished
+
+struct BlockType {
+  using Config = BlockConfig;
+  using Model = Block;
+  static constexpr const char* kName = "block";
+  static constexpr const char* kFixedFrameSuffix = "_slope";
+  static constexpr const char* kGrippedText = "came to rest";  // its WorldEvent texts
+  static constexpr const char* kLostGripText = "started sliding";
+  static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
+  static const BodyType<Config>& description();
+  static constexpr SweepColumn kSweepColumn{"stops_at", SweepColumn::Of::FirstGrip};
+  // friction and normal: the forces on the block along the slope's +x and +y.
+  static constexpr std::array kStateFields{
+      StateFieldDef<Block>{"x", "m", &BlockMotion::x},
+      StateFieldDef<Block>{"v", "m/s", &BlockMotion::v},
+      StateFieldDef<Block>{"mode", "", nullptr, nullptr, &modeText},
+      StateFieldDef<Block>{"friction", "N", nullptr, &Block::frictionForce},
+      StateFieldDef<Block>{"normal", "N", nullptr, &Block::normalForce},
+      StateFieldDef<Block>{"energy", "J", nullptr, &Block::energy},
+  };
+  static std::vector<std::string> extraFrames(const std::string&) { return {}; }
+  // A state that leaves the block where it may be (set_state): x on its slope. Throws ConfigError.
+  static void checkState(const std::string& body, const Config& config, const BlockMotion& state);
+  // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
+  static std::optional<double> closedFormFinish(const Config& config);
+};
+
+// Throws ConfigError on the first refused value: ranges, then relations between keys (mu_d <= mu_s, x0 on
+// the slope).
+void validate(const std::string& body, const BlockConfig& config);
+inline void validateSubsteps(const std::string&, const BlockConfig&, double) {}  // closed form: none
+inline std::string slowRunWarning(const std::string&, const BlockConfig&, double) { return ""; }
+inline std::string autoSubstepNote(const std::string&, const BlockConfig&, double) { return ""; }
+
+}  // namespace rigid_body_sim

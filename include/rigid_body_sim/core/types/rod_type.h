@@ -1,0 +1,64 @@
+// The rod as a body type: its config, the description of its keys, its state fields and its frames
+// (core/body_types.h registers it).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/body_key.h"
+#include "rigid_body_sim/core/rod.h"
+#include "rigid_body_sim/core/state_field_def.h"
+
+namespace rigid_body_sim {
+
+struct RodConfig {
+  RodParams params;
+  RodMotion initial;
+};
+
+struct RodType {
+  using Config = RodConfig;
+  using Model = Rod;
+  static constexpr const char* kName = "rod";
+  // Its coordinates are measured in <name>_floor; on an unbounded floor it also has <name>_ground.
+  static constexpr const char* kFixedFrameSuffix = "_floor";
+  static constexpr bool kRaces = false;
+  static const BodyType<Config>& description();
+  static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces};
+  static constexpr std::array kStateFields{
+      StateFieldDef<Rod>{"x", "m", &RodMotion::x},
+      StateFieldDef<Rod>{"y", "m", &RodMotion::y},
+      StateFieldDef<Rod>{"theta", "rad", &RodMotion::theta},
+      StateFieldDef<Rod>{"vx", "m/s", &RodMotion::vx},
+      StateFieldDef<Rod>{"vy", "m/s", &RodMotion::vy},
+      StateFieldDef<Rod>{"omega", "rad/s", &RodMotion::omega},
+      StateFieldDef<Rod>{"energy", "J", nullptr, &Rod::energy},  // kinetic + gravitational + elastic
+  };
+  // Frames beside <name> and its fixed frame: <name>_ground.
+  static std::vector<std::string> extraFrames(const std::string& name);
+  // A state that leaves the body where it may be (set_state): x on a bounded floor. Throws ConfigError.
+  static void checkState(const std::string& body, const Config& config, const RodMotion& state);
+};
+
+// The theta0 drawn for a rod from `seed` when theta0 is not given: 2 pi u, u uniform in [0, 1) from
+// the first output of std::mt19937_64(seed) (portable, unlike std::uniform_real_distribution).
+double theta0FromSeed(unsigned long long seed);
+
+// Throws ConfigError on the first refused value: ranges, then relations between keys (x0 on a bounded floor,
+// a contact frequency sqrt(4 k / mass) <= maxContactFrequency(): its sub-stepping costs about 10 sub-steps
+// per rad/s and simulated second, and the step count per step must stay an int).
+void validate(const std::string& body, const RodConfig& config);
+double maxContactFrequency();  // rad/s
+// What `substeps` allows, for messages: "auto or a whole number in [1, 1e+09]".
+std::string substepsAllowed();
+// A fixed sub-step count must keep each sub-step stable at the world's rate: omega_c dt / N < 2
+// (validate(WorldConfig) checks it; the node again for a reconfigured rod).
+void validateSubsteps(const std::string& body, const RodConfig& config, double rate);
+
+// At the world's rate: a line when the rod makes the run slow (more than kSlowSubstepsPerSecond sub-steps
+// per simulated second), and one when `substeps: auto` splits its steps; "" when not.
+std::string slowRunWarning(const std::string& body, const RodConfig& config, double rate);
+std::string autoSubstepNote(const std::string& body, const RodConfig& config, double rate);
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,58 @@
+// The round body on an incline as a body type: its config, the description of its keys, its state fields
+// and its frames (core/body_types.h registers it).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rigid_body_sim/core/body_key.h"
+#include "rigid_body_sim/core/roller.h"
+#include "rigid_body_sim/core/state_field_def.h"
+
+namespace rigid_body_sim {
+
+struct RollerConfig {
+  RollerParams params;
+  RollerInitial initial;
+};
+
+std::string modeText(const Roller& roller);  // rolling | slipping | finished
+
+struct RollerType {
+  using Config = RollerConfig;
+  using Model = Roller;
+  static constexpr const char* kName = "roller";
+  static constexpr const char* kFixedFrameSuffix = "_slope";
+  static constexpr const char* kGrippedText = "started rolling";  // its WorldEvent texts
+  static constexpr const char* kLostGripText = "started slipping";
+  static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
+  static const BodyType<Config>& description();
+  static constexpr SweepColumn kSweepColumn{"slip_to_roll", SweepColumn::Of::FirstGrip};
+  // friction and normal: the forces on the body along the slope's +x and +y.
+  static constexpr std::array kStateFields{
+      StateFieldDef<Roller>{"x", "m", &RollerMotion::x},
+      StateFieldDef<Roller>{"v", "m/s", &RollerMotion::v},
+      StateFieldDef<Roller>{"theta", "rad", &RollerMotion::theta},
+      StateFieldDef<Roller>{"omega", "rad/s", &RollerMotion::omega},
+      StateFieldDef<Roller>{"mode", "", nullptr, nullptr, &modeText},
+      StateFieldDef<Roller>{"friction", "N", nullptr, &Roller::frictionForce},
+      StateFieldDef<Roller>{"normal", "N", nullptr, &Roller::normalForce},
+      StateFieldDef<Roller>{"energy", "J", nullptr, &Roller::energy},
+  };
+  static std::vector<std::string> extraFrames(const std::string&) { return {}; }
+  // A state that leaves the body where it may be (set_state): x on its slope. Throws ConfigError.
+  static void checkState(const std::string& body, const Config& config, const RollerMotion& state);
+  // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
+  static std::optional<double> closedFormFinish(const Config& config);
+};
+
+// Throws ConfigError on the first refused value: ranges, then relations between keys (mu_d <= mu_s, x0 on
+// the slope, inertia_factor matching the shape).
+void validate(const std::string& body, const RollerConfig& config);
+inline void validateSubsteps(const std::string&, const RollerConfig&, double) {}  // closed form: none
+inline std::string slowRunWarning(const std::string&, const RollerConfig&, double) { return ""; }
+inline std::string autoSubstepNote(const std::string&, const RollerConfig&, double) { return ""; }
+
+}  // namespace rigid_body_sim
