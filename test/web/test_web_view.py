@@ -29,6 +29,7 @@ states exactly, plots them, and refuses Step in one line.
 Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
 (with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
 import argparse
+import http.client
 import json
 import math
 import os
@@ -44,7 +45,7 @@ import time
 import unittest
 import urllib.error
 import urllib.request
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, NamedTuple, Optional
 
 import rospy
 import websocket
@@ -100,6 +101,12 @@ class Listener:
             return self.states[body][-1] if self.states[body] else None
 
 
+class Answer(NamedTuple):
+    status: int
+    headers: Dict[str, str]
+    body: bytes
+
+
 def fields(msg: Any) -> Dict[str, Any]:
     return {f: getattr(msg, f) for f in msg.__slots__ if f != "header"}
 
@@ -128,7 +135,8 @@ class WebView(unittest.TestCase):
         env.pop("ROS_HOSTNAME", None)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
         self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(port), "rigid_body_sim", *words, "web:=true", f"web_port:={self.web_port}",
+            ["roslaunch", "-p", str(port), "rigid_body_sim", *words,
+             *(["web:=true"] if words[0] != "web.launch" else []), f"web_port:={self.web_port}",
              "web_control:=true"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         threading.Thread(target=self.read_log, daemon=True).start()
 
@@ -148,7 +156,7 @@ class WebView(unittest.TestCase):
         return [line for line in list(self.log) if words in line]
 
     def control_url(self) -> str:
-        pattern = re.compile(rf"(http://127\.0\.0\.1:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
+        pattern = re.compile(rf"(http://[^/\s]+:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
         found: List[str] = []
 
         def printed() -> bool:
@@ -209,18 +217,24 @@ class WebView(unittest.TestCase):
         self.check_refusals(node)
         self.take_screenshots(browser)
 
-        browser.click("run")
+        run = self.click_and_answer(browser, "run")
+        self.assertTrue(run["ok"], run)
         wait_for("~paused false after Run", lambda: node.paused is False, DEADLINE)
-        # Step while running: the node refuses it, and the page shows the node's line.
-        warnings, replies = len(node.warnings), browser.evaluate("rbs.replies.length")
-        browser.click("step")
-        browser.wait("the answer to Step", f"rbs.replies.length > {replies}", DEADLINE)
+        # Step while running: the node refuses it, and the page shows the node's line (the reply to Step's
+        # own id: Run's may come later than Step is clicked).
+        warnings = len(node.warnings)
+        reply = self.click_and_answer(browser, "step")
         wait_for("the node's WARN line about ~step", lambda: len(node.warnings) > warnings, DEADLINE)
-        reply = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
         self.assertFalse(reply["ok"])
         self.assertEqual([reply["line"]], node.warnings[warnings:])
         self.assertTrue(reply["line"].startswith("~step refused"), reply)
-        # The class's page (no token): the world, and no control in sight.
+        # A reload keeps the teacher's page a teacher's page (its cookie), the token nowhere in its address.
+        browser.navigate(url.split("?")[0])
+        browser.wait("the teacher's page again", "window.rbs && rbs.control === true", DEADLINE)
+        self.assertIsNotNone(browser.centre("controls"))
+        self.assertEqual(browser.evaluate("document.cookie"), "", "the page's script reads the token")
+        # The class's page (no token, no cookie): the world, and no control in sight.
+        browser.call("Network.clearBrowserCookies")
         browser.navigate(url.split("?")[0])
         browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
                      DEADLINE)
@@ -256,15 +270,11 @@ class WebView(unittest.TestCase):
         browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
                      f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
         # The page's Run and Pause drive the player (its pause_playback), as rviz's panel does.
-        browser.click("run")
-        browser.wait("the answer to Run", "rbs.replies.length === 1", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[0]"),
+        self.assertEqual(self.click_and_answer(browser, "run"),
                          {"type": "reply", "id": 1, "ok": True, "line": "/player: Playback is now resumed"})
         wait_for("2 s of the recording", lambda: node.last("rod") is not None and node.last("rod").t >= 2.0,
                  DEADLINE)
-        browser.click("pause")
-        browser.wait("the answer to Pause", "rbs.replies.length === 2", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[1].line"), "/player: Playback is now paused")
+        self.assertEqual(self.click_and_answer(browser, "pause")["line"], "/player: Playback is now paused")
         world = browser.evaluate("rbs.world.bodies")  # from the config the player played at t = 0
         for body, keys in self.config["bodies"].items():
             for key, value in keys.items():
@@ -273,11 +283,112 @@ class WebView(unittest.TestCase):
         self.check_plots(browser, node)
         self.assertEqual(browser.evaluate("document.getElementById('status').textContent"),
                          "replay of a recording, paused")
-        browser.click("step")
-        browser.wait("the answer to Step", "rbs.replies.length === 3", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[2].line"),
+        self.assertEqual(self.click_and_answer(browser, "step")["line"],
                          "refused: a recording cannot be changed, only paused and run (no node serves /sim/pause)")
+        # Its end: the last frame stays, and says so.
+        drawn = browser.evaluate("rbs.drawn")
+        self.click_and_answer(browser, "run")
+        browser.wait("the end of the recording", "document.getElementById('status').textContent === "
+                     "'end of recording: its last frame'", DEADLINE)
+        self.assertEqual(browser.evaluate("Object.keys(rbs.drawn).sort()"), sorted(drawn))
+        self.assertGreater(browser.evaluate("rbs.drawn.rod.t"), drawn["rod"]["t"])
         self.assertEqual(browser.console_errors(), [])
+
+    def test_network(self) -> None:
+        """web.launch web_host:=0.0.0.0 web_control:=true, no simulation: the class's addresses, the Host
+        check, the answers to overlong and half-sent requests, and the token kept off every log."""
+        self.start("web.launch", "web_host:=0.0.0.0")
+        url = self.control_url()
+        token = url.split("token=")[1]
+        rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
+        rosout: List[str] = []
+        rospy.Subscriber("/rosout", Log, lambda m: rosout.append(m.msg), queue_size=1000)
+        addresses = self.addresses()
+        self.assertTrue(addresses, "no address but the loopback's on this machine")
+        urls = [f"http://[{a}]:{self.web_port}/" if ":" in a else f"http://{a}:{self.web_port}/" for a in addresses]
+        # The teacher's page: a cookie for its WebSocket alone, then the address without the token.
+        answer = self.http("GET", f"/?token={token}")
+        self.assertEqual(answer.status, 303)
+        self.assertEqual(answer.headers["Location"], "/")
+        cookie = answer.headers["Set-Cookie"]
+        self.assertRegex(cookie, rf"^rbs_control={token};")
+        for attribute in ("HttpOnly", "Path=/ws", "SameSite=Strict"):
+            self.assertIn(attribute.lower(), cookie.lower())
+        teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                              origin=f"http://127.0.0.1:{self.web_port}",
+                                              cookie=cookie.split(";")[0])
+        hello = self.read_until(teacher, "hello")
+        self.assertTrue(hello["control"])
+        self.assertEqual(sorted(hello["addresses"]), sorted(urls))
+        teacher.close()
+        qr = self.http("GET", "/qr.svg")
+        self.assertEqual((qr.status, qr.headers["Content-Type"]), (200, "image/svg+xml"))
+        self.assertIn(b"<svg", qr.body)
+        # Host: this machine's names and addresses, nothing else (DNS rebinding), even on every address.
+        for host in [socket.gethostname(), "localhost", "127.0.0.1", *(u.split("/")[2].rsplit(":", 1)[0]
+                                                                       for u in urls)]:
+            self.assertEqual(self.http("GET", "/", host=f"{host}:{self.web_port}").status, 200, host)
+        for host in ("evil.example", f"evil.example:{self.web_port}", f"{addresses[0]}.evil.example:{self.web_port}"):
+            self.assertEqual(self.http("GET", "/", host=host).status, 403, host)
+        # Overlong: answered, not dropped.
+        self.assertEqual(self.http("GET", "/?" + "a" * (1 << 20)).status, 414)
+        self.assertEqual(self.http("GET", "/", headers={"X-Big": "b" * 100_000}).status, 431)
+        # Half-sent and idle connections: closed by the server within its 10 s, whatever their pace.
+        started = time.monotonic()
+        slow = [socket.create_connection(("127.0.0.1", self.web_port), timeout=DEADLINE) for _ in range(20)]
+        idle = socket.create_connection(("127.0.0.1", self.web_port), timeout=DEADLINE)
+        for s in slow:
+            s.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        deadline = time.monotonic() + 30
+        for s in slow + [idle]:
+            s.settimeout(max(0.1, deadline - time.monotonic()))
+            try:
+                while True:
+                    s.sendall(b"X")  # one byte more of a header that never ends
+                    if s.recv(1) == b"":
+                        break
+            except (ConnectionError, socket.timeout):
+                pass
+            s.close()
+        closed_after = time.monotonic() - started
+        self.assertLess(closed_after, 15.0)
+        # The token: on the launch's terminal, nowhere in a log file or on /rosout.
+        wait_for("/rosout's lines", lambda: bool(rosout), DEADLINE)
+        self.assertFalse([line for line in rosout if token in line])
+        logs = [os.path.join(d, f) for d, _, files in os.walk(self.tmp) for f in files]
+        self.assertTrue(logs)
+        for path in logs:
+            with open(path, errors="replace") as written:
+                self.assertNotIn(token, written.read(), path)
+        print(f"addresses {addresses}; half-sent and idle connections closed after {closed_after:.1f} s",
+              file=sys.stderr)
+
+    def http(self, method: str, path: str, host: Optional[str] = None,
+             headers: Optional[Dict[str, str]] = None) -> Answer:
+        connection = http.client.HTTPConnection("127.0.0.1", self.web_port, timeout=DEADLINE)
+        connection.putrequest(method, path, skip_host=True)
+        connection.putheader("Host", host or f"127.0.0.1:{self.web_port}")
+        for name, value in (headers or {}).items():
+            connection.putheader(name, value)
+        connection.endheaders()
+        answer = connection.getresponse()
+        return Answer(answer.status, dict(answer.getheaders()), answer.read())
+
+    @staticmethod
+    def addresses() -> List[str]:
+        """This machine's addresses a student can use (all but the loopback's and IPv6's link-local ones), as
+        `hostname -I` lists them."""
+        return subprocess.run(["hostname", "-I"], capture_output=True, text=True, check=True).stdout.split()
+
+    @staticmethod
+    def click_and_answer(browser: Browser, button: str) -> Dict[str, Any]:
+        """Clicks a button and waits for the reply to its own request (by the id the page gave it)."""
+        sent = browser.evaluate("rbs.sent.length")
+        browser.click(button)
+        request = browser.wait(f"the request of {button}", f"rbs.sent.length > {sent} && rbs.sent[{sent}]", DEADLINE)
+        reply: Dict[str, Any] = browser.wait(f"the answer to {button}",
+                                             f"rbs.replies.find((r) => r.id === {request['id']})", DEADLINE)
+        return reply
 
     def check_drawn_is_the_node(self, browser: Browser, node: Listener) -> None:
         """Once the page has drawn the last state the test received of every body (paused: none comes after)."""
@@ -308,8 +419,8 @@ class WebView(unittest.TestCase):
             self.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
             return
         phi = b["incline_angle"]
-        # to scale, or 9 px (the page's smallest, said on its panel) when that is under 8.1 px
-        r = 9.0 if b["radius"] * scale < 0.9 * 9.0 else b["radius"] * scale
+        # to scale, or 10 px (the page's smallest, 20 px across, said on its panel)
+        r = max(b["radius"] * scale, 10.0)
         self.assertAlmostEqual(d["r"], r, delta=1e-9)
         self.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
         self.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
@@ -342,21 +453,24 @@ class WebView(unittest.TestCase):
         print(f"plots' last points: the states of {sorted(self.kinds)}", file=sys.stderr)
 
     def check_slip_to_roll(self, browser: Browser, node: Listener, reset_t: float) -> None:
+        """The bowler's slip -> roll dot at the closed form's instant after the reset (docs/testing.md: 0.802 s)
+        and v then, between the node's last slipping state and its first rolling one."""
         browser.choose("plot-body", "bowler")
         browser.wait("the bowler's plots", "rbs.plotLast.body === 'bowler'", DEADLINE)
         with node.lock:
             after = [m for m in node.states["bowler"] if m.t > reset_t]
-        first = next(b for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling")
-        self.assertEqual(browser.evaluate("rbs.plotLast.points.slip_to_roll"), [first.t, first.v])
-        # The closed form's instant after the reset (docs/testing.md: 0.802 s), and the next state within a period.
+        slipping, rolling = next((a, b) for a, b in zip(after, after[1:])
+                                 if a.mode == "slipping" and b.mode == "rolling")
         b = self.bodies["bowler"]
         g, phi, c = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["c"]
         instant = (b["v0"] + b["omega0"] * b["radius"]) / (b["mu_d"] * g * math.cos(phi) * (1 + c) / c
                                                            - g * math.sin(phi))
-        period = 1.0 / float(self.config.get("publish_rate", 50.0))
-        self.assertGreaterEqual(first.t - reset_t, instant)
-        self.assertLessEqual(first.t - reset_t, instant + period + 1e-9)
-        print(f"slip -> roll marked at t = {first.t} ({first.t - reset_t:.3f} s after the reset)", file=sys.stderr)
+        v = b["v0"] + (g * math.sin(phi) - b["mu_d"] * g * math.cos(phi)) * instant
+        mark = browser.evaluate("rbs.plotLast.points.slip_to_roll")
+        self.assertAlmostEqual(mark[0], reset_t + instant, delta=1e-9)
+        self.assertAlmostEqual(mark[1], v, delta=1e-9)
+        self.assertTrue(slipping.t < mark[0] <= rolling.t, (slipping.t, mark, rolling.t))
+        print(f"slip -> roll marked at t = {mark[0]} ({mark[0] - reset_t:.4f} s after the reset)", file=sys.stderr)
 
     def rod_k(self) -> float:
         config = yaml.safe_load(rospy.ServiceProxy("/sim/get_config", GetConfig)().yaml)
@@ -365,12 +479,8 @@ class WebView(unittest.TestCase):
     def set_key(self, browser: Browser, body: str, key: str, value: str) -> Dict[str, Any]:
         browser.choose("set-body", body)
         browser.choose("set-key", key)
-        replies = browser.evaluate("rbs.replies.length")
         browser.type_into("set-value", value)
-        browser.click("set")
-        browser.wait("the answer to Set", f"rbs.replies.length > {replies}", DEADLINE)
-        reply: Dict[str, Any] = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
-        return reply
+        return self.click_and_answer(browser, "set")
 
     def check_keys(self, browser: Browser, node: Listener) -> None:
         reply = self.set_key(browser, "rod", "k", "2000")

@@ -1,0 +1,245 @@
+#!/usr/bin/env python3
+"""The page a class reads, by its own geometry, in Debian's headless Chromium: every lesson part
+(lesson.launch part:=below, above, slip, rod) started paused and stepped to INSTANTS (before, during and after
+the finishes), the teacher's page at a phone's 390x844, a laptop's 1366x768, a projector's 1600x900 and 4K's
+3840x2160, and the class's page at widths from 360 to 3840 px. At each:
+
+- every text, on the page or drawn on a canvas (rbs.texts), is at least MIN_TEXT px (20 from 1600x900 up,
+  14 below), lies whole inside its element or canvas and the screen's width, and covers no other text and
+  no body;
+- every roller is drawn at least 20 px across; the scene canvas fills the screen's height below the page's
+  top lines (beside the plots on a wide screen);
+- a race's finishers at the same time share a place (part:=above: all three at 1.4325 s);
+- the plots mark the slip -> roll instants at the closed form's, and their axes carry units.
+
+Screenshots of each part at the four sizes go to OUT_DIR (web_<part>_<size>.png) to be looked at.
+
+Usage: test_web_layout.py OUT_DIR   (with the package's devel space sourced)"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import unittest
+from typing import Any, Dict, List, Optional
+
+import rospy
+from rigid_body_sim.srv import Step
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from browser import Browser, end  # noqa: E402
+from sim_tools import free_port, load_config, rospy_on_python39, wait_for  # noqa: E402
+
+rospy_on_python39()
+ARGS: Any = None
+DEADLINE = 60.0
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+# s of simulated time: rolling, slipping, the finishes (above: 1.43 s; below: 2.0 to 2.6 s; slip: 1.9 to 2.4 s)
+INSTANTS = (0.4, 1.5, 2.7)
+SIZES = {"phone": (390, 844, 3, True), "laptop": (1366, 768, 1, False), "projector": (1600, 900, 1, False),
+         "4k": (3840, 2160, 1, False)}
+WIDTHS = (360, 480, 768, 1024, 1280, 1920, 2560, 3840)
+MIN_BODY_ACROSS = 20.0
+
+
+def min_text(width: int, height: int) -> float:
+    return 20.0 if width >= 1600 and height >= 900 else 14.0
+
+
+# The page's geometry, in the page: every breach of the rules as one line.
+RULES = r"""((minText) => {
+  const bad = [];
+  const vw = document.documentElement.clientWidth;
+  const pageWidth = document.documentElement.scrollWidth;
+  if (pageWidth > vw) bad.push(`page ${pageWidth} px wide in ${vw}`);
+  const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  for (let n = walker.nextNode(); n; n = walker.nextNode()) {
+    const el = n.parentElement;
+    if (!n.textContent.trim() || !el || el.closest("[hidden]") || el.offsetParent === null) continue;
+    const range = document.createRange();
+    range.selectNodeContents(n);
+    const r = range.getBoundingClientRect();
+    const px = parseFloat(getComputedStyle(el).fontSize);
+    if (px < minText) bad.push(`"${n.textContent.trim().slice(0, 30)}" at ${px} px`);
+    if (r.left < -0.5 || r.right > vw + 0.5) bad.push(`"${n.textContent.trim().slice(0, 30)}" off the screen`);
+    if (el.scrollWidth > el.clientWidth + 1 && getComputedStyle(el).display !== "inline") {
+      bad.push(`"${n.textContent.trim().slice(0, 30)}" cut`);
+    }
+  }
+  for (const el of document.querySelectorAll("button, select, input")) {
+    if (el.offsetParent === null) continue;
+    const r = el.getBoundingClientRect();
+    const px = parseFloat(getComputedStyle(el).fontSize);
+    if (px < minText) bad.push(`#${el.id} at ${px} px`);
+    if (r.left < -0.5 || r.right > vw + 0.5) bad.push(`#${el.id} off the screen`);
+  }
+  const sizes = {};
+  for (const c of document.querySelectorAll("canvas")) sizes[c.id] = [c.clientWidth, c.clientHeight];
+  const boxes = rbs.texts;
+  boxes.forEach((b, i) => {
+    const [w, h] = sizes[b.canvas];
+    if (b.px < minText) bad.push(`canvas "${b.text}" at ${b.px} px`);
+    if (b.x < -0.5 || b.y < -0.5 || b.x + b.w > w + 0.5 || b.y + b.h > h + 0.5) {
+      bad.push(`canvas "${b.text}" cut: ${Math.round(b.x)},${Math.round(b.y)} ${Math.round(b.w)}x${b.h} in ${w}x${h}`);
+    }
+    for (const o of boxes.slice(i + 1)) {
+      if (o.canvas === b.canvas && b.x < o.x + o.w && o.x < b.x + b.w && b.y < o.y + o.h && o.y < b.y + b.h) {
+        bad.push(`canvas "${b.text}" over "${o.text}"`);
+      }
+    }
+    if (b.canvas !== "scene-canvas") return;
+    for (const [name, d] of Object.entries(rbs.drawn)) {
+      if (d.r === undefined) continue;
+      const nx = Math.max(b.x, Math.min(d.cx, b.x + b.w));
+      const ny = Math.max(b.y, Math.min(d.cy, b.y + b.h));
+      if (Math.hypot(nx - d.cx, ny - d.cy) < d.r) bad.push(`canvas "${b.text}" over ${name}`);
+    }
+  });
+  for (const [name, d] of Object.entries(rbs.drawn)) {
+    if (d.r !== undefined && 2 * d.r < 20) bad.push(`${name} ${2 * d.r} px across`);
+  }
+  const scene = document.getElementById("scene-canvas").getBoundingClientRect();
+  const room = window.innerHeight - (scene.top + window.scrollY);
+  if (scene.height < room - 1.5 * minText) bad.push(`scene ${scene.height} px high in ${room}`);
+  return bad;
+})"""
+
+
+class Layout(unittest.TestCase):
+    def setUp(self) -> None:
+        self.tmp = tempfile.mkdtemp(prefix="rbs_web_layout_")
+        self.launch: Optional["subprocess.Popen[str]"] = None
+        self.browser: Optional[Browser] = None
+        self.log: List[str] = []
+        self.breaches: List[str] = []
+        os.makedirs(ARGS.out_dir, exist_ok=True)
+
+    def tearDown(self) -> None:
+        if self.browser:
+            self.browser.close()
+        self.stop()
+        shutil.rmtree(self.tmp, ignore_errors=True)
+
+    def stop(self) -> None:
+        if self.launch:
+            end(self.launch, signal.SIGINT, 60)
+            self.launch = None
+
+    def start(self, part: str) -> str:
+        """lesson.launch part:=PART, paused at t = 0, with the web view: the teacher's link."""
+        port, web_port = free_port(), free_port()
+        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
+                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
+        env.pop("ROS_HOSTNAME", None)
+        os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
+        self.log = []
+        self.launch = subprocess.Popen(
+            ["roslaunch", "-p", str(port), "rigid_body_sim", "lesson.launch", f"part:={part}", "rviz:=false",
+             "start_paused:=true", "web:=true", f"web_port:={web_port}", "web_control:=true"],
+            env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        threading.Thread(target=self.read_log, args=(self.launch,), daemon=True).start()
+        pattern = re.compile(rf"(http://127\.0\.0\.1:{web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
+        found: List[str] = []
+
+        def printed() -> bool:
+            found[:] = [m.group(1) for m in (pattern.search(line) for line in list(self.log)) if m]
+            return bool(found)
+        wait_for("the control link", printed, DEADLINE)
+        return found[0]
+
+    def read_log(self, launch: "subprocess.Popen[str]") -> None:
+        assert launch.stdout is not None
+        for line in launch.stdout:
+            self.log.append(line)
+
+    def laid_out(self, browser: Browser, width: int, height: int, scale: float) -> None:
+        browser.wait(f"the page laid out at {width}x{height}",
+                     "document.getElementById('scene-canvas').width === Math.round(document.getElementById("
+                     f"'scene-canvas').clientWidth * {scale}) && document.documentElement.clientWidth === {width}"
+                     " && new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(() => done(true))))",
+                     DEADLINE)
+
+    def check(self, browser: Browser, where: str, width: int, height: int) -> None:
+        """The rules' breaches, kept to be told all at once (every part and size: the whole picture)."""
+        self.breaches += [f"{where}: {line}" for line in browser.evaluate(f"{RULES}({min_text(width, height)})")]
+
+    def test_every_part(self) -> None:
+        begun = time.monotonic()
+        self.browser = browser = Browser(1600, 900)
+        checks = 0
+        for part in ("below", "above", "slip", "rod"):
+            url = self.start(part)
+            if not rospy.core.is_initialized():
+                rospy.init_node("web_layout_test", anonymous=True, disable_signals=True)
+            config = load_config(os.path.join(ROOT, "config", ("rod" if part == "rod" else f"race_{part}") + ".yaml"))
+            bodies = sorted(config["bodies"])
+            browser.resize(1600, 900, 1, False)
+            browser.navigate(url)
+            browser.wait("every body", f"window.rbs && rbs.world && Object.keys(rbs.world.bodies).length === "
+                         f"{len(bodies)} && rbs.control", DEADLINE)
+            rospy.wait_for_service("/sim/step", timeout=DEADLINE)
+            step = rospy.ServiceProxy("/sim/step", Step)
+            now = 0.0
+            rate = float(config.get("rate", 1000.0))
+            for instant in INSTANTS:
+                answer = step(round((instant - now) * rate))
+                self.assertTrue(answer.success, answer.message)
+                now = answer.t
+                browser.wait(f"t = {now} drawn", f"Object.keys(rbs.drawn).length === {len(bodies)} && "
+                             f"Object.values(rbs.drawn).every((d) => d.t === {now!r})", DEADLINE)
+                for size, (width, height, scale, mobile) in SIZES.items():
+                    browser.resize(width, height, scale, mobile)
+                    self.laid_out(browser, width, height, scale)
+                    self.check(browser, f"part:={part} t = {now} at {size}", width, height)
+                    checks += 1
+                    if instant == INSTANTS[-1] or (part == "slip" and instant == INSTANTS[1]):
+                        browser.screenshot(os.path.join(ARGS.out_dir, f"web_{part}_{size}_t{instant}.png"))
+                if part == "above" and instant >= 1.4325:
+                    places = browser.evaluate("Object.fromEntries(Object.entries(rbs.finishes)"
+                                              ".map(([b, f]) => [b, f && f.place]))")
+                    self.assertEqual(places, {body: 1 for body in bodies}, "a tie shares a place")
+                    shown = [t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas"]
+                    for body in bodies:
+                        self.assertTrue(any(t.startswith(f"{body}: 1st,") for t in shown), shown)
+                if part == "slip" and instant >= 1.5:
+                    self.check_slip_marks(browser, config)
+            for width in WIDTHS:  # the class's page, at every width
+                height = max(640, round(width * 9 / 16)) if width >= 1024 else 844
+                browser.resize(width, height, 1, width < 1024)
+                self.laid_out(browser, width, height, 1)
+                self.check(browser, f"part:={part} t = {now} at {width}x{height}", width, height)
+                checks += 1
+            self.stop()
+        print(f"{checks} layouts checked in {time.monotonic() - begun:.1f} s", file=sys.stderr)
+        self.assertEqual(self.breaches, [], "\n".join(self.breaches))
+
+    def check_slip_marks(self, browser: Browser, config: Dict[str, Any]) -> None:
+        """Each racer's slip -> roll dot at the closed form's instant from its launch (config/race_slip.yaml)."""
+        g = float(config.get("gravity", 9.8))
+        factors = {"sphere": 0.4, "cylinder": 0.5, "ring": 1.0}
+        for body, b in config["bodies"].items():
+            browser.choose("plot-body", body)
+            browser.wait(f"the plots of {body}", f"rbs.plotLast.body === {json.dumps(body)}", DEADLINE)
+            mark = browser.evaluate("rbs.plotLast.points.slip_to_roll")
+            c, phi = factors[b["shape"]], b["incline_angle"]
+            instant = ((b["v0"] + b["omega0"] * b["radius"])
+                       / (b["mu_d"] * g * math.cos(phi) * (1 + 1 / c) - g * math.sin(phi)))
+            if instant > 1.5:
+                continue
+            self.assertIsNotNone(mark, f"{body}: no slip -> roll mark")
+            self.assertAlmostEqual(mark[0], instant, delta=1e-9, msg=f"{body}'s slip -> roll")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out_dir")
+    ARGS, rest = parser.parse_known_args()
+    unittest.main(argv=[sys.argv[0]] + rest)
