@@ -144,6 +144,7 @@ class Page(tornado.websocket.WebSocketHandler):
         self.wake = asyncio.Event()
         self.pending = 0
         self.sent = 0
+        self.writing = False  # send_loop waits for a write of this page's
         self.refused: Dict[str, int] = {}
         token = self.get_cookie(CONTROL_COOKIE, "") or ""
         self.control = bool(self.view.token) and bool(token) and hmac.compare_digest(token, self.view.token)
@@ -242,6 +243,22 @@ class Page(tornado.websocket.WebSocketHandler):
         self.wake.set()
 
     def offer(self, frame: bytes) -> None:
+        """A frame for this page: written at once when nothing of this page's waits (the socket takes it, or
+        tornado holds this one frame until it does), else queued for send_loop. At once, a frame costs a
+        page one write, not a wake of its loop: 300 pages at 50 frames a second."""
+        connection: Any = self.ws_connection
+        stream = connection.stream if connection is not None and not connection.is_closing() else None
+        if not self.writing and not self.replies and not self.frames.frames and stream and not stream.writing():
+            try:  # the socket itself (non-blocking): tornado's write costs several times more
+                sent = stream.socket.send(frame)
+            except BlockingIOError:
+                sent = 0
+            except OSError:
+                return  # closed: on_close follows
+            if sent < len(frame):  # tornado holds the rest until the socket takes it
+                stream.write(frame[sent:]).add_done_callback(lambda done: done.exception())
+            self.sent += 1
+            return
         self.frames.offer(frame)
         self.wake.set()
 
@@ -255,6 +272,7 @@ class Page(tornado.websocket.WebSocketHandler):
                 self.wake.clear()
                 await self.wake.wait()
                 continue
+            self.writing = True
             try:
                 if isinstance(message, bytes):
                     connection: Any = self.ws_connection
@@ -265,6 +283,8 @@ class Page(tornado.websocket.WebSocketHandler):
                     await self.write_message(message)
             except (tornado.websocket.WebSocketClosedError, tornado.iostream.StreamClosedError):
                 return
+            finally:
+                self.writing = False
             self.sent += 1
 
 
