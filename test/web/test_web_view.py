@@ -2,14 +2,15 @@
 """The web view in a real browser: sim.launch web:=true web_control:=true on config/demo.yaml (a rod and four
 rollers), its page loaded in Debian's headless Chromium over the DevTools protocol.
 
-- The log prints the control link with a random token; the page opened with it shows the controls and takes
-  the token off its address bar; a page opened without it shows no controls.
+- The log prints the control link with a random token; the page opened with it shows the controls, has the
+  token as a cookie its script cannot read and not in its address bar, and stays the teacher's page on a
+  reload; a page opened without it (its cookie cleared) shows no controls and plots the teacher's body.
 - Pause clicked: the node's ~paused says true; the page's drawn state of every body is the last state the test
   received from the node, field for field, exactly; each body is drawn where the page's own view puts that
   state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
   (v, -omega R, the total energy and a rod's end heights exactly; the kinetic and potential energies to 1e-12).
 - Reset, then Pause 1.5 s later: the bowler, launched sliding with backspin, is marked once at its slip-to-roll
-  instant, the first rolling state after a slipping one among the states the test received since the reset;
+  instant, the closed form's, between its last slipping and first rolling state since the reset;
   every body's plot holds every state since the reset, once, while a page that reads nothing is open too.
 - Step (a count of 100 typed in) moves every body to the node's state 0.1 s on.
 - A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
@@ -24,9 +25,15 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page's Run and Pause drive the player
 (its pause_playback); the page finds the recording's bodies and their keys (the played config), draws the played
-states exactly, plots them, and refuses Step in one line.
+states exactly, plots them, and refuses Step in one line; at the recording's end it keeps the last frame and
+says so.
 
-Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
+And web.launch web_host:=0.0.0.0 alone (test_network): the class's addresses and QR code, the Host check on
+every address, 414 and 431, half-sent and idle connections closed, the token in no log file and not on /rosout.
+
+Each click's answer is the reply that names its request's id.
+
+Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay | WebView.test_network
 (with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
 import argparse
 import http.client
@@ -239,6 +246,8 @@ class WebView(unittest.TestCase):
         browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
                      DEADLINE)
         self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertEqual(browser.evaluate("document.getElementById('plot-body').value"), "bowler",
+                         "the class plots the teacher's body")
         for control in ("controls", "pause", "run", "step", "reset", "set"):
             self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
         # A wrong token (a link from before a restart): the page only shows, and says why.
@@ -507,6 +516,8 @@ class WebView(unittest.TestCase):
                                              origin=f"http://127.0.0.1:{self.web_port}")
         hello = self.read_until(client, "hello")
         self.assertFalse(hello["control"])
+        self.assertEqual(hello["view"], {"plot_body": "bowler"}, "the teacher's last choice, for the class")
+        self.assertNotIn("addresses", hello)
         cases = [('{"op": "pause", "id": 1}', "refused: this page only shows"),
                  ('{"op": "set", "id": 2, "body": "rod", "key": "k", "value": 1}', "refused: this page only shows"),
                  ("{not json", "refused: not JSON"),
