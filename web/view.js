@@ -381,8 +381,10 @@ function slopeBox(b) {
   const R = b.radius;
   const L = b.incline_length;
   const pad = Math.max(2 * R, 0.05 * L);
-  return { x0: -pad, y0: -L * Math.sin(phi) - 0.3 * pad, w: L * Math.cos(phi) + 2 * pad,
-           h: L * Math.sin(phi) + 1.3 * pad + 2 * R };
+  // Above the top: a body starting there; below the foot: one waiting at a steep slope's foot (R below it).
+  const below = Math.max(0.3 * pad, R);
+  return { x0: -pad, y0: -L * Math.sin(phi) - below, w: L * Math.cos(phi) + 2 * pad,
+           h: L * Math.sin(phi) + below + pad + 2 * R };
 }
 
 function rollerLines(ctx, name, b, max) {
@@ -455,7 +457,8 @@ function drawRoller(ctx, rect, name, b, s, lineH) {
   const R = b.radius;
   const box = slopeBox(b);
   const lines = rollerLines(ctx, name, b, rect.w - 12);
-  const scale0 = Math.min((rect.w - 12) / box.w, (rect.h - (lines.head.length + lines.info.length) * lineH - 10) / box.h);
+  const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w,
+                          (rect.h - (lines.head.length + lines.info.length) * lineH - 10 - MIN_RADIUS) / box.h);
   // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so where that
   // shows (5 % or more).
   if (R * scale0 * 1.05 <= MIN_RADIUS) {
@@ -463,7 +466,9 @@ function drawRoller(ctx, rect, name, b, s, lineH) {
                       rect.w - 12, false);
   }
   const areaTop = panelFrame(ctx, rect, lines.head, lines.info, lineH);
-  const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
+  // Inset by the smallest drawn radius: a body drawn larger than to scale stays inside the panel too.
+  const area = { x: rect.x + 6 + MIN_RADIUS, y: areaTop, w: rect.w - 12 - 2 * MIN_RADIUS,
+                 h: rect.y + rect.h - areaTop - 4 - MIN_RADIUS };
   const scale = Math.max(1e-6, Math.min(area.w / box.w, area.h / box.h));
   // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards. The slope in
   // the middle of its area.
@@ -711,7 +716,9 @@ function chart(canvas, height, spec, t0) {
   text(ctx, spec.unit, 6, y, "#c9ced6", false);
   ctx.strokeStyle = "#3a404c";
   ctx.lineWidth = Math.max(1, 0.05 * fs);
-  const yStep = niceStep(hi - lo, Math.max(2, Math.min(5, Math.floor(area.h / (2.2 * fs)))));
+  // As many ticks as fit a text's height and a half apart, at most 5.
+  let yStep = niceStep(hi - lo, 5);
+  for (let n = 4; n >= 1 && (yStep / (hi - lo)) * area.h < 1.5 * fs; n -= 1) yStep = niceStep(hi - lo, n);
   for (let v = Math.ceil(lo / yStep) * yStep; v <= hi; v += yStep) {
     ctx.beginPath();
     ctx.moveTo(area.x, Y(v));

@@ -7,7 +7,8 @@ the finishes), the teacher's page at a phone's 390x844, a laptop's 1366x768, a p
 - every text, on the page or drawn on a canvas (rbs.texts), is at least MIN_TEXT px (20 from 1600x900 up,
   14 below), lies whole inside its element or canvas and the screen's width, and covers no other text and
   no body;
-- every roller is drawn at least 20 px across; the scene canvas fills the screen's height below the page's
+- every roller is drawn at least 20 px across and inside its panel, its slope as the configs have it and nearly flat and nearly
+  upright (ANGLES, set from the teacher's page); the scene canvas fills the screen's height below the page's
   top lines (beside the plots on a wide screen);
 - a race's finishers at the same time share a place (part:=above: all three at 1.4325 s);
 - the plots mark the slip -> roll instants at the closed form's, and their axes carry units.
@@ -47,7 +48,7 @@ INSTANTS = (0.4, 1.5, 2.7)
 SIZES = {"phone": (390, 844, 3, True), "laptop": (1366, 768, 1, False), "projector": (1600, 900, 1, False),
          "4k": (3840, 2160, 1, False)}
 WIDTHS = (360, 480, 768, 1024, 1280, 1920, 2560, 3840)
-MIN_BODY_ACROSS = 20.0
+ANGLES = (0.02, 1.55)  # rad: the sphere's slope set from the teacher's page, part:=below
 
 
 def min_text(width: int, height: int) -> float:
@@ -104,7 +105,12 @@ RULES = r"""((minText) => {
     }
   });
   for (const [name, d] of Object.entries(rbs.drawn)) {
-    if (d.r !== undefined && 2 * d.r < 20) bad.push(`${name} ${2 * d.r} px across`);
+    if (d.r === undefined) continue;
+    if (2 * d.r < 20) bad.push(`${name} ${2 * d.r} px across`);
+    const p = rbs.panels[name].rect;
+    if (d.cx - d.r < p.x || d.cx + d.r > p.x + p.w || d.cy - d.r < p.y || d.cy + d.r > p.y + p.h) {
+      bad.push(`${name} out of its panel`);
+    }
   }
   const scene = document.getElementById("scene-canvas").getBoundingClientRect();
   const room = window.innerHeight - (scene.top + window.scrollY);
@@ -211,6 +217,15 @@ class Layout(unittest.TestCase):
                         self.assertTrue(any(t.startswith(f"{body}: 1st,") for t in shown), shown)
                 if part == "slip" and instant >= 1.5:
                     self.check_slip_marks(browser, config)
+            if part == "below":  # the slopes a lesson's key allows, from nearly flat to nearly upright
+                for angle in ANGLES:
+                    self.set_angle(browser, angle)
+                    for size, (width, height, scale, mobile) in SIZES.items():
+                        browser.resize(width, height, scale, mobile)
+                        self.laid_out(browser, width, height, scale)
+                        self.check(browser, f"part:={part} sphere at {angle} rad at {size}", width, height)
+                        checks += 1
+                    browser.screenshot(os.path.join(ARGS.out_dir, f"web_{part}_angle{angle}.png"))
             for width in WIDTHS:  # the class's page, at every width
                 height = max(640, round(width * 9 / 16)) if width >= 1024 else 844
                 browser.resize(width, height, 1, width < 1024)
@@ -220,6 +235,20 @@ class Layout(unittest.TestCase):
             self.stop()
         print(f"{checks} layouts checked in {time.monotonic() - begun:.1f} s", file=sys.stderr)
         self.assertEqual(self.breaches, [], "\n".join(self.breaches))
+
+    def set_angle(self, browser: Browser, angle: float) -> None:
+        """The teacher's Set of the sphere's incline_angle, drawn (the world's keys, then its panel)."""
+        browser.resize(1600, 900, 1, False)
+        browser.choose("set-body", "sphere")
+        browser.choose("set-key", "incline_angle")
+        browser.type_into("set-value", repr(angle))
+        sent = browser.evaluate("rbs.sent.length")
+        browser.click("set")
+        request = browser.wait("the request", f"rbs.sent[{sent}]", DEADLINE)
+        reply = browser.wait("its reply", f"rbs.replies.find((r) => r.id === {request['id']})", DEADLINE)
+        self.assertTrue(reply["ok"], reply)
+        browser.wait(f"the slope at {angle} rad drawn", f"rbs.world.bodies.sphere.incline_angle === {angle!r} && "
+                     f"rbs.panels.sphere.phi === {angle!r}", DEADLINE)
 
     def check_slip_marks(self, browser: Browser, config: Dict[str, Any]) -> None:
         """Each racer's slip -> roll dot at the closed form's instant from its launch (config/race_slip.yaml)."""
