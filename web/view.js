@@ -192,7 +192,7 @@ function showLine(text, ok) {
   el.textContent = text;
   el.className = ok ? "ok" : "refused";
   clearTimeout(lineTimer);
-  lineTimer = setTimeout(() => { el.textContent = ""; rbs.line = ""; }, LINE_SHOWN);
+  lineTimer = setTimeout(() => { el.textContent = ""; rbs.line = ""; scheduleDraw(); }, LINE_SHOWN);
 }
 
 function setStatus(text, stopped) {
@@ -685,7 +685,7 @@ function chart(canvas, height, spec, t0) {
   }
   const entries = spec.lines.map((l) => ({ name: l.name, draw: (x, cy) => legendLine(ctx, x, cy, l.colour, l.dash) }));
   const key = 1.3 * fs; // a legend entry's line, then its name
-  if (spec.dots) entries.push({ name: spec.dotName, draw: (x, cy) => dot(ctx, x + key / 2, cy) });
+  if (spec.dots && spec.dots.length) entries.push({ name: spec.dotName, draw: (x, cy) => dot(ctx, x + key / 2, cy) });
   for (const m of spec.instants || []) {
     entries.push({ name: `${m.name} (closed form)`,
                    draw: (x, cy) => instantLine(ctx, x + key / 2, cy - 0.5 * fs, cy + 0.5 * fs, m.dash) });
