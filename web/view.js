@@ -204,12 +204,16 @@ function setStatus(text, stopped) {
 function showAddresses(urls) {
   $("class-address").hidden = !urls.length;
   if (!urls.length) return;
-  $("addresses").replaceChildren(...urls.map((u) => {
+  // The loopback alone: no other machine reaches it, and a QR code of it would mislead a phone.
+  const local = urls.every((u) => /^http:\/\/(127\.|\[::1\])/.test(u));
+  const lines = local ? [...urls, "this machine only: web_host:=0.0.0.0 opens it to the class"] : urls;
+  $("addresses").replaceChildren(...lines.map((u) => {
     const item = document.createElement("li");
     item.textContent = u;
     return item;
   }));
-  $("qr").src = "qr.svg";
+  $("qr").hidden = local;
+  if (!local) $("qr").src = "qr.svg";
 }
 
 // --- controls ----------------------------------------------------------------------------------------------
