@@ -23,10 +23,12 @@ import asyncio
 import concurrent.futures
 import hmac
 import io
+import ipaddress
 import json
 import math
 import os
 import re
+import resource
 import secrets
 import signal
 import socket
@@ -608,8 +610,19 @@ def own_addresses() -> List[str]:
 def refuse_foreign_host(handler: tornado.web.RequestHandler, view: "WebView") -> None:
     """A request must name this machine (one of its names or addresses) as its host: a site whose name was
     made to point here (DNS rebinding) gets neither the page nor a connection."""
-    if handler.request.host.lower() not in view.local_hosts:
+    host = handler.request.host.lower()
+    if host not in view.local_hosts and not loopback_literal(host, view.port):
         raise tornado.web.HTTPError(403, "host %s is not this web view's", handler.request.host)
+
+
+def loopback_literal(host: str, port: int) -> bool:
+    """A loopback address written as such with this port (127.0.1.1, which Debian gives this machine's name,
+    or any other of 127/8): a numeric host no rebinding site can have."""
+    name, _, given = host.rpartition(":")
+    try:
+        return given == str(port) and ipaddress.ip_address(name.strip("[]")).is_loopback
+    except ValueError:
+        return False
 
 
 class File(tornado.web.StaticFileHandler):
@@ -740,6 +753,10 @@ def main() -> None:
     # disable_signals: rospy's own handlers would not end the server's loop; these end ROS, which ends it.
     signal.signal(signal.SIGINT, lambda *_: rospy.signal_shutdown("SIGINT"))
     signal.signal(signal.SIGTERM, lambda *_: rospy.signal_shutdown("SIGTERM"))
+    # Every open file the system lets it have: a class's pages and slow clients each hold a socket (a
+    # desktop's soft limit of 1024 would stop it accepting any), until HEAD_TIMEOUT closes the slow.
+    _, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    resource.setrlimit(resource.RLIMIT_NOFILE, (hard, hard))
     asyncio.run(serve(WebView()))
 
 

@@ -14,6 +14,7 @@ const PLOT_COLOURS = { first: "#f2f2f2", second: "#ffe066", third: "#3fd0c0" };
 const TEXT_SCALES = [0.8, 1, 1.25, 1.5, 2];
 const LINE_SHOWN = 10000; // ms a reply's or a node's line stays on the page
 
+const marks = {}; // body -> [{t, v}] slip -> roll instants, at the closed form's
 const rbs = {
   frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
   drawn: {}, plotLast: {}, panels: {}, replies: [], sent: [], finishes: {}, texts: [], ended: false,
@@ -21,10 +22,10 @@ const rbs = {
 };
 window.rbs = rbs;
 rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
+rbs.marks = marks; // each roller's slip -> roll instants, {t, v}
 
 const latest = {}; // body -> its last state
 const points = {}; // body -> [{t, ...the plotted values}]
-const marks = {}; // body -> [{t, v}] slip -> roll instants, at the closed form's
 const lastState = {}; // body -> its previous state
 let resetT = -Infinity; // the latest reset's t: no point at or before it is plotted
 let socket = null;
@@ -170,6 +171,7 @@ function addState(body, s) {
     if (before && before.mode === "slipping" && s.mode === "rolling") {
       const end = slipEnds(b, before);
       if (end) (marks[body] = marks[body] || []).push(end);
+      while (marks[body] && marks[body].length && marks[body][0].t < s.t - KEEP) marks[body].shift();
     }
   }
   lastState[body] = s;
