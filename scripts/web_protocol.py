@@ -129,7 +129,8 @@ def frame_message(seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
 
 # The node's label of a racer over the line (a race: `race: true`): its place and time beside the closed
 # form's, as the node computes them (src/ros/scene.cpp; test_scene holds the form).
-FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): (\d+)(?:st|nd|rd|th), ([0-9.]+) s"
+# A word on a shared place ("=1st", "1st (tie)") is let through: the times say who ties.
+FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): =?(\d+)(?:st|nd|rd|th)\b[^,]*, ([0-9.]+) s"
                           r"(?: \(closed form ([0-9.]+) s\))?$")
 
 

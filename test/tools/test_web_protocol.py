@@ -112,6 +112,9 @@ class FinishLabels(unittest.TestCase):
                          ("sphere", {"place": 1, "time": 2.0439, "closed_form": 2.0438}))
         self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"),
                          ("ring_2", {"place": 12, "time": 10.5, "closed_form": None}))
+        for tied in ("ring: =1st, 1.4325 s\n(closed form 1.4325 s)",
+                     "ring: 1st (tie), 1.4325 s\n(closed form 1.4325 s)"):
+            self.assertEqual(finish_of_label(tied), ("ring", {"place": 1, "time": 1.4325, "closed_form": 1.4325}))
 
     def test_racers_at_the_same_time_share_a_place(self) -> None:
         # part:=above: all three down at 1.4325 s, whatever places the node's labels give them

@@ -222,6 +222,7 @@ class WebView(unittest.TestCase):
 
         self.check_keys(browser, node)
         self.check_refusals(node)
+        self.assertNotIn("only shows", browser.evaluate("rbs.line"), "another page's refusal shown here")
         self.take_screenshots(browser)
 
         run = self.click_and_answer(browser, "run")
