@@ -10,6 +10,8 @@ of its op:
                                                            type, V a finite number
   {"op": "view", "id": N, "plot_body": B}                B a body the view knows: the body every page that
                                                            follows the teacher plots
+  {"op": "part", "id": N, "part": P}                     P a lesson part the world's bodies can take
+                                                           (lesson.launch's, config/): its keys, then a reset
 Every reply names the request it answers by its id.
 Anything else is refused with one line (Refusal) and goes no further: the node's services and reconfigure
 servers see only well-formed requests from pages that hold the token, and judge the values themselves."""
@@ -20,7 +22,7 @@ import json
 import math
 import re
 from dataclasses import dataclass
-from typing import Any, Deque, Dict, List, Mapping, Optional, Set, Tuple, Union
+from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Set, Tuple, Union
 
 MAX_REQUEST_BYTES = 1024
 # The ~step service's own bound is 600 s of steps: this only keeps a number from being absurd on the wire.
@@ -31,7 +33,7 @@ LESSON_KEYS: Dict[str, Tuple[str, ...]] = {
     "roller": ("incline_angle", "mu_s", "mu_d", "x0", "v0", "theta0", "omega0"),
 }
 OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
-                            "set": {"body", "key", "value"}, "view": {"plot_body"}}
+                            "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"}}
 
 
 class Refusal(Exception):
@@ -57,9 +59,9 @@ def _whole(value: Any) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def parse_request(text: Any, control: bool, bodies: Mapping[str, str]) -> Request:
+def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Collection[str] = ()) -> Request:
     """The request in `text` (a WebSocket message), or Refusal. `control`: the page holds the token;
-    `bodies`: {name: "rod" | "roller"} of the world the view knows."""
+    `bodies`: {name: "rod" | "roller"} of the world the view knows; `parts`: the lesson parts it can take."""
     if not isinstance(text, str):
         raise Refusal("binary", "refused: a binary message (requests are JSON text)")
     if len(text.encode()) > MAX_REQUEST_BYTES:
@@ -81,6 +83,12 @@ def parse_request(text: Any, control: bool, bodies: Mapping[str, str]) -> Reques
     if not control:
         raise Refusal("control", "refused: this page only shows (control needs the link with the token)")
     request = Request(op, message["id"])
+    if op == "part":
+        part = message["part"]
+        if not isinstance(part, str) or part not in parts:
+            raise Refusal("part", f"refused: no lesson part {str(part)[:40]!r} for these bodies "
+                                  f"({', '.join(sorted(parts)) or 'none'})")
+        return Request(op, request.id, key=part)
     if op == "view":
         body = message["plot_body"]
         if not isinstance(body, str) or body not in bodies:

@@ -96,10 +96,25 @@ def state_dict(msg: Any) -> Dict[str, Any]:
     return {field: getattr(msg, field) for field in msg.__slots__ if field != "header"}
 
 
+def lesson_parts(config_dir: str) -> Dict[str, Dict[str, Dict[str, Any]]]:
+    """lesson.launch's parts, {part: {body: its keys, defaults filled in}}, from their configs (race_below.yaml
+    is part below, rod.yaml part rod)."""
+    parts = {}
+    for name in sorted(os.listdir(config_dir)) if os.path.isdir(config_dir) else []:
+        found = re.fullmatch(r"race_(\w+)\.yaml|(rod)\.yaml", name)
+        if found:
+            with open(os.path.join(config_dir, name)) as text:
+                config = yaml.safe_load(text) or {}
+            parts[found.group(1) or found.group(2)] = {
+                body: body_with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
+    return parts
+
+
 class World:
     """What the view knows of the followed world, on the server's thread."""
 
-    def __init__(self) -> None:
+    def __init__(self, parts: Optional[Dict[str, Dict[str, Dict[str, Any]]]] = None) -> None:
+        self.lesson_parts = parts or {}
         self.settings: Dict[str, Any] = dict(WORLD_DEFAULTS)
         self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
         self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
@@ -117,13 +132,29 @@ class World:
         """{body: rod | roller}: the bodies with a state topic."""
         return dict(self.topics)
 
+    def parts(self) -> List[str]:
+        """The lesson parts this world's bodies can take: the same bodies, of the same shapes (a node's world;
+        a recording cannot change)."""
+        if self.source != "node":
+            return []
+        return [part for part, bodies in self.lesson_parts.items()
+                if set(bodies) == set(self.bodies) == set(self.topics)
+                and all(b["type"] == self.bodies[n]["type"] and b.get("shape") == self.bodies[n].get("shape")
+                        for n, b in bodies.items())]
+
+    def part(self) -> str:
+        """The lesson part whose keys the world has, or "" (none, or keys a teacher changed since)."""
+        return next((part for part in self.parts()
+                     if all(self.bodies[n].get(key) == b.get(key)
+                            for n, b in self.lesson_parts[part].items() for key in LESSON_KEYS[b["type"]])), "")
+
     def message(self) -> str:
         bodies = {}
         for name, kind in sorted(self.topics.items()):
             known = self.bodies.get(name)
             bodies[name] = known if known and known["type"] == kind else body_with_defaults({"type": kind})
         return json.dumps({"type": "world", "source": self.source, "paused": self.paused,
-                           "settings": self.settings, "bodies": bodies})
+                           "settings": self.settings, "bodies": bodies, "parts": self.parts(), "part": self.part()})
 
 
 class Page(tornado.websocket.WebSocketHandler):
@@ -204,7 +235,7 @@ class Page(tornado.websocket.WebSocketHandler):
     def on_message(self, message: Any) -> None:
         request_id = None
         try:
-            request = parse_request(message, self.control, self.view.world.kinds())
+            request = parse_request(message, self.control, self.view.world.kinds(), self.view.world.parts())
             request_id = request.id
             if request.op == "view":  # the teacher's choice for every following page: the server's own
                 self.view.shared = {"plot_body": request.body}
@@ -316,7 +347,7 @@ class WebView:
         remote = [a for a in addresses if not a.startswith("127.") and a != "::1"] or addresses
         self.watch_urls = [f"http://{f'[{a}]' if ':' in a else a}:{self.port}/" for a in remote]
         self.shared: Dict[str, str] = {}  # the teacher's choices every following page takes: plot_body
-        self.world = World()
+        self.world = World(lesson_parts(os.path.join(self.web_root, "..", "config")))
         self.pages: Set[Page] = set()
         self.pending: Dict[str, List[Dict[str, Any]]] = {}  # states since the last frame, by body
         self.latest: Dict[str, Dict[str, Any]] = {}  # each body's last state
@@ -536,6 +567,8 @@ class WebView:
                     self.world.paused_at = time.monotonic()
                     self.loop.add_callback(self.on_paused, request.op == "pause")
                 return bool(answer.success), f"{player}: {answer.message}"
+            if request.op == "part":
+                return self.start_part(request.key)
             if request.op in ("pause", "run", "reset"):
                 name = {"pause": "pause", "run": "unpause", "reset": "reset"}[request.op]
                 rospy.ServiceProxy(f"{self.node}/{name}", Empty)()
@@ -552,6 +585,20 @@ class WebView:
             return False, f"refused {request.key} = {request.value:g}: snapped back to {now:g}"
         except (rospy.ServiceException, rospy.ROSException, OSError) as error:
             return False, f"no answer from {self.node}: {error}"
+
+    def start_part(self, part: str) -> Tuple[bool, str]:
+        """On the calls thread: every body's lesson keys as the part's config has them (one reconfigure
+        each), then a reset: the race starts afresh, and every page shows it."""
+        for body, keys in self.world.lesson_parts[part].items():
+            names = LESSON_KEYS[keys["type"]]
+            asked = ReconfigureConfig(doubles=[DoubleParameter(name=k, value=float(keys[k])) for k in names])
+            shown = rospy.ServiceProxy(f"{self.node}/{body}/set_parameters", Reconfigure)(asked).config
+            now = {p.name: p.value for p in shown.doubles}
+            wrong = [k for k in names if now.get(k) != float(keys[k])]
+            if wrong:
+                return False, f"refused part {part}: {body}'s {', '.join(wrong)} snapped back"
+        rospy.ServiceProxy(f"{self.node}/reset", Empty)()
+        return True, f"part {part}: every body's keys set, the race started again"
 
     # --- HTTP -----------------------------------------------------------------------------------------------
     def application(self) -> tornado.web.Application:

@@ -124,6 +124,7 @@ function receive(m) {
     rbs.ended = m.source === "ended";
     for (const body of Object.keys(latest)) if (!(body in m.bodies)) delete latest[body];
     fillSelects();
+    showPart(m.parts || [], m.part || "");
   } else if (m.type === "view") {
     rbs.shared = { plot_body: m.plot_body };
     if (!ownChoice || rbs.control) followTeacher();
@@ -231,6 +232,17 @@ function fillSelects() {
   fillKeys();
 }
 
+// The lesson part the world is in, for every page; the teacher's choice of another (lesson.launch's parts
+// these bodies can take: the server sets their keys and starts the race again).
+function showPart(parts, part) {
+  $("part").textContent = part ? `part: ${part}` : "";
+  const sel = $("part-choice");
+  sel.hidden = parts.length < 2;
+  const names = part ? parts : ["(keys changed)", ...parts];
+  sel.replaceChildren(...names.map((n) => new Option(n === part || parts.includes(n) ? `part ${n}` : n, n)));
+  sel.value = part || names[0];
+}
+
 function followTeacher() {
   const body = rbs.shared.plot_body;
   if (body && rbs.world && body in rbs.world.bodies) $("plot-body").value = body;
@@ -273,6 +285,9 @@ function wireControls() {
   $("set").onclick = () => send({ op: "set", body: $("set-body").value, key: $("set-key").value,
                                   value: Number($("set-value").value) });
   $("set-body").onchange = fillKeys;
+  $("part-choice").onchange = () => {
+    if (rbs.world.parts.includes($("part-choice").value)) send({ op: "part", part: $("part-choice").value });
+  };
   $("set-key").onchange = showKeyValue;
   $("plot-body").onchange = () => {
     if (rbs.control) send({ op: "view", plot_body: $("plot-body").value }); // the class plots it too

@@ -31,6 +31,8 @@ class Requests(unittest.TestCase):
         self.assertEqual(parse({"op": "set", "id": 5, "body": "rod", "key": "k", "value": 2000}),
                          Request("set", 5, body="rod", key="k", value=2000.0))
         self.assertEqual(parse({"op": "view", "id": 6, "plot_body": "sphere"}), Request("view", 6, body="sphere"))
+        self.assertEqual(parse_request(json.dumps({"op": "part", "id": 7, "part": "above"}), True, BODIES, ("above",)),
+                         Request("part", 7, key="above"))
         for kind, keys in LESSON_KEYS.items():
             body = "rod" if kind == "rod" else "sphere"
             for key in keys:
@@ -68,6 +70,7 @@ class Requests(unittest.TestCase):
         self.refused({"op": "set", "id": 1, "body": "hoop", "key": "k", "value": 1}, "body")
         self.refused({"op": "view", "id": 1, "plot_body": "hoop"}, "body")
         self.refused({"op": "view", "id": 1, "plot_body": None}, "body")
+        self.refused({"op": "part", "id": 1, "part": "above"}, "part")  # no part for these bodies
         self.refused({"op": "set", "id": 1, "body": ["rod"], "key": "k", "value": 1}, "body")
         self.refused({"op": "set", "id": 1, "body": "rod", "key": "mu_s", "value": 1}, "key")
         self.refused({"op": "set", "id": 1, "body": "sphere", "key": "k", "value": 1}, "key")

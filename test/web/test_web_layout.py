@@ -11,7 +11,8 @@ the finishes), the teacher's page at a phone's 390x844, a laptop's 1366x768, a p
   nearly flat and nearly upright (ANGLES, set from the teacher's page); the scene canvas fills the screen's
   height below the page's top lines (beside the plots on a wide screen);
 - a race's finishers at the same time share a place (part:=above: all three at 1.4325 s);
-- the plots mark the slip -> roll instants at the closed form's, and their axes carry units.
+- the plots mark the slip -> roll instants at the closed form's, and their axes carry units;
+- the teacher's choice of part:=above from part:=below's page sets every body's keys, and the page names it.
 
 Screenshots of each part at the four sizes go to OUT_DIR (web_<part>_<size>.png) to be looked at.
 
@@ -226,6 +227,7 @@ class Layout(unittest.TestCase):
                         self.check(browser, f"part:={part} sphere at {angle} rad at {size}", width, height)
                         checks += 1
                     browser.screenshot(os.path.join(ARGS.out_dir, f"web_{part}_angle{angle}.png"))
+                self.check_part_switch(browser, "above")
             for width in WIDTHS:  # the class's page, at every width
                 height = max(640, round(width * 9 / 16)) if width >= 1024 else 844
                 browser.resize(width, height, 1, width < 1024)
@@ -249,6 +251,31 @@ class Layout(unittest.TestCase):
         self.assertTrue(reply["ok"], reply)
         browser.wait(f"the slope at {angle} rad drawn", f"rbs.world.bodies.sphere.incline_angle === {angle!r} && "
                      f"rbs.panels.sphere.phi === {angle!r}", DEADLINE)
+
+    def check_part_switch(self, browser: Browser, part: str) -> None:
+        """The teacher's choice of another lesson part: every body's lesson keys as its config has them, the
+        part named on the page, and a state of the new race drawn."""
+        browser.resize(1600, 900, 1, False)
+        self.assertEqual(browser.evaluate("document.getElementById('part').textContent"), "",
+                         "the sphere's slope was changed: no part's keys")
+        sent = browser.evaluate("rbs.sent.length")
+        browser.choose("part-choice", part)
+        request = browser.wait("the request", f"rbs.sent[{sent}]", DEADLINE)
+        self.assertEqual(request["op"], "part")
+        reply = browser.wait("its reply", f"rbs.replies.find((r) => r.id === {request['id']})", DEADLINE)
+        self.assertTrue(reply["ok"], reply)
+        browser.wait(f"part {part} on the page", f"rbs.world.part === {part!r} && "
+                     f"document.getElementById('part').textContent === 'part: {part}'", DEADLINE)
+        config = load_config(os.path.join(ROOT, "config", f"race_{part}.yaml"))
+        world = browser.evaluate("rbs.world.bodies")
+        for body, keys in config["bodies"].items():
+            for key in ("incline_angle", "mu_s", "mu_d"):
+                self.assertEqual(world[body][key], keys[key], f"{body}.{key}")
+        step = rospy.ServiceProxy("/sim/step", Step)
+        t = step(100).t
+        browser.wait("the new race drawn", f"Object.values(rbs.drawn).every((d) => d.t === {t!r})", DEADLINE)
+        self.check(browser, f"part:={part} from the teacher's page", 1600, 900)
+        browser.screenshot(os.path.join(ARGS.out_dir, f"web_part_{part}_from_page.png"))
 
     def check_slip_marks(self, browser: Browser, config: Dict[str, Any]) -> None:
         """Each racer's slip -> roll dot at the closed form's instant from its launch (config/race_slip.yaml)."""
