@@ -9,11 +9,16 @@ loses frames (a queue of `~queue` frames each), never slows the others or the si
 subscriber per topic whatever the number of pages.
 
 With `~control` a page opened with `?token=<the token this node prints>` may pause, run, step, reset and
-change the keys a lesson changes, each through the node's own services and reconfigure servers, and choose the
-body every following page plots; any other request, or any from a page without the token, is refused in one
-line (web_protocol.py), on that page alone. The token goes only to this process's standard output (the
+change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
+body every following page plots and switch to another lesson part the bodies can take (its config's keys,
+from the config/ beside ~web_root); any other request, or any from a page without the token, is refused in
+one line (web_protocol.py), on that page alone. The token goes only to this process's standard output (the
 launching terminal), never to /rosout or a log file; the page that brings it gets it back as an HttpOnly
 cookie for its WebSocket alone (a reload stays the teacher's page) and an address without it.
+
+The Host a request names must be one of this machine's names or addresses (on every address too: DNS
+rebinding); a request's head must come whole within HEAD_TIMEOUT, and an overlong target or header is
+answered 414 or 431.
 
 Parameters: ~host (127.0.0.1), ~port (8080), ~control (false), ~node (sim), ~web_root (the package's web/),
 ~frame_rate (50 Hz), ~queue (4 frames)."""
