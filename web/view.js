@@ -34,7 +34,7 @@ let drawPending = false;
 let lessonKeys = {};
 let keyUnits = {};
 let lineTimer = null;
-let ownChoice = false; // this page chose its plotted body itself: the teacher's choice no longer moves it
+let ownChoice = false; // this page chose its plotted body itself (a student's: until the teacher chooses again)
 
 const $ = (id) => document.getElementById(id);
 
@@ -127,7 +127,12 @@ function receive(m) {
     showPart(m.parts || [], m.part || "");
   } else if (m.type === "view") {
     rbs.shared = { plot_body: m.plot_body };
-    if (!ownChoice || rbs.control) followTeacher();
+    // A student's page takes the teacher's new choice over its own; the teacher's page has it already (and
+    // an echo of an earlier choice must not undo a later one).
+    if (!rbs.control) {
+      ownChoice = false;
+      followTeacher();
+    }
   } else if (m.type === "finishes") {
     rbs.finishes = m.finishes; // a race's results: {place, time, closed_form}, places shared by a tie
   } else if (m.type === "paused") {
@@ -290,8 +295,8 @@ function wireControls() {
   };
   $("set-key").onchange = showKeyValue;
   $("plot-body").onchange = () => {
+    ownChoice = true;
     if (rbs.control) send({ op: "view", plot_body: $("plot-body").value }); // the class plots it too
-    else ownChoice = true;
     scheduleDraw();
   };
   $("text-smaller").onclick = () => textScale(-1);
