@@ -249,6 +249,19 @@ class WebView(unittest.TestCase):
         self.assertFalse(browser.evaluate("rbs.control"))
         self.assertEqual(browser.evaluate("document.getElementById('plot-body').value"), "bowler",
                          "the class plots the teacher's body")
+        # A student's own choice stands until the teacher chooses again.
+        browser.choose("plot-body", "rod")
+        teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                              origin=f"http://127.0.0.1:{self.web_port}",
+                                              cookie=f"rbs_control={url.split('token=')[1]}")
+        self.assertTrue(self.read_until(teacher, "hello")["control"])
+        teacher.send(json.dumps({"op": "view", "id": 1, "plot_body": "bowler"}))
+        self.assertEqual(self.read_until(teacher, "reply"),
+                         {"type": "reply", "id": 1, "ok": True, "line": "the class plots bowler"})
+        teacher.close()
+        browser.wait("the teacher's new choice on the class's page",
+                     "document.getElementById('plot-body').value === 'bowler' && rbs.plotLast.body === 'bowler'",
+                     DEADLINE)
         for control in ("controls", "pause", "run", "step", "reset", "set"):
             self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
         # A wrong token (a link from before a restart): the page only shows, and says why.
