@@ -1,19 +1,23 @@
 #!/usr/bin/python3
-"""The web view under load: what 30 pages (and a frozen one) cost the simulation and the web view.
+"""The web view under load: what a class's pages (300, and a frozen one) cost the simulation and the web view,
+and whether a page that watches still gets its frames.
 
 sim.launch on config/demo.yaml at wall-clock pace, its own master; a rospy subscriber in this process takes
 /sim/rod/state and measures the gaps between the states' arrivals (50 Hz: 20 ms apart), over one window each of:
   1. no web view (web:=false);
   2. the web view (web:=true), no page;
-  3. CLIENTS pages (bench/web_clients.py, another process) reading every frame;
+  3. CLIENTS pages reading every byte (bench/web_clients.py --drain, another process) and a watching page
+     (web_clients.py, a process of its own) that parses every frame;
   4. the same and a frozen page: a WebSocket that finished its handshake and never reads (a receive buffer
      of 4 KiB), which the server can only drop frames for.
 For each: the gaps' median, 99th percentile and maximum, sim_node's CPU and the web view's (share of one core,
-the threads' schedstat), the frames each page received per second and the frames the server dropped for it
-(sequence gaps), the web view's resident memory at the window's start and end, and the frozen page's drops
-(from the web view's line when it closes). Prints a Markdown table.
+the threads' schedstat), the frames the watching page received per second, the rod's states in them and the
+frames the server dropped for it (sequence gaps), the bytes each of the other pages received per second, the
+web view's resident memory at the window's start and end, and the frozen page's drops (from the web view's
+line when it closes). Prints a Markdown table; exits 1 when the watching page got fewer than --need frames a
+second in a window.
 
-Usage: bench/web_load.py [--window S] [--clients N]   (with the package's devel space sourced)"""
+Usage: bench/web_load.py [--window S] [--clients N] [--need F]   (with the package's devel space sourced)"""
 import argparse
 import base64
 import json
@@ -113,9 +117,9 @@ def window(name: str, seconds: float, gaps: Gaps, sim: int, web: Optional[int]) 
     return row
 
 
-def clients(url: str, n: int, seconds: float) -> "subprocess.Popen[str]":
-    process = subprocess.Popen([sys.executable, os.path.join(HERE, "web_clients.py"), url, str(n), str(seconds)],
-                               stdout=subprocess.PIPE, text=True)
+def clients(url: str, n: int, seconds: float, drain: bool = False) -> "subprocess.Popen[str]":
+    process = subprocess.Popen([sys.executable, os.path.join(HERE, "web_clients.py"), url, str(n), str(seconds),
+                                *(["--drain"] if drain else [])], stdout=subprocess.PIPE, text=True)
     assert process.stdout is not None
     line = process.stdout.readline()
     if not line.startswith("connected"):
@@ -132,7 +136,8 @@ def client_counts(process: "subprocess.Popen[str]") -> Dict[str, Any]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--window", type=float, default=10.0)
-    parser.add_argument("--clients", type=int, default=30)
+    parser.add_argument("--clients", type=int, default=300)
+    parser.add_argument("--need", type=float, default=45.0, help="frames a second the watching page must get")
     args = parser.parse_args()
     home = tempfile.mkdtemp(prefix="rbs_web_load_")
     port = free_port()
@@ -167,9 +172,13 @@ def main() -> None:
         rospy.signal_shutdown("done")
         master.send_signal(2)
         master.wait(timeout=60)
-    print(table(rows, args.clients))
+    print(table(rows))
     for note in notes:
         print(f"- the frozen page: `{note}`")
+    rates = [r["watcher"]["frames"][0] / r["watcher"]["seconds"] for r in rows if "watcher" in r]
+    if min(rates) < args.need:
+        print(f"web_load: the watching page got {min(rates):.1f} frames a second, fewer than {args.need:g}")
+        sys.exit(1)
 
 
 def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace,
@@ -189,9 +198,10 @@ def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace
     sim, web = node_pid("/sim", rospy.get_name()), node_pid("/web", rospy.get_name())
     rows = [window("web view, no page", args.window, gaps, sim, web)]
     ws = f"ws://127.0.0.1:{web_port}/ws"
-    process = clients(ws, args.clients, args.window)
-    rows.append(window(f"web view, {args.clients} pages", args.window, gaps, sim, web))
-    rows[-1]["pages"] = client_counts(process)
+    # The class's pages for a little longer than the watching page counts: they are all there all along.
+    pages, watcher = clients(ws, args.clients, args.window + 5, drain=True), clients(ws, 1, args.window)
+    rows.append(window(f"web view, {args.clients} pages and a watching one", args.window, gaps, sim, web))
+    rows[-1]["watcher"], rows[-1]["pages"] = client_counts(watcher), client_counts(pages)
 
     def logged(words: str) -> List[str]:
         return [line.strip() for line in list(launch.lines) if words in line]
@@ -201,32 +211,31 @@ def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace
     found = re.search(r"page (\d+) opened", logged("opened from")[opened])
     assert found is not None
     number = found[1]
-    process = clients(ws, args.clients, args.window)
-    rows.append(window(f"web view, {args.clients} pages and a frozen one", args.window, gaps, sim, web))
-    rows[-1]["pages"] = client_counts(process)
+    pages, watcher = clients(ws, args.clients, args.window + 5, drain=True), clients(ws, 1, args.window)
+    rows.append(window(f"web view, {args.clients} pages, a watching and a frozen one", args.window, gaps, sim, web))
+    rows[-1]["watcher"], rows[-1]["pages"] = client_counts(watcher), client_counts(pages)
     frozen.close()
     wait_for("the frozen page's end in the web view's log", lambda: bool(logged(f"page {number} closed")), 60)
     notes += logged(f"page {number} closed")
     return rows
 
 
-def table(rows: List[Dict[str, Any]], n: int) -> str:
+def table(rows: List[Dict[str, Any]]) -> str:
     lines = ["| | state gaps p50 / p99 / max (ms) | sim_node CPU | web view CPU | web view memory start -> end "
-             "| frames per page per s (min / max) | rod states per page per s (min / max) | frames dropped per page "
-             "(max) |",
-             "|---|---|---:|---:|---|---|---|---:|"]
+             "| watching page: frames / rod states per s, frames dropped | other pages: kB per page per s "
+             "(min / max) |",
+             "|---|---|---:|---:|---|---|---|"]
     for r in rows:
         g = r["gaps"]
-        pages = r.get("pages")
-        rate = (f"{min(pages['frames']) / pages['seconds']:.1f} / {max(pages['frames']) / pages['seconds']:.1f}"
-                if pages else "")
-        states = (f"{min(pages['states']) / pages['seconds']:.1f} / {max(pages['states']) / pages['seconds']:.1f}"
-                  if pages else "")
-        dropped = f"{max(pages['gaps'])}" if pages else ""
+        watcher, pages = r.get("watcher"), r.get("pages")
+        watched = (f"{watcher['frames'][0] / watcher['seconds']:.1f} / {watcher['states'][0] / watcher['seconds']:.1f}"
+                   f", {watcher['gaps'][0]}" if watcher else "")
+        kbytes = (f"{min(pages['bytes']) / pages['seconds'] / 1000:.1f} / "
+                  f"{max(pages['bytes']) / pages['seconds'] / 1000:.1f}" if pages else "")
         web = f"{r['web_cpu']:.2f} %" if r["web_cpu"] is not None else ""
         rss = f"{r['rss'][0]:.1f} -> {r['rss'][1]:.1f} MiB" if r["rss"] else ""
         lines.append(f"| {r['what']} | {statistics.median(g):.2f} / {percentile(g, 99):.2f} / {max(g):.2f} "
-                     f"| {r['sim_cpu']:.2f} % | {web} | {rss} | {rate} | {states} | {dropped} |")
+                     f"| {r['sim_cpu']:.2f} % | {web} | {rss} | {watched} | {kbytes} |")
     return "\n".join(lines)
 
 

@@ -2,7 +2,8 @@
 #   make web-screenshot   lesson.launch web:=true in headless Chromium, the page a class sees (no token) after
 #                         1.6 s of the race below the critical angles, at 1600x900 and at a phone's 390x844
 # Its bench (not part of make bench: it takes a master and a browser's worth of ports):
-#   make web-bench        bench/web_load.py: 30 pages and a frozen one against the web view (docs/performance.md)
+#   make web-bench        bench/web_load.py: 300 pages, a watching one and a frozen one against the web view; fails
+#                         if the watching page gets fewer than 45 frames a second (docs/performance.md)
 WEB_PICTURES_OUT = $(BUILD)/pictures/web
 
 .PHONY: web-screenshot web-bench

@@ -8,6 +8,11 @@ of its op:
   {"op": "step", "id": N, "steps": S}                    S a whole number in [1, MAX_STEPS]
   {"op": "set", "id": N, "body": B, "key": K, "value": V} B a body the view knows, K one of LESSON_KEYS of its
                                                            type, V a finite number
+  {"op": "view", "id": N, "plot_body": B}                B a body the view knows: the body every page that
+                                                           follows the teacher plots
+  {"op": "part", "id": N, "part": P}                     P a lesson part the world's bodies can take
+                                                           (lesson.launch's, config/): its keys, then a reset
+Every reply names the request it answers by its id.
 Anything else is refused with one line (Refusal) and goes no further: the node's services and reconfigure
 servers see only well-formed requests from pages that hold the token, and judge the values themselves."""
 from __future__ import annotations
@@ -17,7 +22,7 @@ import json
 import math
 import re
 from dataclasses import dataclass
-from typing import Any, Deque, Dict, List, Mapping, Optional, Set, Tuple
+from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Set, Tuple, Union
 
 MAX_REQUEST_BYTES = 1024
 # The ~step service's own bound is 600 s of steps: this only keeps a number from being absurd on the wire.
@@ -28,7 +33,7 @@ LESSON_KEYS: Dict[str, Tuple[str, ...]] = {
     "roller": ("incline_angle", "mu_s", "mu_d", "x0", "v0", "theta0", "omega0"),
 }
 OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
-                            "set": {"body", "key", "value"}}
+                            "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"}}
 
 
 class Refusal(Exception):
@@ -54,9 +59,9 @@ def _whole(value: Any) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def parse_request(text: Any, control: bool, bodies: Mapping[str, str]) -> Request:
+def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Collection[str] = ()) -> Request:
     """The request in `text` (a WebSocket message), or Refusal. `control`: the page holds the token;
-    `bodies`: {name: "rod" | "roller"} of the world the view knows."""
+    `bodies`: {name: "rod" | "roller"} of the world the view knows; `parts`: the lesson parts it can take."""
     if not isinstance(text, str):
         raise Refusal("binary", "refused: a binary message (requests are JSON text)")
     if len(text.encode()) > MAX_REQUEST_BYTES:
@@ -78,6 +83,17 @@ def parse_request(text: Any, control: bool, bodies: Mapping[str, str]) -> Reques
     if not control:
         raise Refusal("control", "refused: this page only shows (control needs the link with the token)")
     request = Request(op, message["id"])
+    if op == "part":
+        part = message["part"]
+        if not isinstance(part, str) or part not in parts:
+            raise Refusal("part", f"refused: no lesson part {str(part)[:40]!r} for these bodies "
+                                  f"({', '.join(sorted(parts)) or 'none'})")
+        return Request(op, request.id, key=part)
+    if op == "view":
+        body = message["plot_body"]
+        if not isinstance(body, str) or body not in bodies:
+            raise Refusal("body", f"refused: no body {str(body)[:40]!r}")
+        return Request(op, request.id, body=body)
     if op == "step":
         steps = message["steps"]
         if not _whole(steps) or not 1 <= steps <= MAX_STEPS:
@@ -101,15 +117,15 @@ class FrameQueue:
     out (a page that cannot keep up sees the latest state, with gaps), counted in `dropped`."""
 
     def __init__(self, bound: int) -> None:
-        self.frames: Deque[str] = collections.deque(maxlen=bound)
+        self.frames: Deque[Union[str, bytes]] = collections.deque(maxlen=bound)
         self.dropped = 0
 
-    def offer(self, frame: str) -> None:
+    def offer(self, frame: Union[str, bytes]) -> None:
         if len(self.frames) == self.frames.maxlen:
             self.dropped += 1
         self.frames.append(frame)
 
-    def take(self) -> Optional[str]:
+    def take(self) -> Optional[Union[str, bytes]]:
         return self.frames.popleft() if self.frames else None
 
 
@@ -120,14 +136,44 @@ def frame_message(seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
 
 
 # The node's label of a racer over the line (a race: `race: true`): its place and time beside the closed
-# form's, as the node computes them (src/ros/scene.cpp; test_scene holds the form). The page shows the
-# node's own words.
-FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): (\d+(?:st|nd|rd|th), [0-9.]+ s(?: \(closed form [0-9.]+ s\))?)$")
+# form's, as the node computes them (src/ros/scene.cpp; test_scene holds the form).
+# A word on a shared place ("=1st", "1st (tie)") is let through: the times say who ties.
+FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): =?(\d+)(?:st|nd|rd|th)\b[^,]*, ([0-9.]+) s"
+                          r"(?: \(closed form ([0-9.]+) s\))?$")
 
 
-def finish_of_label(text: str) -> Tuple[str, Optional[str]]:
-    """(body, its place and times) from a node's board (its lines joined by a space), or (body, None) for a
-    board that is no finish."""
+def finish_of_label(text: str) -> Tuple[str, Optional[Dict[str, Any]]]:
+    """(body, {"place", "time", "closed_form"}) from a node's board (its lines joined by a space), or (body,
+    None) for a board that is no finish. closed_form is None when the node gives none."""
     text = " ".join(text.split("\n"))
     found = FINISH_LABEL.match(text)
-    return (found.group(1), found.group(2)) if found else (text.split(":", 1)[0], None)
+    if not found:
+        return text.split(":", 1)[0], None
+    closed = found.group(4)
+    return found.group(1), {"place": int(found.group(2)), "time": float(found.group(3)),
+                            "closed_form": float(closed) if closed else None}
+
+
+def tied_places(finishes: Mapping[str, Optional[Dict[str, Any]]]) -> Dict[str, Optional[Dict[str, Any]]]:
+    """The finishes with racers that the node's label shows at the same time sharing the best of their
+    places (a tie, to the label's 0.1 ms, is one place: the node's own places, where it ties them, agree)."""
+    best: Dict[float, int] = {}
+    for finish in finishes.values():
+        if finish:
+            best[finish["time"]] = min(best.get(finish["time"], finish["place"]), finish["place"])
+    return {body: {**finish, "place": best[finish["time"]]} if finish else None
+            for body, finish in finishes.items()}
+
+
+def websocket_text_frame(text: str) -> bytes:
+    """One unmasked, uncompressed WebSocket text frame (RFC 6455 5.2), as a server sends it: built once for
+    every page that gets the same message."""
+    payload = text.encode()
+    n = len(payload)
+    if n < 126:
+        head = bytes((0x81, n))
+    elif n < 1 << 16:
+        head = bytes((0x81, 126)) + n.to_bytes(2, "big")
+    else:
+        head = bytes((0x81, 127)) + n.to_bytes(8, "big")
+    return head + payload

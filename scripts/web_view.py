@@ -9,8 +9,16 @@ loses frames (a queue of `~queue` frames each), never slows the others or the si
 subscriber per topic whatever the number of pages.
 
 With `~control` a page opened with `?token=<the token this node prints>` may pause, run, step, reset and
-change the keys a lesson changes, each through the node's own services and reconfigure servers; any other
-request, or any from a page without the token, is refused in one line (web_protocol.py).
+change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
+body every following page plots and switch to another lesson part the bodies can take (its config's keys,
+from the config/ beside ~web_root); any other request, or any from a page without the token, is refused in
+one line (web_protocol.py), on that page alone. The token goes only to this process's standard output (the
+launching terminal), never to /rosout or a log file; the page that brings it gets it back as an HttpOnly
+cookie for its WebSocket alone (a reload stays the teacher's page) and an address without it.
+
+The Host a request names must be one of this machine's names or addresses (on every address too: DNS
+rebinding); a request's head must come whole within HEAD_TIMEOUT, and an overlong target or header is
+answered 414 or 431.
 
 Parameters: ~host (127.0.0.1), ~port (8080), ~control (false), ~node (sim), ~web_root (the package's web/),
 ~frame_rate (50 Hz), ~queue (4 frames)."""
@@ -19,10 +27,13 @@ from __future__ import annotations
 import asyncio
 import concurrent.futures
 import hmac
+import io
+import ipaddress
 import json
 import math
 import os
 import re
+import resource
 import secrets
 import signal
 import socket
@@ -31,9 +42,15 @@ import threading
 import time
 from typing import Any, Dict, List, Optional, Set, Tuple
 
+import qrcode
+import qrcode.image.svg
 import rosgraph
 import rospy
+import tornado.httpserver
+import tornado.httputil
 import tornado.ioloop
+import tornado.iostream
+import tornado.log
 import tornado.web
 import tornado.websocket
 import yaml
@@ -53,7 +70,7 @@ sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 from sim_tools import (INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS,  # noqa: E402
                        rospy_on_python39)
 from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,  # noqa: E402
-                          finish_of_label, frame_message, parse_request)
+                          finish_of_label, frame_message, parse_request, tied_places, websocket_text_frame)
 
 STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState)}
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
@@ -61,6 +78,13 @@ MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
 WEB_FILES = ("index.html", "view.js", "view.css")
 SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
+CONTROL_COOKIE = "rbs_control"
+MAX_URL = 8 * 1024  # bytes of a request's target: longer is answered 414
+MAX_HEADERS = 16 * 1024  # bytes of its header lines: more is answered 431
+# What tornado reads of a request's head before it gives up and closes the socket without a status: past
+# MAX_URL and MAX_HEADERS, so that an overlong one is answered (within HEAD_TIMEOUT, whatever its pace).
+READ_HEAD_LIMIT = 4 * 1024 * 1024
+HEAD_TIMEOUT = 10.0  # s for a request's whole head, and for an idle kept-alive connection
 
 
 def body_with_defaults(body: Dict[str, Any]) -> Dict[str, Any]:
@@ -77,14 +101,29 @@ def state_dict(msg: Any) -> Dict[str, Any]:
     return {field: getattr(msg, field) for field in msg.__slots__ if field != "header"}
 
 
+def lesson_parts(config_dir: str) -> Dict[str, Dict[str, Dict[str, Any]]]:
+    """lesson.launch's parts, {part: {body: its keys, defaults filled in}}, from their configs (race_below.yaml
+    is part below, rod.yaml part rod)."""
+    parts = {}
+    for name in sorted(os.listdir(config_dir)) if os.path.isdir(config_dir) else []:
+        found = re.fullmatch(r"race_(\w+)\.yaml|(rod)\.yaml", name)
+        if found:
+            with open(os.path.join(config_dir, name)) as text:
+                config = yaml.safe_load(text) or {}
+            parts[found.group(1) or found.group(2)] = {
+                body: body_with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
+    return parts
+
+
 class World:
     """What the view knows of the followed world, on the server's thread."""
 
-    def __init__(self) -> None:
+    def __init__(self, parts: Optional[Dict[str, Dict[str, Dict[str, Any]]]] = None) -> None:
+        self.lesson_parts = parts or {}
         self.settings: Dict[str, Any] = dict(WORLD_DEFAULTS)
         self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
         self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
-        self.source = "none"  # node (a live node), replay (a played bag), none (nothing yet)
+        self.source = "none"  # node (a live node), replay (a played bag), ended (a replay that ended), none
         self.player = ""  # in a replay: the node that plays the state topics (rosbag play: pause_playback)
         self.paused = False
         self.paused_at = 0.0  # when a page paused the player (monotonic s)
@@ -98,13 +137,29 @@ class World:
         """{body: rod | roller}: the bodies with a state topic."""
         return dict(self.topics)
 
+    def parts(self) -> List[str]:
+        """The lesson parts this world's bodies can take: the same bodies, of the same shapes (a node's world;
+        a recording cannot change)."""
+        if self.source != "node":
+            return []
+        return [part for part, bodies in self.lesson_parts.items()
+                if set(bodies) == set(self.bodies) == set(self.topics)
+                and all(b["type"] == self.bodies[n]["type"] and b.get("shape") == self.bodies[n].get("shape")
+                        for n, b in bodies.items())]
+
+    def part(self) -> str:
+        """The lesson part whose keys the world has, or "" (none, or keys a teacher changed since)."""
+        return next((part for part in self.parts()
+                     if all(self.bodies[n].get(key) == b.get(key)
+                            for n, b in self.lesson_parts[part].items() for key in LESSON_KEYS[b["type"]])), "")
+
     def message(self) -> str:
         bodies = {}
         for name, kind in sorted(self.topics.items()):
             known = self.bodies.get(name)
             bodies[name] = known if known and known["type"] == kind else body_with_defaults({"type": kind})
         return json.dumps({"type": "world", "source": self.source, "paused": self.paused,
-                           "settings": self.settings, "bodies": bodies})
+                           "settings": self.settings, "bodies": bodies, "parts": self.parts(), "part": self.part()})
 
 
 class Page(tornado.websocket.WebSocketHandler):
@@ -127,8 +182,9 @@ class Page(tornado.websocket.WebSocketHandler):
         self.wake = asyncio.Event()
         self.pending = 0
         self.sent = 0
+        self.writing = False  # send_loop waits for a write of this page's
         self.refused: Dict[str, int] = {}
-        token = self.get_query_argument("token", "") or ""
+        token = self.get_cookie(CONTROL_COOKIE, "") or ""
         self.control = bool(self.view.token) and bool(token) and hmac.compare_digest(token, self.view.token)
         refused_token = None
         if token and not self.control:  # a link from before a restart (a new token each start), or a guess
@@ -152,8 +208,11 @@ class Page(tornado.websocket.WebSocketHandler):
         self.view.pages.add(self)
         rospy.loginfo(f"web view: page {self.number} opened from {self.request.remote_ip}"
                       f"{' with control' if self.control else ''} ({len(self.view.pages)} open)")
-        self.reply({"type": "hello", "control": self.control, "node": self.view.node,
-                    "frame_rate": self.view.frame_rate, "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS})
+        hello = {"type": "hello", "control": self.control, "node": self.view.node, "frame_rate": self.view.frame_rate,
+                 "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS, "view": self.view.shared}
+        if self.control:  # where the class finds this page (a QR code of the first: /qr.svg)
+            hello["addresses"] = self.view.watch_urls
+        self.reply(hello)
         self.reply_text(self.view.world.message())
         if self.view.finishes:
             self.reply({"type": "finishes", "finishes": self.view.finishes})
@@ -181,13 +240,18 @@ class Page(tornado.websocket.WebSocketHandler):
     def on_message(self, message: Any) -> None:
         request_id = None
         try:
-            request = parse_request(message, self.control, self.view.world.kinds())
+            request = parse_request(message, self.control, self.view.world.kinds(), self.view.world.parts())
             request_id = request.id
+            if request.op == "view":  # the teacher's choice for every following page: the server's own
+                self.view.shared = {"plot_body": request.body}
+                self.view.broadcast({"type": "view", **self.view.shared})
+                self.reply({"type": "reply", "id": request.id, "ok": True, "line": f"the class plots {request.body}"})
+                return
             source = self.view.world.source
             if source == "replay" and request.op not in ("pause", "run"):
                 raise Refusal("replay", "refused: a recording cannot be changed, only paused and run (no node "
                                         f"serves {self.view.node}/pause)")
-            if source == "none":
+            if source in ("none", "ended"):
                 raise Refusal("none", f"refused: no simulation found ({self.view.node})")
             if self.pending >= MAX_PENDING_REQUESTS:
                 raise Refusal("busy", f"refused: {MAX_PENDING_REQUESTS} requests already wait for the node")
@@ -216,23 +280,49 @@ class Page(tornado.websocket.WebSocketHandler):
         self.replies.append(text)
         self.wake.set()
 
-    def offer(self, frame: str) -> None:
+    def offer(self, frame: bytes) -> None:
+        """A frame for this page: written at once when nothing of this page's waits (the socket takes it, or
+        tornado holds this one frame until it does), else queued for send_loop. At once, a frame costs a
+        page one write, not a wake of its loop: 300 pages at 50 frames a second."""
+        connection: Any = self.ws_connection
+        stream = connection.stream if connection is not None and not connection.is_closing() else None
+        if not self.writing and not self.replies and not self.frames.frames and stream and not stream.writing():
+            try:  # the socket itself (non-blocking): tornado's write costs several times more
+                sent = stream.socket.send(frame)
+            except BlockingIOError:
+                sent = 0
+            except OSError:
+                return  # closed: on_close follows
+            if sent < len(frame):  # tornado holds the rest until the socket takes it
+                stream.write(frame[sent:]).add_done_callback(lambda done: done.exception())
+            self.sent += 1
+            return
         self.frames.offer(frame)
         self.wake.set()
 
     async def send_loop(self) -> None:
         """Writes one message at a time: a page whose socket is full holds one write here, its frames wait
-        in its bounded queue, and no other page waits for it."""
+        in its bounded queue, and no other page waits for it. A frame comes as the WebSocket frame's bytes,
+        built once for every page (tornado's write_message would frame it again for each)."""
         while self in self.view.pages:
-            text = self.replies.pop(0) if self.replies else self.frames.take()
-            if text is None:
+            message: Any = self.replies.pop(0) if self.replies else self.frames.take()
+            if message is None:
                 self.wake.clear()
                 await self.wake.wait()
                 continue
+            self.writing = True
             try:
-                await self.write_message(text)
-            except tornado.websocket.WebSocketClosedError:
+                if isinstance(message, bytes):
+                    connection: Any = self.ws_connection
+                    if connection is None or connection.is_closing():
+                        return
+                    await connection.stream.write(message)
+                else:
+                    await self.write_message(message)
+            except (tornado.websocket.WebSocketClosedError, tornado.iostream.StreamClosedError):
                 return
+            finally:
+                self.writing = False
             self.sent += 1
 
 
@@ -250,10 +340,19 @@ class WebView:
             raise ValueError(f"frame_rate {self.frame_rate} not in (0, 1000] or queue {self.queue_bound} "
                              "not in [1, 1000]")
         self.token = secrets.token_urlsafe(18) if self.control else ""
-        # On the loopback only these names reach it; on a network any (its names are not known here).
-        self.local_hosts = ({f"127.0.0.1:{self.port}", f"localhost:{self.port}"}
-                            if self.host in ("127.0.0.1", "localhost") else set())
-        self.world = World()
+        # The names a request may give as its Host: this machine's (DNS rebinding: a foreign name that points
+        # here is refused), and the addresses a student's browser can use (every one but the loopback's when
+        # listening on all of them).
+        addresses = own_addresses() if self.host in ("0.0.0.0", "::", "") else [self.host]
+        names = {"127.0.0.1", "localhost", "[::1]", socket.gethostname(), socket.getfqdn(),
+                 socket.gethostname() + ".local"} | {f"[{a}]" if ":" in a else a for a in addresses}
+        self.local_hosts = {f"{name.lower()}:{self.port}" for name in names}
+        if self.port == 80:
+            self.local_hosts |= {name.lower() for name in names}
+        remote = [a for a in addresses if not a.startswith("127.") and a != "::1"] or addresses
+        self.watch_urls = [f"http://{f'[{a}]' if ':' in a else a}:{self.port}/" for a in remote]
+        self.shared: Dict[str, str] = {}  # the teacher's choices every following page takes: plot_body
+        self.world = World(lesson_parts(os.path.join(self.web_root, "..", "config")))
         self.pages: Set[Page] = set()
         self.pending: Dict[str, List[Dict[str, Any]]] = {}  # states since the last frame, by body
         self.latest: Dict[str, Dict[str, Any]] = {}  # each body's last state
@@ -262,7 +361,7 @@ class WebView:
         self.line_came: asyncio.Event  # made on the server's loop (serve)
         self.subscribers: Dict[str, Any] = {}
         self.held: Dict[str, Any] = {}  # a player's other topics (take_the_rest)
-        self.finishes: Dict[str, Optional[str]] = {}  # a race's results by body (on_markers)
+        self.finishes: Dict[str, Optional[Dict[str, Any]]] = {}  # a race's results by body (on_markers)
         self.need_config = threading.Event()
         self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
@@ -347,7 +446,7 @@ class WebView:
     def on_node_line(self, text: str) -> None:
         self.node_lines = self.node_lines[-49:] + [(time.monotonic(), text)]
         self.line_came.set()
-        self.broadcast({"type": "line", "line": text})
+        self.broadcast({"type": "line", "line": text}, control_only=True)  # the teacher's, not the class's
 
     def on_config(self, config: Dict[str, Any]) -> None:
         self.world.set_config(config)
@@ -355,6 +454,8 @@ class WebView:
 
     def on_discovered(self, kinds: Dict[str, str], source: str, player: str) -> None:
         self.world.player = player
+        if source == "none" and self.world.source in ("replay", "ended"):
+            source, kinds = "ended", self.world.topics  # the recording's last frame stays, and says so
         if kinds != self.world.topics or source != self.world.source:
             self.world.topics = kinds
             self.world.source = source
@@ -391,14 +492,14 @@ class WebView:
     def on_markers(self, msg: MarkerArray) -> None:
         """A race's results from the node's boards (a roller's, at its lane's lower end): each finished
         racer's place and times, None for one racing (its board is no finish)."""
-        finishes: Dict[str, Optional[str]] = {}
+        finishes: Dict[str, Optional[Dict[str, Any]]] = {}
         for marker in msg.markers:
             if marker.ns != "board" or not marker.text:
                 continue
             body, finish = finish_of_label(marker.text)
             finishes[body] = finish
         if finishes and finishes != {b: self.finishes.get(b) for b in finishes}:
-            self.finishes.update(finishes)
+            self.finishes = tied_places({**self.finishes, **finishes})
             self.broadcast({"type": "finishes", "finishes": self.finishes})
 
     def on_state(self, body: str, msg: Any) -> None:
@@ -412,8 +513,10 @@ class WebView:
         if self.world.source == "replay" and self.world.paused and time.monotonic() > self.world.paused_at + 0.5:
             self.on_paused(False)
 
-    def latest_frame(self) -> Optional[str]:
-        return frame_message(self.seq, {b: [s] for b, s in self.latest.items()}) if self.latest else None
+    def latest_frame(self) -> Optional[bytes]:
+        if not self.latest:
+            return None
+        return websocket_text_frame(frame_message(self.seq, {b: [s] for b, s in self.latest.items()}))
 
     def flush(self) -> None:
         """One frame of every state since the last, serialised once for every page."""
@@ -421,7 +524,7 @@ class WebView:
             self.pending = {}
             return
         self.seq += 1
-        frame = frame_message(self.seq, self.pending)
+        frame = websocket_text_frame(frame_message(self.seq, self.pending))
         self.pending = {}
         for page in list(self.pages):
             page.offer(frame)
@@ -431,10 +534,11 @@ class WebView:
         for page in list(self.pages):
             page.reply_text(text)
 
-    def broadcast(self, message: Dict[str, Any]) -> None:
+    def broadcast(self, message: Dict[str, Any], control_only: bool = False) -> None:
         text = json.dumps(message)
         for page in list(self.pages):
-            page.reply_text(text)
+            if page.control or not control_only:
+                page.reply_text(text)
 
     async def carry_out(self, request: Request) -> Tuple[bool, str]:
         """One request through the node's own services or the body's reconfigure server: (accepted, the line
@@ -468,6 +572,8 @@ class WebView:
                     self.world.paused_at = time.monotonic()
                     self.loop.add_callback(self.on_paused, request.op == "pause")
                 return bool(answer.success), f"{player}: {answer.message}"
+            if request.op == "part":
+                return self.start_part(request.key)
             if request.op in ("pause", "run", "reset"):
                 name = {"pause": "pause", "run": "unpause", "reset": "reset"}[request.op]
                 rospy.ServiceProxy(f"{self.node}/{name}", Empty)()
@@ -485,6 +591,20 @@ class WebView:
         except (rospy.ServiceException, rospy.ROSException, OSError) as error:
             return False, f"no answer from {self.node}: {error}"
 
+    def start_part(self, part: str) -> Tuple[bool, str]:
+        """On the calls thread: every body's lesson keys as the part's config has them (one reconfigure
+        each), then a reset: the race starts afresh, and every page shows it."""
+        for body, keys in self.world.lesson_parts[part].items():
+            names = LESSON_KEYS[keys["type"]]
+            asked = ReconfigureConfig(doubles=[DoubleParameter(name=k, value=float(keys[k])) for k in names])
+            shown = rospy.ServiceProxy(f"{self.node}/{body}/set_parameters", Reconfigure)(asked).config
+            now = {p.name: p.value for p in shown.doubles}
+            wrong = [k for k in names if now.get(k) != float(keys[k])]
+            if wrong:
+                return False, f"refused part {part}: {body}'s {', '.join(wrong)} snapped back"
+        rospy.ServiceProxy(f"{self.node}/reset", Empty)()
+        return True, f"part {part}: every body's keys set, the race started again"
+
     # --- HTTP -----------------------------------------------------------------------------------------------
     def application(self) -> tornado.web.Application:
         root = os.path.realpath(self.web_root)
@@ -494,21 +614,67 @@ class WebView:
         return tornado.web.Application(
             [(r"/ws", Page, {"view": self}),
              (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
-             (r"/(view\.js|view\.css)", File, {"path": root, "view": self})],
+             (r"/(view\.js|view\.css)", File, {"path": root, "view": self}),
+             (r"/qr\.svg", QrCode, {"view": self})],
             # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
-            websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20)
+            websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20,
+            log_function=log_request)
 
     def urls(self) -> Tuple[str, str]:
-        host = "127.0.0.1" if self.host in ("127.0.0.1", "0.0.0.0", "") else self.host
-        base = f"http://{host}:{self.port}/"
+        base = self.watch_urls[0]
         return base, f"{base}?token={self.token}"
 
 
+def log_request(handler: tornado.web.RequestHandler) -> None:
+    """tornado's access log line without the query: the teacher's link carries the token, and rospy writes
+    this log to a file every user can read."""
+    request = handler.request
+    status = handler.get_status()
+    log = tornado.log.access_log.info if status < 400 else tornado.log.access_log.warning
+    log("%d %s %s (%s) %.2fms", status, request.method, request.path, request.remote_ip,
+        1000.0 * request.request_time())
+
+
+def own_addresses() -> List[str]:
+    """This machine's IPv4 and global IPv6 addresses (the loopback's first), from the kernel's tables."""
+    import fcntl
+    import struct
+    found: List[str] = []
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as probe:
+        for _, name in socket.if_nameindex():
+            try:  # SIOCGIFADDR: the interface's IPv4 address
+                packed = fcntl.ioctl(probe.fileno(), 0x8915, struct.pack("256s", name.encode()[:15]))
+                found.append(socket.inet_ntoa(packed[20:24]))
+            except OSError:
+                pass  # no IPv4 address on it
+    try:
+        with open("/proc/net/if_inet6") as table:
+            for line in table:
+                raw, scope = line.split()[0], int(line.split()[3], 16)
+                if scope == 0:  # global: a link-local one needs its interface named in the address
+                    found.append(socket.inet_ntop(socket.AF_INET6, bytes.fromhex(raw)))
+    except OSError:
+        pass  # no IPv6
+    loopback = [a for a in found if a.startswith("127.") or a == "::1"]
+    return loopback + [a for a in found if a not in loopback]
+
+
 def refuse_foreign_host(handler: tornado.web.RequestHandler, view: "WebView") -> None:
-    """On the loopback, a request must name this machine (127.0.0.1 or localhost) as its host: a site whose name
-    was made to point at 127.0.0.1 (DNS rebinding) gets neither the page nor a connection."""
-    if view.local_hosts and handler.request.host not in view.local_hosts:
+    """A request must name this machine (one of its names or addresses) as its host: a site whose name was
+    made to point here (DNS rebinding) gets neither the page nor a connection."""
+    host = handler.request.host.lower()
+    if host not in view.local_hosts and not loopback_literal(host, view.port):
         raise tornado.web.HTTPError(403, "host %s is not this web view's", handler.request.host)
+
+
+def loopback_literal(host: str, port: int) -> bool:
+    """A loopback address written as such with this port (127.0.1.1, which Debian gives this machine's name,
+    or any other of 127/8): a numeric host no rebinding site can have."""
+    name, _, given = host.rpartition(":")
+    try:
+        return given == str(port) and ipaddress.ip_address(name.strip("[]")).is_loopback
+    except ValueError:
+        return False
 
 
 class File(tornado.web.StaticFileHandler):
@@ -520,6 +686,17 @@ class File(tornado.web.StaticFileHandler):
         super().initialize(path, default_filename)
         self.view = view
 
+    async def get(self, path: str, include_body: bool = True) -> None:
+        token = self.get_query_argument("token", None)
+        if token is not None and path == "":
+            # The teacher's link: the token as a cookie that only the page's WebSocket gets back (the page's
+            # script cannot read it), and the address without it (a projected address bar, the history).
+            self.set_cookie(CONTROL_COOKIE, token, path="/ws", httponly=True, samesite="Strict", expires_days=1)
+            self.set_header("Cache-Control", "no-store")
+            self.redirect("/", status=303)
+            return
+        await super().get(path, include_body)
+
     def prepare(self) -> None:
         if self.view:
             refuse_foreign_host(self, self.view)
@@ -527,9 +704,72 @@ class File(tornado.web.StaticFileHandler):
     def set_extra_headers(self, path: str) -> None:
         self.set_header("Cache-Control", "no-store")
         self.set_header("X-Content-Type-Options", "nosniff")
+        self.set_header("Referrer-Policy", "no-referrer")
         self.set_header("Content-Security-Policy",
                         "default-src 'none'; script-src 'self'; style-src 'self'; connect-src 'self'; "
                         "img-src 'self'; frame-ancestors 'none'")
+
+
+class QrCode(tornado.web.RequestHandler):
+    """The address a student's phone uses (the first of watch_urls), as a QR code the teacher's page shows."""
+
+    def initialize(self, view: "WebView") -> None:
+        self.view = view
+
+    def prepare(self) -> None:
+        refuse_foreign_host(self, self.view)
+
+    def get(self) -> None:
+        image = qrcode.make(self.view.watch_urls[0], image_factory=qrcode.image.svg.SvgPathImage, border=2)
+        svg = io.BytesIO()
+        image.save(svg)
+        self.set_header("Content-Type", "image/svg+xml")
+        self.set_header("Cache-Control", "no-store")
+        self.set_header("X-Content-Type-Options", "nosniff")
+        self.write(svg.getvalue())
+
+
+class SizeGuard(tornado.httputil.HTTPMessageDelegate):
+    """Answers a request whose target or header lines are too long with 414 or 431 (RFC 6585) and closes
+    its connection, before any handler sees it."""
+
+    def __init__(self, inner: tornado.httputil.HTTPMessageDelegate,
+                 connection: tornado.httputil.HTTPConnection) -> None:
+        self.inner = inner
+        self.connection = connection
+        self.refused = False
+
+    def headers_received(self, start_line: Any, headers: tornado.httputil.HTTPHeaders) -> Optional[Any]:
+        size = sum(len(name) + len(value) + 4 for name, value in headers.get_all())
+        status = (414, "URI Too Long") if len(start_line.path) > MAX_URL else (
+            (431, "Request Header Fields Too Large") if size > MAX_HEADERS else None)
+        if status is None:
+            return self.inner.headers_received(start_line, headers)
+        self.refused = True
+        body = f"{status[0]} {status[1]}\n".encode()
+        self.connection.write_headers(
+            tornado.httputil.ResponseStartLine("HTTP/1.1", *status),
+            tornado.httputil.HTTPHeaders({"Content-Type": "text/plain", "Content-Length": str(len(body)),
+                                          "Connection": "close"}), body)
+        self.connection.finish()
+        return None
+
+    def data_received(self, chunk: bytes) -> Optional[Any]:
+        return None if self.refused else self.inner.data_received(chunk)
+
+    def finish(self) -> None:
+        if not self.refused:
+            self.inner.finish()
+
+    def on_connection_close(self) -> None:
+        if not self.refused:
+            self.inner.on_connection_close()
+
+
+class Server(tornado.httpserver.HTTPServer):
+    def start_request(self, server_conn: object,
+                      request_conn: tornado.httputil.HTTPConnection) -> tornado.httputil.HTTPMessageDelegate:
+        return SizeGuard(super().start_request(server_conn, request_conn), request_conn)
 
 
 async def serve(view: WebView) -> None:
@@ -538,7 +778,9 @@ async def serve(view: WebView) -> None:
     view.line_came = asyncio.Event()
     done = asyncio.Event()
     try:
-        view.application().listen(view.port, address=view.host, xheaders=False)
+        # An idle or half-sent request's connection is closed HEAD_TIMEOUT s after it began.
+        Server(view.application(), xheaders=False, max_header_size=READ_HEAD_LIMIT,
+               idle_connection_timeout=HEAD_TIMEOUT, body_timeout=HEAD_TIMEOUT).listen(view.port, address=view.host)
     except OSError as error:
         rospy.logfatal(f"web view: cannot listen on {view.host}:{view.port}: {error}")
         sys.exit(1)
@@ -548,9 +790,11 @@ async def serve(view: WebView) -> None:
     rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
     if view.host not in ("127.0.0.1", "localhost"):
         rospy.logwarn(f"web view: open to the network on {view.host}:{view.port} (plain HTTP): the class watches "
-                      f"at http://{socket.gethostname()}:{view.port}/ or this machine's address")
+                      f"at {' or '.join(view.watch_urls)}")
     if view.control:
-        rospy.loginfo(f"web view: control (keep it to the teacher): {control}")
+        # Standard output alone: the launching terminal. rospy's log would put it on /rosout and in log files
+        # every user can read.
+        print(f"[INFO] web view: control (keep it to the teacher): {control}", flush=True)
     rospy.on_shutdown(lambda: view.loop.add_callback(done.set))
     await done.wait()
 
@@ -561,6 +805,10 @@ def main() -> None:
     # disable_signals: rospy's own handlers would not end the server's loop; these end ROS, which ends it.
     signal.signal(signal.SIGINT, lambda *_: rospy.signal_shutdown("SIGINT"))
     signal.signal(signal.SIGTERM, lambda *_: rospy.signal_shutdown("SIGTERM"))
+    # Every open file the system lets it have: a class's pages and slow clients each hold a socket (a
+    # desktop's soft limit of 1024 would stop it accepting any), until HEAD_TIMEOUT closes the slow.
+    _, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    resource.setrlimit(resource.RLIMIT_NOFILE, (hard, hard))
     asyncio.run(serve(WebView()))
 
 

@@ -1,35 +1,40 @@
 // The web view's page: the followed world from the side, as the text poses its problems, and live plots.
 // Everything comes from this page's server (scripts/web_view.py) over one WebSocket; nothing from elsewhere.
 // What is drawn is kept in window.rbs (the browser test reads it): the latest frame, each body's drawn state
-// and place on the canvas, each plot's last points.
+// and place on the canvas, each plot's last points, and every text drawn on a canvas with its box.
 "use strict";
 
 const PLOT_WINDOW = 10; // s of simulated time in the plots, as the rviz panel's
 const KEEP = 12; // s of points kept per body
-const MIN_RADIUS = 9; // px: a body drawn smaller is lost on a projector or a phone
+const MIN_RADIUS = 10; // px: a body is drawn at least 20 px across (larger than to scale, its panel says so)
 const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spherical_shell: "#6bd06b",
-                  custom: "#c0a0ff", rod: "#4f8cff" };
+                  custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d" };
+// The plots' lines: white, yellow and teal, none a body's colour (the rod's marked end excepted: its own).
+const PLOT_COLOURS = { first: "#f2f2f2", second: "#ffe066", third: "#3fd0c0" };
+const TEXT_SCALES = [0.8, 1, 1.25, 1.5, 2];
+const LINE_SHOWN = 10000; // ms a reply's or a node's line stays on the page
 
+const marks = {}; // body -> [{t, v}] slip -> roll instants, at the closed form's
 const rbs = {
   frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
-  drawn: {}, plotLast: {}, panels: {}, replies: [], finishes: {},
+  drawn: {}, plotLast: {}, panels: {}, replies: [], sent: [], finishes: {}, texts: [], ended: false,
+  shared: {}, laps: {},
 };
 window.rbs = rbs;
 rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
-
-const token = new URLSearchParams(location.search).get("token") || "";
-if (token) history.replaceState(null, "", location.pathname); // the token off a projected address bar
+rbs.marks = marks; // each roller's slip -> roll instants, {t, v}
 
 const latest = {}; // body -> its last state
 const points = {}; // body -> [{t, ...the plotted values}]
-const marks = {}; // body -> [[t, v]] slip -> roll instants
-const lastMode = {}; // body -> the mode of its previous state
+const lastState = {}; // body -> its previous state
 let resetT = -Infinity; // the latest reset's t: no point at or before it is plotted
 let socket = null;
 let nextId = 1;
 let drawPending = false;
 let lessonKeys = {};
 let keyUnits = {};
+let lineTimer = null;
+let ownChoice = false; // this page chose its plotted body itself (a student's: until the teacher chooses again)
 
 const $ = (id) => document.getElementById(id);
 
@@ -38,6 +43,7 @@ function criticalAngle(b) { return Math.atan(b.mu_s * (1 + b.inertia_factor) / b
 function deg(rad) { return (rad * 180 / Math.PI).toFixed(1) + "\u00b0"; }
 // Three decimals, without the "-0.000" of a tiny negative number.
 function fixed3(x) { return Math.abs(x) < 0.0005 ? "0.000" : x.toFixed(3); }
+function gravity() { return Number(rbs.world.settings.gravity); }
 function kinetic(b, s) {
   if (b.type === "rod") {
     return 0.5 * b.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (b.mass * b.length * b.length / 12) * s.omega * s.omega;
@@ -53,14 +59,48 @@ function modeOf(b, s) {
   const e = rodEnds(b, s);
   return e.a < 0 || e.b < 0 ? "on the floor" : "in the air";
 }
+// A slipping roller's accelerations are constant (section 16.3.2): from a slipping state, the closed form's
+// instant its slip u = v + omega R reaches 0, and v then.
+function slipEnds(b, s) {
+  const g = gravity();
+  const phi = b.incline_angle;
+  const c = b.inertia_factor;
+  const u = s.v + s.omega * b.radius;
+  const sign = u > 0 ? 1 : -1;
+  const rate = b.mu_d * g * Math.cos(phi) * (1 + 1 / c) - sign * g * Math.sin(phi); // -du/dt * sign
+  if (!(rate > 0)) return null; // slips for ever
+  const dt = Math.abs(u) / rate;
+  return { t: s.t + dt, v: s.v + (g * Math.sin(phi) - sign * b.mu_d * g * Math.cos(phi)) * dt };
+}
+// The start of a lap from a state of it: the time since its initial conditions at its mode's constant
+// acceleration, or null where the state's x does not agree (its mode changed since, or it is no lap's).
+function lapStart(b, s) {
+  const g = gravity();
+  const phi = b.incline_angle;
+  const u = s.v + s.omega * b.radius;
+  const a = s.mode === "rolling" ? g * Math.sin(phi) / (1 + b.inertia_factor)
+    : g * Math.sin(phi) - Math.sign(u) * b.mu_d * g * Math.cos(phi);
+  const since = Math.abs(a) > 1e-12 ? (s.v - b.v0) / a : Math.abs(b.v0) > 1e-12 ? (s.x - b.x0) / b.v0 : NaN;
+  const x = b.x0 + b.v0 * since + 0.5 * a * since * since;
+  return since >= 0 && Math.abs(x - s.x) <= 1e-6 * Math.max(1, Math.abs(s.x)) ? s.t - since : null;
+}
+function ordinal(n) {
+  const tens = n % 100;
+  const last = n % 10;
+  const suffix = (tens >= 11 && tens <= 13) || last === 0 || last > 3 ? "th" : ["", "st", "nd", "rd"][last];
+  return `${n}${suffix}`;
+}
 
 // --- the connection --------------------------------------------------------------------------------------
 function connect() {
   const scheme = location.protocol === "https:" ? "wss" : "ws";
-  socket = new WebSocket(`${scheme}://${location.host}/ws${token ? "?token=" + encodeURIComponent(token) : ""}`);
+  socket = new WebSocket(`${scheme}://${location.host}/ws`); // a teacher's page: its cookie says so
   socket.onmessage = (event) => receive(JSON.parse(event.data));
   socket.onclose = () => {
-    setStatus("disconnected: the web view is gone (retrying)", true);
+    // A replay's end may end the web view with it: the last frame stays, and says so.
+    if (rbs.world && (rbs.world.source === "replay" || rbs.world.source === "ended")) rbs.ended = true;
+    else setStatus("disconnected: the web view is gone (retrying)", true);
+    scheduleDraw();
     setTimeout(connect, 2000);
   };
 }
@@ -69,34 +109,48 @@ function receive(m) {
   if (m.type === "frame") {
     rbs.frames += 1;
     rbs.lastFrame = m;
+    rbs.ended = false;
     for (const [body, states] of Object.entries(m.states)) for (const s of states) addState(body, s);
   } else if (m.type === "hello") {
     rbs.control = m.control;
     lessonKeys = m.lesson_keys;
     keyUnits = m.key_units;
     $("controls").hidden = !m.control;
+    showAddresses(m.addresses || []);
+    rbs.shared = m.view || {};
   } else if (m.type === "world") {
     rbs.world = m;
     rbs.paused = m.paused;
+    rbs.ended = m.source === "ended";
     for (const body of Object.keys(latest)) if (!(body in m.bodies)) delete latest[body];
     fillSelects();
+    showPart(m.parts || [], m.part || "");
+  } else if (m.type === "view") {
+    rbs.shared = { plot_body: m.plot_body };
+    // A student's page takes the teacher's new choice over its own; the teacher's page has it already (and
+    // an echo of an earlier choice must not undo a later one).
+    if (!rbs.control) {
+      ownChoice = false;
+      followTeacher();
+    }
   } else if (m.type === "finishes") {
-    rbs.finishes = m.finishes; // a race's results, in the node's own words: "1st, 2.0439 s (closed form ...)"
+    rbs.finishes = m.finishes; // a race's results: {place, time, closed_form}, places shared by a tie
   } else if (m.type === "paused") {
     rbs.paused = m.paused;
   } else if (m.type === "reset") {
     resetT = Math.max(resetT, m.t);
     for (const body of Object.keys(points)) {
       points[body] = points[body].filter((p) => p.t > m.t);
-      marks[body] = (marks[body] || []).filter((p) => p[0] > m.t);
-      delete lastMode[body];
+      marks[body] = (marks[body] || []).filter((p) => p.t > m.t);
+      delete lastState[body];
+      rbs.laps[body] = m.t; // every body starts from its initial conditions at the reset's t
     }
   } else if (m.type === "reply") {
     rbs.replies.push(m);
     if (!m.ok) showKeyValue(); // a refused value: the field shows the one that runs again
     showLine(m.line, m.ok);
   } else if (m.type === "line") {
-    showLine(m.line, false);
+    showLine(m.line, false); // the node's WARN line: sent to the teacher's page alone
   }
   scheduleDraw();
 }
@@ -108,6 +162,7 @@ function addState(body, s) {
   if (!b || s.t <= resetT) return;
   const K = kinetic(b, s);
   const p = { t: s.t, energy: s.energy, kinetic: K, potential: s.energy - K };
+  const before = lastState[body];
   if (b.type === "rod") {
     const e = rodEnds(b, s);
     p.end_a = e.a;
@@ -115,9 +170,17 @@ function addState(body, s) {
   } else {
     p.v = s.v;
     p.minus_omega_r = -s.omega * b.radius;
-    if (lastMode[body] === "slipping" && s.mode === "rolling") (marks[body] = marks[body] || []).push([s.t, s.v]);
-    lastMode[body] = s.mode;
+    if (!before || s.x < before.x - 1e-9) { // the first state seen, or a race's new lap
+      const start = lapStart(b, s);
+      if (start !== null) rbs.laps[body] = start;
+    }
+    if (before && before.mode === "slipping" && s.mode === "rolling") {
+      const end = slipEnds(b, before);
+      if (end) (marks[body] = marks[body] || []).push(end);
+      while (marks[body] && marks[body].length && marks[body][0].t < s.t - KEEP) marks[body].shift();
+    }
   }
+  lastState[body] = s;
   const list = (points[body] = points[body] || []);
   list.push(p);
   while (list.length && list[0].t < s.t - KEEP) list.shift();
@@ -125,6 +188,7 @@ function addState(body, s) {
 
 function send(request) {
   request.id = nextId++;
+  rbs.sent.push({ op: request.op, id: request.id });
   if (socket && socket.readyState === WebSocket.OPEN) socket.send(JSON.stringify(request));
   return request.id;
 }
@@ -135,12 +199,29 @@ function showLine(text, ok) {
   const el = $("line");
   el.textContent = text;
   el.className = ok ? "ok" : "refused";
+  clearTimeout(lineTimer);
+  lineTimer = setTimeout(() => { el.textContent = ""; rbs.line = ""; scheduleDraw(); }, LINE_SHOWN);
 }
 
 function setStatus(text, stopped) {
   const el = $("status");
   el.textContent = text;
   el.className = stopped ? "stopped" : "";
+}
+
+function showAddresses(urls) {
+  $("class-address").hidden = !urls.length;
+  if (!urls.length) return;
+  // The loopback alone: no other machine reaches it, and a QR code of it would mislead a phone.
+  const local = urls.every((u) => /^http:\/\/(127\.|\[::1\])/.test(u));
+  const lines = local ? [...urls, "this machine only: web_host:=0.0.0.0 opens it to the class"] : urls;
+  $("addresses").replaceChildren(...lines.map((u) => {
+    const item = document.createElement("li");
+    item.textContent = u;
+    return item;
+  }));
+  $("qr").hidden = local;
+  if (!local) $("qr").src = "qr.svg";
 }
 
 // --- controls ----------------------------------------------------------------------------------------------
@@ -152,7 +233,24 @@ function fillSelects() {
     sel.replaceChildren(...names.map((n) => new Option(n, n)));
     if (names.includes(was)) sel.value = was;
   }
+  if (!ownChoice) followTeacher();
   fillKeys();
+}
+
+// The lesson part the world is in, for every page; the teacher's choice of another (lesson.launch's parts
+// these bodies can take: the server sets their keys and starts the race again).
+function showPart(parts, part) {
+  $("part").textContent = part ? `part: ${part}` : "";
+  const sel = $("part-choice");
+  sel.hidden = parts.length < 2;
+  const names = part ? parts : ["(keys changed)", ...parts];
+  sel.replaceChildren(...names.map((n) => new Option(n === part || parts.includes(n) ? `part ${n}` : n, n)));
+  sel.value = part || names[0];
+}
+
+function followTeacher() {
+  const body = rbs.shared.plot_body;
+  if (body && rbs.world && body in rbs.world.bodies) $("plot-body").value = body;
 }
 
 function fillKeys() {
@@ -176,6 +274,14 @@ function showKeyValue() {
   $("set-unit").textContent = unit === "rad" ? `rad (${deg(Number(b[key]))})` : unit;
 }
 
+function textScale(step) {
+  let i = TEXT_SCALES.indexOf(Number(localStorage.getItem("rbs_text_scale") || 1));
+  i = Math.min(TEXT_SCALES.length - 1, Math.max(0, (i < 0 ? 1 : i) + step));
+  localStorage.setItem("rbs_text_scale", String(TEXT_SCALES[i]));
+  document.documentElement.style.setProperty("--text-scale", String(TEXT_SCALES[i]));
+  scheduleDraw();
+}
+
 function wireControls() {
   $("pause").onclick = () => send({ op: "pause" });
   $("run").onclick = () => send({ op: "run" });
@@ -184,9 +290,27 @@ function wireControls() {
   $("set").onclick = () => send({ op: "set", body: $("set-body").value, key: $("set-key").value,
                                   value: Number($("set-value").value) });
   $("set-body").onchange = fillKeys;
+  $("part-choice").onchange = () => {
+    if (rbs.world.parts.includes($("part-choice").value)) send({ op: "part", part: $("part-choice").value });
+  };
   $("set-key").onchange = showKeyValue;
-  $("plot-body").onchange = scheduleDraw;
+  $("plot-body").onchange = () => {
+    ownChoice = true;
+    if (rbs.control) send({ op: "view", plot_body: $("plot-body").value }); // the class plots it too
+    scheduleDraw();
+  };
+  $("text-smaller").onclick = () => textScale(-1);
+  $("text-larger").onclick = () => textScale(1);
+  $("full-screen").onclick = () => {
+    if (document.fullscreenElement) document.exitFullscreen();
+    else document.documentElement.requestFullscreen();
+  };
+  document.addEventListener("fullscreenchange", () => {
+    $("full-screen").textContent = document.fullscreenElement ? "Leave full screen" : "Full screen";
+  });
   window.addEventListener("resize", scheduleDraw);
+  $("class-address").addEventListener("toggle", scheduleDraw);
+  textScale(0);
 }
 
 // --- drawing -----------------------------------------------------------------------------------------------
@@ -196,9 +320,14 @@ function scheduleDraw() {
   requestAnimationFrame(() => { drawPending = false; draw(); });
 }
 
+// The page's text size (view.css): every canvas text is drawn at it, none smaller.
+function textPx() { return parseFloat(getComputedStyle(document.documentElement).fontSize); }
+function font(bold) { return `${bold ? "bold " : ""}${textPx()}px 'DejaVu Sans', sans-serif`; }
+
 function fitCanvas(canvas, height) {
   const ratio = window.devicePixelRatio || 1;
   const width = canvas.clientWidth;
+  height = Math.max(1, Math.floor(height));
   canvas.style.height = height + "px";
   if (canvas.width !== Math.round(width * ratio) || canvas.height !== Math.round(height * ratio)) {
     canvas.width = Math.round(width * ratio);
@@ -207,104 +336,170 @@ function fitCanvas(canvas, height) {
   const ctx = canvas.getContext("2d");
   ctx.setTransform(ratio, 0, 0, ratio, 0, 0);
   ctx.clearRect(0, 0, width, height);
+  ctx.canvasId = canvas.id;
   return ctx;
+}
+
+// Every text on a canvas goes through here: drawn with its top-left at (x, y), its box kept in rbs.texts
+// (the page's own geometry, which the browser test checks: inside its canvas, not over a body or a text).
+function text(ctx, words, x, y, colour, bold) {
+  ctx.font = font(bold);
+  ctx.fillStyle = colour;
+  ctx.textBaseline = "top";
+  ctx.fillText(words, x, y);
+  const w = ctx.measureText(words).width;
+  rbs.texts.push({ canvas: ctx.canvasId, text: words, x, y, w, h: textPx(), px: textPx() });
+  return w;
+}
+function width(ctx, words, bold) { ctx.font = font(bold); return ctx.measureText(words).width; }
+
+// Words in pieces, wrapped at the pieces' joins into lines no wider than `max` (a piece wider alone is
+// wrapped at its spaces).
+function wrap(ctx, pieces, max, bold) {
+  const lines = [];
+  let line = "";
+  const words = [];
+  for (const piece of pieces) {
+    if (width(ctx, piece, bold) <= max) words.push(piece);
+    else words.push(...piece.split(" "));
+  }
+  for (const piece of words) {
+    const next = line ? `${line} ${piece}` : piece;
+    if (line && width(ctx, next, bold) > max) {
+      lines.push(line);
+      line = piece;
+    } else {
+      line = next;
+    }
+  }
+  if (line) lines.push(line);
+  return lines;
 }
 
 function draw() {
   if (!rbs.world) return;
+  rbs.texts = [];
   const names = Object.keys(rbs.world.bodies);
   const ts = names.filter((n) => latest[n]).map((n) => latest[n].t);
   const t = ts.length ? Math.max(...ts) : null;
   $("clock").textContent = t === null ? "t = \u2013" : `t = ${t.toFixed(2)} s`;
   const source = rbs.world.source;
   const paused = rbs.paused ? "paused" : "running";
-  setStatus(source === "replay" ? `replay of a recording, ${paused}` : source === "none" ? "no simulation found"
-            : paused, source === "none");
-  drawScene(names);
-  drawPlots($("plot-body").value);
+  if (rbs.ended) setStatus("end of recording: its last frame", true);
+  else if (socket && socket.readyState === WebSocket.OPEN) {
+    setStatus(source === "replay" ? `replay of a recording, ${paused}` : source === "none" ? "no simulation found"
+              : paused, source === "none");
+  }
+  // The scene and the plots take the screen's height below the page's top lines: beside each other on a
+  // wide screen, the scene alone on a narrow one (the plots below it).
+  const wide = $("plots").getBoundingClientRect().top < $("scene").getBoundingClientRect().bottom;
+  const top = $("scene").getBoundingClientRect().top + window.scrollY;
+  const room = Math.max(window.innerHeight - top - 0.5 * textPx(), 12 * textPx());
+  drawScene(names, room);
+  const label = $("plot-label").getBoundingClientRect().height;
+  const plotHeight = wide ? (room - label) / 2 - 4 : Math.max(14 * textPx(), 0.45 * window.innerHeight);
+  drawPlots($("plot-body").value, plotHeight);
 }
 
-function panelSize(b, width, alone) {
-  // A panel's height for its width: the slope or the floor to scale; a rod's panel spans the whole width, and
-  // a rod alone (lesson.launch part:=rod) may take more of the screen's height.
-  const label = 46;
-  if (b.type === "rod") return label + Math.min(Math.max((alone ? 0.6 : 0.42) * width, 260), alone ? 600 : 420);
-  const box = slopeBox(b);
-  const s = Math.min((width - 16) / box.w, (0.4 * width) / box.h);
-  return label + box.h * s + 8;
-}
-
+// --- the scene ---------------------------------------------------------------------------------------------
 function slopeBox(b) {
   const phi = b.incline_angle;
   const R = b.radius;
   const L = b.incline_length;
   const pad = Math.max(2 * R, 0.05 * L);
-  return { x0: -pad, y0: -L * Math.sin(phi) - 0.3 * pad, w: L * Math.cos(phi) + 2 * pad,
-           h: L * Math.sin(phi) + 1.3 * pad + 2 * R };
+  // Above the top: a body starting there; below the foot: one waiting at a steep slope's foot (R below it).
+  const below = Math.max(0.3 * pad, R);
+  return { x0: -pad, y0: -L * Math.sin(phi) - below, w: L * Math.cos(phi) + 2 * pad,
+           h: L * Math.sin(phi) + below + pad + 2 * R };
 }
 
-function drawScene(names) {
-  // The rollers two to a row on a wide screen, one on a narrow one; then each rod in a row of its own.
+function rollerLines(ctx, name, b, max) {
+  const s = latest[name];
+  const title = name === b.shape ? name : `${name} (${b.shape})`;
+  const finish = rbs.finishes && rbs.finishes[name];
+  const head = finish ? [`${title}: ${ordinal(finish.place)},`, `${finish.time.toFixed(4)} s`]
+    .concat(finish.closed_form === null ? [] : [`(closed form ${finish.closed_form.toFixed(4)} s)`])
+    : [`${title}: ${s ? s.mode : "\u2013"}`];
+  const verdict = Math.tan(b.incline_angle) <= b.mu_s * (1 + b.inertia_factor) / b.inertia_factor ? "can roll" : "slips";
+  const info = [s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7", `\u03c6c = ${deg(criticalAngle(b))}`,
+                `(slope ${deg(b.incline_angle)}:`, `${verdict})`];
+  return { head: wrap(ctx, head, max, true), info: wrap(ctx, info, max, false) };
+}
+
+function drawScene(names, room) {
   const canvas = $("scene-canvas");
-  const width = canvas.clientWidth;
-  const cols = width >= 880 ? 2 : 1;
-  const rows = [];
-  let row = [];
-  for (const name of names.filter((n) => rbs.world.bodies[n].type !== "rod")) {
-    row.push(name);
-    if (row.length === cols) { rows.push(row); row = []; }
+  const W = canvas.clientWidth;
+  const ctx = fitCanvas(canvas, room);
+  const rollers = names.filter((n) => rbs.world.bodies[n].type !== "rod");
+  const rods = names.filter((n) => rbs.world.bodies[n].type === "rod");
+  const gap = 6;
+  const lineH = 1.25 * textPx();
+  // The rods in one band at the bottom (a third of the height beside rollers, all of it alone), the rollers
+  // in the grid of columns that draws them largest.
+  const rodBand = rods.length ? (rollers.length ? room / 3 : room) : 0;
+  const rollerRoom = room - rodBand;
+  let best = null;
+  for (let cols = 1; cols <= Math.max(1, rollers.length); cols += 1) {
+    const rows = Math.ceil(rollers.length / cols);
+    const w = (W - (cols - 1) * gap) / cols;
+    const h = (rollerRoom - (rows - 1) * gap) / rows;
+    let scale = Infinity;
+    let headLines = 0;
+    for (const name of rollers) {
+      const lines = rollerLines(ctx, name, rbs.world.bodies[name], w - 12);
+      headLines = Math.max(headLines, lines.head.length + lines.info.length);
+    }
+    for (const name of rollers) {
+      const box = slopeBox(rbs.world.bodies[name]);
+      scale = Math.min(scale, (w - 12) / box.w, (h - headLines * lineH - 10) / box.h);
+    }
+    if (!best || scale > best.scale) best = { cols, w, h, scale, headLines };
   }
-  if (row.length) rows.push(row);
-  for (const name of names.filter((n) => rbs.world.bodies[n].type === "rod")) rows.push([name]);
-  const colWidth = (width - (cols - 1) * 10) / cols;
-  const wide = (row) => rbs.world.bodies[row[0]].type === "rod";
-  const heights = rows.map((r) => Math.max(...r.map((n) => panelSize(rbs.world.bodies[n], wide(r) ? width : colWidth,
-                                                                      names.length === 1))));
-  const ctx = fitCanvas(canvas, heights.reduce((a, h) => a + h + 10, 0));
-  let top = 0;
-  rows.forEach((r, i) => {
-    r.forEach((name, c) => {
-      const w = wide(r) ? width : colWidth;
-      const rect = { x: c * (colWidth + 10), y: top, w, h: heights[i] };
-      const b = rbs.world.bodies[name];
-      if (b.type === "rod") drawRod(ctx, rect, name, b, latest[name]);
-      else drawRoller(ctx, rect, name, b, latest[name]);
-    });
-    top += heights[i] + 10;
+  rbs.layout = best && { cols: best.cols, w: best.w, h: best.h, scale: best.scale };
+  rollers.forEach((name, i) => {
+    const rect = { x: (i % best.cols) * (best.w + gap), y: Math.floor(i / best.cols) * (best.h + gap),
+                   w: best.w, h: best.h };
+    drawRoller(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
+  });
+  rods.forEach((name, i) => {
+    const h = (rodBand - (rollers.length ? gap : 0)) / rods.length;
+    const rect = { x: 0, y: room - rodBand + (rollers.length ? gap : 0) + i * h, w: W, h: h - (i < rods.length - 1 ? gap : 0) };
+    drawRod(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
   });
 }
 
-function panelFrame(ctx, rect, lines) {
+function panelFrame(ctx, rect, head, info, lineH) {
   ctx.fillStyle = "#1d2129";
   ctx.fillRect(rect.x, rect.y, rect.w, rect.h);
-  ctx.fillStyle = "#f2f2f2";
-  ctx.font = "bold 16px 'DejaVu Sans', sans-serif";
-  ctx.fillText(lines[0], rect.x + 8, rect.y + 19);
-  ctx.font = "15px 'DejaVu Sans', sans-serif";
-  ctx.fillText(lines[1], rect.x + 8, rect.y + 39);
+  let y = rect.y + 4;
+  for (const line of head) { text(ctx, line, rect.x + 6, y, "#f2f2f2", true); y += lineH; }
+  for (const line of info) { text(ctx, line, rect.x + 6, y, "#c9ced6", false); y += lineH; }
+  return y + 4;
 }
 
-function drawRoller(ctx, rect, name, b, s) {
+function drawRoller(ctx, rect, name, b, s, lineH) {
   const phi = b.incline_angle;
   const L = b.incline_length;
   const R = b.radius;
-  const c = b.inertia_factor;
-  const phiC = criticalAngle(b);
-  const verdict = Math.tan(phi) <= b.mu_s * (1 + c) / c ? "can roll" : "slips";
-  const mode = s ? s.mode : "\u2013";
-  const energy = s ? `E = ${fixed3(s.energy)} J` : "E = \u2013";
   const box = slopeBox(b);
-  const area = { x: rect.x + 8, y: rect.y + 46, w: rect.w - 16, h: rect.h - 54 };
-  const scale = Math.min(area.w / box.w, area.h / box.h);
-  // A body much smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so.
-  const r = R * scale < 0.9 * MIN_RADIUS ? MIN_RADIUS : R * scale;
-  const title = name === b.shape ? name : `${name} (${b.shape})`;
-  const finish = rbs.finishes && rbs.finishes[name];
-  panelFrame(ctx, rect, [finish ? `${title}: ${finish}` : `${title}: ${mode}`,
-                         `${energy} \u00b7 \u03c6c = ${deg(phiC)} (slope ${deg(phi)}: ${verdict})`]);
-  // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards.
-  const ox = area.x - box.x0 * scale;
-  const oy = area.y + (box.h + box.y0) * scale;
+  const lines = rollerLines(ctx, name, b, rect.w - 12);
+  const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w,
+                          (rect.h - (lines.head.length + lines.info.length) * lineH - 10 - MIN_RADIUS) / box.h);
+  // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so where that
+  // shows (5 % or more).
+  if (R * scale0 * 1.05 <= MIN_RADIUS) {
+    lines.info = wrap(ctx, [...lines.info, `(body drawn \u00d7${(MIN_RADIUS / (R * scale0)).toFixed(1)})`],
+                      rect.w - 12, false);
+  }
+  const areaTop = panelFrame(ctx, rect, lines.head, lines.info, lineH);
+  // Inset by the smallest drawn radius: a body drawn larger than to scale stays inside the panel too.
+  const area = { x: rect.x + 6 + MIN_RADIUS, y: areaTop, w: rect.w - 12 - 2 * MIN_RADIUS,
+                 h: rect.y + rect.h - areaTop - 4 - MIN_RADIUS };
+  const scale = Math.max(1e-6, Math.min(area.w / box.w, area.h / box.h));
+  // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards. The slope in
+  // the middle of its area.
+  const ox = area.x + 0.5 * (area.w - box.w * scale) - box.x0 * scale;
+  const oy = area.y + 0.5 * (area.h - box.h * scale) + (box.h + box.y0) * scale;
   const X = (wx) => ox + wx * scale;
   const Y = (wy) => oy - wy * scale;
   const bottom = { x: L * Math.cos(phi), y: -L * Math.sin(phi) };
@@ -316,57 +511,71 @@ function drawRoller(ctx, rect, name, b, s) {
   ctx.closePath();
   ctx.fill();
   ctx.strokeStyle = "#c8a27a";
-  ctx.lineWidth = 3;
+  ctx.lineWidth = stroke();
   ctx.beginPath();
   ctx.moveTo(X(0), Y(0));
   ctx.lineTo(X(bottom.x), Y(bottom.y));
   ctx.stroke();
-  ctx.font = "14px 'DejaVu Sans', sans-serif";
-  if (-bottom.y * scale >= 30) { // inside the slope's foot; a flatter one has it in its label alone
-    ctx.fillStyle = "#c8a27a";
-    ctx.fillText(deg(phi), X(bottom.x) - 80, Y(bottom.y) - 6);
-  }
-  rbs.panels[name] = { scale, ox, oy, phi };
-  if (r > R * scale) {
-    const note = `body drawn \u00d7${(r / (R * scale)).toFixed(1)}`;
-    ctx.fillStyle = "#c9ced6";
-    ctx.fillText(note, rect.x + rect.w - 10 - ctx.measureText(note).width, rect.y + 64);
-  }
+  angleLabel(ctx, phi, X(0), Y(0), X(bottom.x), Y(bottom.y));
+  rbs.panels[name] = { scale, ox, oy, phi, rect };
   if (!s) return;
   // The centre: x along the slope, r above it (R to scale); the spoke at the rotation theta about the slope's z.
-  const cx = X(s.x * Math.cos(phi)) + r * Math.sin(phi);
-  const cy = Y(-s.x * Math.sin(phi)) - r * Math.cos(phi);
+  const rad = Math.max(R * scale, MIN_RADIUS);
+  const cx = X(s.x * Math.cos(phi)) + rad * Math.sin(phi);
+  const cy = Y(-s.x * Math.sin(phi)) - rad * Math.cos(phi);
   const a = s.theta - phi;
-  const sx = cx + r * Math.cos(a);
-  const sy = cy - r * Math.sin(a);
+  const sx = cx + rad * Math.cos(a);
+  const sy = cy - rad * Math.sin(a);
   const colour = COLOURS[b.shape] || COLOURS.custom;
   ctx.beginPath();
-  ctx.arc(cx, cy, r, 0, 2 * Math.PI);
+  ctx.arc(cx, cy, rad, 0, 2 * Math.PI);
   if (b.shape === "ring" || b.shape === "spherical_shell") {
     ctx.strokeStyle = colour;
-    ctx.lineWidth = Math.max(2, r * (b.shape === "ring" ? 0.25 : 0.15));
+    ctx.lineWidth = Math.max(stroke(), rad * (b.shape === "ring" ? 0.3 : 0.2));
     ctx.stroke();
   } else {
     ctx.fillStyle = colour;
     ctx.fill();
   }
   ctx.strokeStyle = "#ffffff";
-  ctx.lineWidth = Math.max(2, r * 0.12);
+  ctx.lineWidth = Math.max(2, rad * 0.12);
   ctx.beginPath();
   ctx.moveTo(cx, cy);
   ctx.lineTo(sx, sy);
   ctx.stroke();
-  rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx, sy, r });
+  rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx, sy, r: rad });
 }
 
-function drawRod(ctx, rect, name, b, s) {
+// The slope's angle inside its triangle, left of its foot: under the slope's line, where no body ever is;
+// too flat a slope for it has its angle in its panel's lines alone.
+function angleLabel(ctx, phi, topX, topY, footX, footY) {
+  const words = `${deg(phi)}`;
+  const w = width(ctx, words, false);
+  const h = textPx();
+  const pad = 4;
+  const tan = (footY - topY) / Math.max(1e-9, footX - topX);
+  // The box's top right corner must lie under the slope's line: y_line(x2) <= footY - h - pad.
+  const x2 = Math.min(footX - 3 * pad, topX + (footY - h - 2 * pad - topY) / Math.max(tan, 1e-9));
+  const x1 = x2 - w;
+  if (x1 < topX + pad || footY - h - pad < topY) return;
+  ctx.strokeStyle = "#c8a27a";
+  ctx.lineWidth = 0.7 * stroke();
+  ctx.beginPath();
+  ctx.arc(footX, footY, Math.min(3 * h, footX - x2 - pad), Math.PI, Math.PI + phi);
+  ctx.stroke();
+  text(ctx, words, x1, footY - h - pad, "#f2e0c8", false);
+}
+
+function drawRod(ctx, rect, name, b, s, lineH) {
   const mode = s ? modeOf(b, s) : "\u2013";
-  const energy = s ? `E = ${fixed3(s.energy)} J` : "E = \u2013";
-  panelFrame(ctx, rect, [`${name === "rod" ? name : name + " (rod)"}: ${mode}`, `${energy} \u00b7 k = ${b.k} N/m \u00b7 L = ${b.length} m`]);
-  const area = { x: rect.x + 8, y: rect.y + 46, w: rect.w - 16, h: rect.h - 54 };
+  const energy = s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
+  const head = wrap(ctx, [`${name === "rod" ? name : name + " (rod)"}: ${mode}`], rect.w - 12, true);
+  const info = wrap(ctx, [energy, `k = ${b.k} N/m \u00b7`, `L = ${b.length} m`], rect.w - 12, false);
+  const areaTop = panelFrame(ctx, rect, head, info, lineH);
+  const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
   const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
-  const floorPx = 30; // the floor's band, with the metre marks
-  const scale = Math.min((area.h - floorPx) / top, area.w / (2.5 * b.length));
+  const floorPx = 1.6 * textPx() + 10; // the floor's band, with the metre marks
+  const scale = Math.max(1e-6, Math.min((area.h - floorPx) / top, area.w / (2.5 * b.length)));
   const floorDepth = floorPx / scale;
   const span = area.w / scale;
   const x = s ? s.x : b.x0;
@@ -386,74 +595,95 @@ function drawRod(ctx, rect, name, b, s) {
   const floorTo = bounded ? Math.min(b.floor_length, left + span) : left + span;
   ctx.fillStyle = "#555b66";
   ctx.fillRect(X(floorFrom), Y(0), (floorTo - floorFrom) * scale, floorDepth * scale);
+  ctx.restore();
+  // The metre marks, every metre or every few where they would crowd; a label only where it fits whole.
   ctx.strokeStyle = "#c9ced6";
-  ctx.fillStyle = "#c9ced6";
-  ctx.lineWidth = 2;
-  ctx.font = "14px 'DejaVu Sans', sans-serif";
-  for (let m = Math.ceil(floorFrom); m <= floorTo; m += 1) {
+  ctx.lineWidth = 0.7 * stroke();
+  const every = [1, 2, 5, 10, 20, 50].find((n) => n * scale >= width(ctx, "-88 m", false) + 12) || 100;
+  let lastRight = -Infinity;
+  for (let m = Math.ceil(floorFrom / every) * every; m <= floorTo; m += every) {
+    if (X(m) < area.x || X(m) > area.x + area.w) continue;
     ctx.beginPath();
     ctx.moveTo(X(m), Y(0));
-    ctx.lineTo(X(m), Y(0) + 8);
+    ctx.lineTo(X(m), Y(0) + 0.4 * textPx());
     ctx.stroke();
-    ctx.fillText(`${m} m`, X(m) + 3, Y(0) + 22);
+    const words = `${m} m`;
+    const w = width(ctx, words, false);
+    const at = Math.min(X(m) + 3, area.x + area.w - w);
+    if (at >= area.x && at > lastRight + 6) {
+      text(ctx, words, at, Y(0) + 0.5 * textPx(), "#e8e8e8", false);
+      lastRight = at + w;
+    }
   }
-  rbs.panels[name] = { scale, ox, oy, left };
+  rbs.panels[name] = { scale, ox, oy, left, rect };
   if (s) {
+    ctx.save();
+    ctx.beginPath();
+    ctx.rect(area.x, area.y, area.w, area.h);
+    ctx.clip();
     const h = 0.5 * b.length;
     const ax = X(s.x + h * Math.cos(s.theta));
     const ay = Y(s.y + h * Math.sin(s.theta));
     const bx = X(s.x - h * Math.cos(s.theta));
     const by = Y(s.y - h * Math.sin(s.theta));
     ctx.strokeStyle = COLOURS.rod;
-    ctx.lineWidth = 7;
+    ctx.lineWidth = Math.max(7, 0.35 * textPx());
     ctx.lineCap = "round";
     ctx.beginPath();
     ctx.moveTo(bx, by);
     ctx.lineTo(ax, ay);
     ctx.stroke();
-    ctx.fillStyle = "#ff8a3d";
+    ctx.fillStyle = COLOURS.rod_end;
     ctx.beginPath();
-    ctx.arc(ax, ay, 6, 0, 2 * Math.PI);
+    ctx.arc(ax, ay, Math.max(6, 0.3 * textPx()), 0, 2 * Math.PI);
     ctx.fill();
+    ctx.restore();
     rbs.drawn[name] = Object.assign({}, s, { cx: X(s.x), cy: Y(s.y), ax, ay, bx, by });
   }
-  ctx.restore();
 }
 
 // --- plots -------------------------------------------------------------------------------------------------
-function drawPlots(name) {
+function drawPlots(name, height) {
   const b = rbs.world.bodies[name];
   const list = points[name] || [];
-  const narrow = $("plot-motion").clientWidth < 600;
-  const height = narrow ? 210 : 260;
   const last = list.length ? list[list.length - 1].t : 0;
   const t0 = last > PLOT_WINDOW ? last - PLOT_WINDOW : 0;
   const shown = list.filter((p) => p.t >= t0);
   const series = (key) => shown.map((p) => [p.t, p[key]]);
   let motion;
+  const instants = [];
   if (!b) {
-    motion = { title: "", lines: [] };
+    motion = { title: "", unit: "", lines: [] };
   } else if (b.type === "rod") {
-    motion = { title: "height of each end (m)",
-               lines: [{ key: "end_a", name: "end A (orange)", colour: "#ff8a3d", pts: series("end_a") },
-                       { key: "end_b", name: "end B", colour: "#4f8cff", pts: series("end_b") }] };
+    motion = { title: "height of each end", unit: "m",
+               lines: [{ key: "end_a", name: "end A (orange)", colour: COLOURS.rod_end, pts: series("end_a") },
+                       { key: "end_b", name: "end B", colour: PLOT_COLOURS.first, pts: series("end_b") }] };
   } else {
-    motion = { title: "v and \u2212\u03c9R (m/s), \u25cf slip \u2192 roll",
-               lines: [{ key: "v", name: "v", colour: "#f0a030", pts: series("v") },
-                       { key: "minus_omega_r", name: "\u2212\u03c9R", colour: "#7fd4ff", dash: [8, 6],
+    const slips = (marks[name] || []).filter((m) => m.t >= t0);
+    const finish = rbs.finishes && rbs.finishes[name];
+    const lap = rbs.laps[name];
+    if (finish && finish.closed_form !== null && lap !== undefined && lap + finish.closed_form >= t0) {
+      instants.push({ t: lap + finish.closed_form, name: "finish", dash: [3, 5] });
+    }
+    motion = { title: "v and \u2212\u03c9R", unit: "m/s",
+               lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") },
+                       { key: "minus_omega_r", name: "\u2212\u03c9R", colour: PLOT_COLOURS.second, dash: [10, 6],
                          pts: series("minus_omega_r") }],
-               marks: (marks[name] || []).filter((m) => m[0] >= t0) };
+               dots: slips.map((m) => [m.t, m.v]), dotName: "slip \u2192 roll (closed form)", instants };
   }
   const zero = b && b.type === "rod" ? "floor level" : "the slope's top";
-  const energy = { title: `energy (J), potential 0 at ${zero}`,
-                   lines: [{ key: "energy", name: "total", colour: "#f2f2f2", pts: series("energy") },
-                           { key: "kinetic", name: "kinetic", colour: "#6bd06b", pts: series("kinetic") },
-                           { key: "potential", name: "potential", colour: "#e05080", pts: series("potential") }] };
+  const energy = { title: `energy, potential 0 at ${zero}`, unit: "J",
+                   lines: [{ key: "energy", name: "total", colour: PLOT_COLOURS.first, pts: series("energy") },
+                           { key: "kinetic", name: "kinetic", colour: PLOT_COLOURS.second, pts: series("kinetic") },
+                           { key: "potential", name: "potential", colour: PLOT_COLOURS.third, dash: [10, 6],
+                             pts: series("potential") }],
+                   instants };
   const lastPoints = {};
-  for (const chart of [motion, energy]) {
-    for (const line of chart.lines) if (line.pts.length) lastPoints[line.key] = line.pts[line.pts.length - 1];
+  for (const spec of [motion, energy]) {
+    for (const line of spec.lines) if (line.pts.length) lastPoints[line.key] = line.pts[line.pts.length - 1];
   }
-  if (motion.marks && motion.marks.length) lastPoints.slip_to_roll = motion.marks[motion.marks.length - 1];
+  if (motion.dots && motion.dots.length) lastPoints.slip_to_roll = motion.dots[motion.dots.length - 1];
+  if (instants.length) lastPoints.finish = instants[0].t;
   rbs.plotLast = { body: name, points: lastPoints };
   chart($("plot-motion"), height, motion, t0);
   chart($("plot-energy"), height, energy, t0);
@@ -468,10 +698,37 @@ function niceStep(span, count) {
 
 function chart(canvas, height, spec, t0) {
   const ctx = fitCanvas(canvas, height);
-  const width = canvas.clientWidth;
+  const W = canvas.clientWidth;
+  const fs = textPx();
+  const lineH = 1.25 * fs;
   ctx.fillStyle = "#1d2129";
-  ctx.fillRect(0, 0, width, height);
-  const area = { x: 62, y: 48, w: width - 74, h: height - 82 };
+  ctx.fillRect(0, 0, W, height);
+  // The title with its unit, then the legend's entries, wrapped to the width.
+  let y = 4;
+  for (const line of wrap(ctx, [`${spec.title} (${spec.unit})`], W - 12, true)) {
+    text(ctx, line, 6, y, "#f2f2f2", true);
+    y += lineH;
+  }
+  const entries = spec.lines.map((l) => ({ name: l.name, draw: (x, cy) => legendLine(ctx, x, cy, l.colour, l.dash) }));
+  const key = 1.3 * fs; // a legend entry's line, then its name
+  if (spec.dots && spec.dots.length) entries.push({ name: spec.dotName, draw: (x, cy) => dot(ctx, x + key / 2, cy) });
+  for (const m of spec.instants || []) {
+    entries.push({ name: `${m.name} (closed form)`,
+                   draw: (x, cy) => instantLine(ctx, x + key / 2, cy - 0.5 * fs, cy + 0.5 * fs, m.dash) });
+  }
+  let x = 6;
+  for (const entry of entries) {
+    const w = key + 0.3 * fs + width(ctx, entry.name, false);
+    if (x > 6 && x + w > W - 6) { x = 6; y += lineH; }
+    entry.draw(x, y + 0.5 * fs);
+    text(ctx, entry.name, x + key + 0.3 * fs, y, "#e8e8e8", false);
+    x += w + 0.7 * fs;
+  }
+  y += lineH + 0.4 * fs;
+  // The value axis' ticks at the left, its unit above them; the time axis' below, "t (s)" at its right end.
+  const tickW = width(ctx, "-88.8", false) + 10;
+  const area = { x: tickW, y: y + lineH + 0.5 * fs, w: W - tickW - 10, h: height - y - lineH - 2.1 * fs - 8 };
+  if (area.h < 2 * fs || area.w < 4 * fs) return;
   let lo = Infinity;
   let hi = -Infinity;
   for (const line of spec.lines) for (const p of line.pts) { lo = Math.min(lo, p[1]); hi = Math.max(hi, p[1]); }
@@ -482,64 +739,85 @@ function chart(canvas, height, spec, t0) {
   hi += pad;
   const X = (t) => area.x + ((t - t0) / PLOT_WINDOW) * area.w;
   const Y = (v) => area.y + (1 - (v - lo) / (hi - lo)) * area.h;
-  ctx.font = "bold 15px 'DejaVu Sans', sans-serif";
-  ctx.fillStyle = "#f2f2f2";
-  ctx.fillText(spec.title, 8, 18);
-  ctx.font = "14px 'DejaVu Sans', sans-serif";
-  let lx = 8;
-  for (const line of spec.lines) {
-    ctx.strokeStyle = line.colour;
-    ctx.lineWidth = 3;
-    ctx.setLineDash(line.dash || []);
-    ctx.beginPath();
-    ctx.moveTo(lx, 34);
-    ctx.lineTo(lx + 22, 34);
-    ctx.stroke();
-    ctx.setLineDash([]);
-    ctx.fillStyle = "#e8e8e8";
-    ctx.fillText(line.name, lx + 27, 39);
-    lx += 40 + ctx.measureText(line.name).width;
-  }
+  text(ctx, spec.unit, 6, y, "#c9ced6", false);
   ctx.strokeStyle = "#3a404c";
-  ctx.lineWidth = 1;
-  ctx.fillStyle = "#c9ced6";
-  const yStep = niceStep(hi - lo, 4);
+  ctx.lineWidth = Math.max(1, 0.05 * fs);
+  // As many ticks as fit a text's height and a half apart, at most 5.
+  let yStep = niceStep(hi - lo, 5);
+  for (let n = 4; n >= 1 && (yStep / (hi - lo)) * area.h < 1.5 * fs; n -= 1) yStep = niceStep(hi - lo, n);
   for (let v = Math.ceil(lo / yStep) * yStep; v <= hi; v += yStep) {
     ctx.beginPath();
     ctx.moveTo(area.x, Y(v));
     ctx.lineTo(area.x + area.w, Y(v));
     ctx.stroke();
-    const text = Math.abs(v) < 1e-12 ? "0" : Number(v.toPrecision(3)).toString();
-    ctx.fillText(text, area.x - 6 - ctx.measureText(text).width, Y(v) + 5);
+    const words = Math.abs(v) < 1e-12 ? "0" : Number(v.toPrecision(3)).toString();
+    text(ctx, words, area.x - 6 - width(ctx, words, false), Y(v) - 0.5 * fs, "#c9ced6", false);
   }
-  for (let t = Math.ceil(t0 / 2) * 2; t <= t0 + PLOT_WINDOW + 1e-9; t += 2) {
+  const unitT = "t (s)";
+  const unitW = width(ctx, unitT, false);
+  const tStep = niceStep(PLOT_WINDOW, Math.max(2, Math.min(5, Math.floor(area.w / (4 * fs)))));
+  for (let t = Math.ceil(t0 / tStep) * tStep; t <= t0 + PLOT_WINDOW + 1e-9; t += tStep) {
     ctx.beginPath();
     ctx.moveTo(X(t), area.y);
     ctx.lineTo(X(t), area.y + area.h);
     ctx.stroke();
-    ctx.fillText(`${t}`, X(t) - 4, area.y + area.h + 18);
+    const words = `${Number(t.toPrecision(6))}`;
+    const w = width(ctx, words, false);
+    const at = Math.max(area.x, X(t) - w / 2);
+    if (at + w < area.x + area.w - unitW - 8) text(ctx, words, at, area.y + area.h + 4, "#c9ced6", false);
   }
-  ctx.fillText("t (s)", 8, area.y + area.h + 18);
+  text(ctx, unitT, area.x + area.w - unitW, area.y + area.h + 4, "#c9ced6", false);
   ctx.save();
   ctx.beginPath();
   ctx.rect(area.x, area.y, area.w, area.h);
   ctx.clip();
   for (const line of spec.lines) {
     ctx.strokeStyle = line.colour;
-    ctx.lineWidth = 3;
-    ctx.setLineDash(line.dash || []);
+    ctx.lineWidth = stroke();
+    ctx.setLineDash((line.dash || []).map((d) => d * stroke() / 3));
     ctx.beginPath();
     line.pts.forEach((p, i) => (i ? ctx.lineTo(X(p[0]), Y(p[1])) : ctx.moveTo(X(p[0]), Y(p[1]))));
     ctx.stroke();
   }
   ctx.setLineDash([]);
-  ctx.fillStyle = "#ffffff";
-  for (const m of spec.marks || []) {
-    ctx.beginPath();
-    ctx.arc(X(m[0]), Y(m[1]), 6, 0, 2 * Math.PI);
-    ctx.fill();
-  }
+  for (const m of spec.instants || []) instantLine(ctx, X(m.t), area.y, area.y + area.h, m.dash);
+  for (const d of spec.dots || []) dot(ctx, X(d[0]), Y(d[1]));
   ctx.restore();
+}
+
+// Lines and marks grow with the text (a 4K screen's are as thick, to the eye, as a laptop's).
+function stroke() { return Math.max(3, 0.14 * textPx()); }
+
+function legendLine(ctx, x, y, colour, dash) {
+  ctx.strokeStyle = colour;
+  ctx.lineWidth = stroke();
+  ctx.setLineDash(dash ? dash.map((d) => d * stroke() / 3) : []);
+  ctx.beginPath();
+  ctx.moveTo(x, y);
+  ctx.lineTo(x + 1.3 * textPx(), y);
+  ctx.stroke();
+  ctx.setLineDash([]);
+}
+
+function dot(ctx, x, y) {
+  ctx.fillStyle = "#ffffff";
+  ctx.strokeStyle = "#15181d";
+  ctx.lineWidth = 2;
+  ctx.beginPath();
+  ctx.arc(x, y, 0.32 * textPx(), 0, 2 * Math.PI);
+  ctx.fill();
+  ctx.stroke();
+}
+
+function instantLine(ctx, x, y1, y2, dash) {
+  ctx.strokeStyle = "#ffffff";
+  ctx.lineWidth = 0.7 * stroke();
+  ctx.setLineDash(dash.map((d) => d * stroke() / 3));
+  ctx.beginPath();
+  ctx.moveTo(x, y1);
+  ctx.lineTo(x, y2);
+  ctx.stroke();
+  ctx.setLineDash([]);
 }
 
 wireControls();

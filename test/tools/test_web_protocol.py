@@ -9,10 +9,11 @@ import json
 import os
 import sys
 import unittest
+from typing import Any, Dict, Optional
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, FrameQueue, Refusal, Request,  # noqa: E402
-                          finish_of_label, frame_message, parse_request)
+                          finish_of_label, frame_message, parse_request, tied_places)
 
 BODIES = {"rod": "rod", "sphere": "roller"}
 
@@ -29,6 +30,9 @@ class Requests(unittest.TestCase):
         self.assertEqual(parse({"op": "step", "id": 4, "steps": 250}), Request("step", 4, steps=250))
         self.assertEqual(parse({"op": "set", "id": 5, "body": "rod", "key": "k", "value": 2000}),
                          Request("set", 5, body="rod", key="k", value=2000.0))
+        self.assertEqual(parse({"op": "view", "id": 6, "plot_body": "sphere"}), Request("view", 6, body="sphere"))
+        self.assertEqual(parse_request(json.dumps({"op": "part", "id": 7, "part": "above"}), True, BODIES, ("above",)),
+                         Request("part", 7, key="above"))
         for kind, keys in LESSON_KEYS.items():
             body = "rod" if kind == "rod" else "sphere"
             for key in keys:
@@ -64,6 +68,9 @@ class Requests(unittest.TestCase):
         for steps in (0, -3, 2.5, "10", True, MAX_STEPS + 1, None):
             self.refused({"op": "step", "id": 1, "steps": steps}, "steps")
         self.refused({"op": "set", "id": 1, "body": "hoop", "key": "k", "value": 1}, "body")
+        self.refused({"op": "view", "id": 1, "plot_body": "hoop"}, "body")
+        self.refused({"op": "view", "id": 1, "plot_body": None}, "body")
+        self.refused({"op": "part", "id": 1, "part": "above"}, "part")  # no part for these bodies
         self.refused({"op": "set", "id": 1, "body": ["rod"], "key": "k", "value": 1}, "body")
         self.refused({"op": "set", "id": 1, "body": "rod", "key": "mu_s", "value": 1}, "key")
         self.refused({"op": "set", "id": 1, "body": "sphere", "key": "k", "value": 1}, "key")
@@ -104,9 +111,23 @@ class FinishLabels(unittest.TestCase):
     """The node's boards of a race, as test_scene holds the form of a finished racer's."""
 
     def test_a_finished_racer_gives_its_place_and_times(self) -> None:
-        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s\n(closed form 2.0439 s)"),
-                         ("sphere", "1st, 2.0439 s (closed form 2.0439 s)"))
-        self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"), ("ring_2", "12th, 10.5000 s"))
+        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s\n(closed form 2.0438 s)"),
+                         ("sphere", {"place": 1, "time": 2.0439, "closed_form": 2.0438}))
+        self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"),
+                         ("ring_2", {"place": 12, "time": 10.5, "closed_form": None}))
+        for tied in ("ring: =1st, 1.4325 s\n(closed form 1.4325 s)",
+                     "ring: 1st (tie), 1.4325 s\n(closed form 1.4325 s)"):
+            self.assertEqual(finish_of_label(tied), ("ring", {"place": 1, "time": 1.4325, "closed_form": 1.4325}))
+
+    def test_racers_at_the_same_time_share_a_place(self) -> None:
+        # part:=above: all three down at 1.4325 s, whatever places the node's labels give them
+        finishes: Dict[str, Optional[Dict[str, Any]]] = {
+            name: {"place": place, "time": 1.4325, "closed_form": 1.4325}
+            for name, place in (("cylinder", 1), ("ring", 2), ("sphere", 3))}
+        finishes["late"] = {"place": 4, "time": 1.5, "closed_form": None}
+        finishes["racing"] = None
+        places = {body: f and f["place"] for body, f in tied_places(finishes).items()}
+        self.assertEqual(places, {"cylinder": 1, "ring": 1, "sphere": 1, "late": 4, "racing": None})
 
     def test_any_other_label_is_no_finish(self) -> None:
         for text in ("ring: rolling\ncritical angle 21.8 deg", "rod:\nE = 20.600 J", "ring: rolling\nE = 0.000 J"):

@@ -2,14 +2,15 @@
 """The web view in a real browser: sim.launch web:=true web_control:=true on config/demo.yaml (a rod and four
 rollers), its page loaded in Debian's headless Chromium over the DevTools protocol.
 
-- The log prints the control link with a random token; the page opened with it shows the controls and takes
-  the token off its address bar; a page opened without it shows no controls.
+- The log prints the control link with a random token; the page opened with it shows the controls, has the
+  token as a cookie its script cannot read and not in its address bar, and stays the teacher's page on a
+  reload; a page opened without it (its cookie cleared) shows no controls and plots the teacher's body.
 - Pause clicked: the node's ~paused says true; the page's drawn state of every body is the last state the test
   received from the node, field for field, exactly; each body is drawn where the page's own view puts that
   state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
   (v, -omega R, the total energy and a rod's end heights exactly; the kinetic and potential energies to 1e-12).
 - Reset, then Pause 1.5 s later: the bowler, launched sliding with backspin, is marked once at its slip-to-roll
-  instant, the first rolling state after a slipping one among the states the test received since the reset;
+  instant, the closed form's, between its last slipping and first rolling state since the reset;
   every body's plot holds every state since the reset, once, while a page that reads nothing is open too.
 - Step (a count of 100 typed in) moves every body to the node's state 0.1 s on.
 - A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
@@ -24,11 +25,18 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page's Run and Pause drive the player
 (its pause_playback); the page finds the recording's bodies and their keys (the played config), draws the played
-states exactly, plots them, and refuses Step in one line.
+states exactly, plots them, and refuses Step in one line; at the recording's end it keeps the last frame and
+says so.
 
-Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay
+And web.launch web_host:=0.0.0.0 alone (test_network): the class's addresses and QR code, the Host check on
+every address, 414 and 431, half-sent and idle connections closed, the token in no log file and not on /rosout.
+
+Each click's answer is the reply that names its request's id.
+
+Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay | WebView.test_network
 (with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
 import argparse
+import http.client
 import json
 import math
 import os
@@ -44,7 +52,7 @@ import time
 import unittest
 import urllib.error
 import urllib.request
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, NamedTuple, Optional
 
 import rospy
 import websocket
@@ -100,6 +108,12 @@ class Listener:
             return self.states[body][-1] if self.states[body] else None
 
 
+class Answer(NamedTuple):
+    status: int
+    headers: Dict[str, str]
+    body: bytes
+
+
 def fields(msg: Any) -> Dict[str, Any]:
     return {f: getattr(msg, f) for f in msg.__slots__ if f != "header"}
 
@@ -128,7 +142,8 @@ class WebView(unittest.TestCase):
         env.pop("ROS_HOSTNAME", None)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
         self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(port), "rigid_body_sim", *words, "web:=true", f"web_port:={self.web_port}",
+            ["roslaunch", "-p", str(port), "rigid_body_sim", *words,
+             *(["web:=true"] if words[0] != "web.launch" else []), f"web_port:={self.web_port}",
              "web_control:=true"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         threading.Thread(target=self.read_log, daemon=True).start()
 
@@ -148,7 +163,7 @@ class WebView(unittest.TestCase):
         return [line for line in list(self.log) if words in line]
 
     def control_url(self) -> str:
-        pattern = re.compile(rf"(http://127\.0\.0\.1:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
+        pattern = re.compile(rf"(http://[^/\s]+:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
         found: List[str] = []
 
         def printed() -> bool:
@@ -207,24 +222,46 @@ class WebView(unittest.TestCase):
 
         self.check_keys(browser, node)
         self.check_refusals(node)
+        self.assertNotIn("only shows", browser.evaluate("rbs.line"), "another page's refusal shown here")
         self.take_screenshots(browser)
 
-        browser.click("run")
+        run = self.click_and_answer(browser, "run")
+        self.assertTrue(run["ok"], run)
         wait_for("~paused false after Run", lambda: node.paused is False, DEADLINE)
-        # Step while running: the node refuses it, and the page shows the node's line.
-        warnings, replies = len(node.warnings), browser.evaluate("rbs.replies.length")
-        browser.click("step")
-        browser.wait("the answer to Step", f"rbs.replies.length > {replies}", DEADLINE)
+        # Step while running: the node refuses it, and the page shows the node's line (the reply to Step's
+        # own id: Run's may come later than Step is clicked).
+        warnings = len(node.warnings)
+        reply = self.click_and_answer(browser, "step")
         wait_for("the node's WARN line about ~step", lambda: len(node.warnings) > warnings, DEADLINE)
-        reply = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
         self.assertFalse(reply["ok"])
         self.assertEqual([reply["line"]], node.warnings[warnings:])
         self.assertTrue(reply["line"].startswith("~step refused"), reply)
-        # The class's page (no token): the world, and no control in sight.
+        # A reload keeps the teacher's page a teacher's page (its cookie), the token nowhere in its address.
+        browser.navigate(url.split("?")[0])
+        browser.wait("the teacher's page again", "window.rbs && rbs.control === true", DEADLINE)
+        self.assertIsNotNone(browser.centre("controls"))
+        self.assertEqual(browser.evaluate("document.cookie"), "", "the page's script reads the token")
+        # The class's page (no token, no cookie): the world, and no control in sight.
+        browser.call("Network.clearBrowserCookies")
         browser.navigate(url.split("?")[0])
         browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
                      DEADLINE)
         self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertEqual(browser.evaluate("document.getElementById('plot-body').value"), "bowler",
+                         "the class plots the teacher's body")
+        # A student's own choice stands until the teacher chooses again.
+        browser.choose("plot-body", "rod")
+        teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                              origin=f"http://127.0.0.1:{self.web_port}",
+                                              cookie=f"rbs_control={url.split('token=')[1]}")
+        self.assertTrue(self.read_until(teacher, "hello")["control"])
+        teacher.send(json.dumps({"op": "view", "id": 1, "plot_body": "bowler"}))
+        self.assertEqual(self.read_until(teacher, "reply"),
+                         {"type": "reply", "id": 1, "ok": True, "line": "the class plots bowler"})
+        teacher.close()
+        browser.wait("the teacher's new choice on the class's page",
+                     "document.getElementById('plot-body').value === 'bowler' && rbs.plotLast.body === 'bowler'",
+                     DEADLINE)
         for control in ("controls", "pause", "run", "step", "reset", "set"):
             self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
         # A wrong token (a link from before a restart): the page only shows, and says why.
@@ -256,15 +293,11 @@ class WebView(unittest.TestCase):
         browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
                      f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
         # The page's Run and Pause drive the player (its pause_playback), as rviz's panel does.
-        browser.click("run")
-        browser.wait("the answer to Run", "rbs.replies.length === 1", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[0]"),
+        self.assertEqual(self.click_and_answer(browser, "run"),
                          {"type": "reply", "id": 1, "ok": True, "line": "/player: Playback is now resumed"})
         wait_for("2 s of the recording", lambda: node.last("rod") is not None and node.last("rod").t >= 2.0,
                  DEADLINE)
-        browser.click("pause")
-        browser.wait("the answer to Pause", "rbs.replies.length === 2", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[1].line"), "/player: Playback is now paused")
+        self.assertEqual(self.click_and_answer(browser, "pause")["line"], "/player: Playback is now paused")
         world = browser.evaluate("rbs.world.bodies")  # from the config the player played at t = 0
         for body, keys in self.config["bodies"].items():
             for key, value in keys.items():
@@ -273,11 +306,113 @@ class WebView(unittest.TestCase):
         self.check_plots(browser, node)
         self.assertEqual(browser.evaluate("document.getElementById('status').textContent"),
                          "replay of a recording, paused")
-        browser.click("step")
-        browser.wait("the answer to Step", "rbs.replies.length === 3", DEADLINE)
-        self.assertEqual(browser.evaluate("rbs.replies[2].line"),
+        self.assertEqual(self.click_and_answer(browser, "step")["line"],
                          "refused: a recording cannot be changed, only paused and run (no node serves /sim/pause)")
+        # Its end: the last frame stays, and says so.
+        drawn = browser.evaluate("rbs.drawn")
+        self.click_and_answer(browser, "run")
+        browser.wait("the end of the recording", "document.getElementById('status').textContent === "
+                     "'end of recording: its last frame'", DEADLINE)
+        self.assertEqual(browser.evaluate("Object.keys(rbs.drawn).sort()"), sorted(drawn))
+        self.assertGreater(browser.evaluate("rbs.drawn.rod.t"), drawn["rod"]["t"])
         self.assertEqual(browser.console_errors(), [])
+
+    def test_network(self) -> None:
+        """web.launch web_host:=0.0.0.0 web_control:=true, no simulation: the class's addresses, the Host
+        check, the answers to overlong and half-sent requests, and the token kept off every log."""
+        self.start("web.launch", "web_host:=0.0.0.0")
+        url = self.control_url()
+        token = url.split("token=")[1]
+        rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
+        rosout: List[str] = []
+        rospy.Subscriber("/rosout", Log, lambda m: rosout.append(m.msg), queue_size=1000)
+        addresses = self.addresses()
+        self.assertTrue(addresses, "no address but the loopback's on this machine")
+        urls = [f"http://[{a}]:{self.web_port}/" if ":" in a else f"http://{a}:{self.web_port}/" for a in addresses]
+        # The teacher's page: a cookie for its WebSocket alone, then the address without the token.
+        answer = self.http("GET", f"/?token={token}")
+        self.assertEqual(answer.status, 303)
+        self.assertEqual(answer.headers["Location"], "/")
+        cookie = answer.headers["Set-Cookie"]
+        self.assertRegex(cookie, rf"^rbs_control={token};")
+        for attribute in ("HttpOnly", "Path=/ws", "SameSite=Strict"):
+            self.assertIn(attribute.lower(), cookie.lower())
+        teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                              origin=f"http://127.0.0.1:{self.web_port}",
+                                              cookie=cookie.split(";")[0])
+        hello = self.read_until(teacher, "hello")
+        self.assertTrue(hello["control"])
+        self.assertEqual(sorted(hello["addresses"]), sorted(urls))
+        teacher.close()
+        qr = self.http("GET", "/qr.svg")
+        self.assertEqual((qr.status, qr.headers["Content-Type"]), (200, "image/svg+xml"))
+        self.assertIn(b"<svg", qr.body)
+        # Host: this machine's names and addresses, nothing else (DNS rebinding), even on every address.
+        own = [u.split("/")[2].rsplit(":", 1)[0] for u in urls]
+        for host in [socket.gethostname(), "localhost", "127.0.0.1", "127.0.1.1", *own]:
+            self.assertEqual(self.http("GET", "/", host=f"{host}:{self.web_port}").status, 200, host)
+        for host in ("evil.example", f"evil.example:{self.web_port}", f"{addresses[0]}.evil.example:{self.web_port}",
+                     f"127.0.0.1.evil.example:{self.web_port}", "127.0.0.1:1"):
+            self.assertEqual(self.http("GET", "/", host=host).status, 403, host)
+        # Overlong: answered, not dropped.
+        self.assertEqual(self.http("GET", "/?" + "a" * (1 << 20)).status, 414)
+        self.assertEqual(self.http("GET", "/", headers={"X-Big": "b" * 100_000}).status, 431)
+        # Half-sent and idle connections: closed by the server within its 10 s, whatever their pace.
+        started = time.monotonic()
+        slow = [socket.create_connection(("127.0.0.1", self.web_port), timeout=DEADLINE) for _ in range(20)]
+        idle = socket.create_connection(("127.0.0.1", self.web_port), timeout=DEADLINE)
+        for s in slow:
+            s.sendall(b"GET / HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+        deadline = time.monotonic() + 30
+        for s in slow + [idle]:
+            s.settimeout(max(0.1, deadline - time.monotonic()))
+            try:
+                while True:
+                    s.sendall(b"X")  # one byte more of a header that never ends
+                    if s.recv(1) == b"":
+                        break
+            except (ConnectionError, socket.timeout):
+                pass
+            s.close()
+        closed_after = time.monotonic() - started
+        self.assertLess(closed_after, 15.0)
+        # The token: on the launch's terminal, nowhere in a log file or on /rosout.
+        wait_for("/rosout's lines", lambda: bool(rosout), DEADLINE)
+        self.assertFalse([line for line in rosout if token in line])
+        logs = [os.path.join(d, f) for d, _, files in os.walk(self.tmp) for f in files]
+        self.assertTrue(logs)
+        for path in logs:
+            with open(path, errors="replace") as written:
+                self.assertNotIn(token, written.read(), path)
+        print(f"addresses {addresses}; half-sent and idle connections closed after {closed_after:.1f} s",
+              file=sys.stderr)
+
+    def http(self, method: str, path: str, host: Optional[str] = None,
+             headers: Optional[Dict[str, str]] = None) -> Answer:
+        connection = http.client.HTTPConnection("127.0.0.1", self.web_port, timeout=DEADLINE)
+        connection.putrequest(method, path, skip_host=True)
+        connection.putheader("Host", host or f"127.0.0.1:{self.web_port}")
+        for name, value in (headers or {}).items():
+            connection.putheader(name, value)
+        connection.endheaders()
+        answer = connection.getresponse()
+        return Answer(answer.status, dict(answer.getheaders()), answer.read())
+
+    @staticmethod
+    def addresses() -> List[str]:
+        """This machine's addresses a student can use (all but the loopback's and IPv6's link-local ones), as
+        `hostname -I` lists them."""
+        return subprocess.run(["hostname", "-I"], capture_output=True, text=True, check=True).stdout.split()
+
+    @staticmethod
+    def click_and_answer(browser: Browser, button: str) -> Dict[str, Any]:
+        """Clicks a button and waits for the reply to its own request (by the id the page gave it)."""
+        sent = browser.evaluate("rbs.sent.length")
+        browser.click(button)
+        request = browser.wait(f"the request of {button}", f"rbs.sent.length > {sent} && rbs.sent[{sent}]", DEADLINE)
+        reply: Dict[str, Any] = browser.wait(f"the answer to {button}",
+                                             f"rbs.replies.find((r) => r.id === {request['id']})", DEADLINE)
+        return reply
 
     def check_drawn_is_the_node(self, browser: Browser, node: Listener) -> None:
         """Once the page has drawn the last state the test received of every body (paused: none comes after)."""
@@ -308,8 +443,8 @@ class WebView(unittest.TestCase):
             self.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
             return
         phi = b["incline_angle"]
-        # to scale, or 9 px (the page's smallest, said on its panel) when that is under 8.1 px
-        r = 9.0 if b["radius"] * scale < 0.9 * 9.0 else b["radius"] * scale
+        # to scale, or 10 px (the page's smallest, 20 px across, said on its panel)
+        r = max(b["radius"] * scale, 10.0)
         self.assertAlmostEqual(d["r"], r, delta=1e-9)
         self.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
         self.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
@@ -342,21 +477,32 @@ class WebView(unittest.TestCase):
         print(f"plots' last points: the states of {sorted(self.kinds)}", file=sys.stderr)
 
     def check_slip_to_roll(self, browser: Browser, node: Listener, reset_t: float) -> None:
+        """The bowler's slip -> roll dots since the reset, one for each slipping state the node followed with a
+        rolling one, each between the two: the first at the closed form's instant after the reset
+        (docs/testing.md: 0.802 s) and v then, each at the closed form's instant from its last slipping state
+        (a slipping roller's accelerations are constant). Under load the pause may come after more than one."""
         browser.choose("plot-body", "bowler")
         browser.wait("the bowler's plots", "rbs.plotLast.body === 'bowler'", DEADLINE)
         with node.lock:
             after = [m for m in node.states["bowler"] if m.t > reset_t]
-        first = next(b for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling")
-        self.assertEqual(browser.evaluate("rbs.plotLast.points.slip_to_roll"), [first.t, first.v])
-        # The closed form's instant after the reset (docs/testing.md: 0.802 s), and the next state within a period.
+        pairs = [(a, b) for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling"]
         b = self.bodies["bowler"]
-        g, phi, c = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["c"]
-        instant = (b["v0"] + b["omega0"] * b["radius"]) / (b["mu_d"] * g * math.cos(phi) * (1 + c) / c
-                                                           - g * math.sin(phi))
-        period = 1.0 / float(self.config.get("publish_rate", 50.0))
-        self.assertGreaterEqual(first.t - reset_t, instant)
-        self.assertLessEqual(first.t - reset_t, instant + period + 1e-9)
-        print(f"slip -> roll marked at t = {first.t} ({first.t - reset_t:.3f} s after the reset)", file=sys.stderr)
+        g, phi, c, R = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["c"], b["radius"]
+        rate = b["mu_d"] * g * math.cos(phi) * (1 + c) / c - g * math.sin(phi)  # -du/dt, u = v + omega R > 0
+        slowing = g * math.sin(phi) - b["mu_d"] * g * math.cos(phi)  # dv/dt
+        instant = (b["v0"] + b["omega0"] * R) / rate
+        marks = browser.evaluate(f"(rbs.marks.bowler || []).filter((m) => m.t > {reset_t!r})")
+        self.assertEqual(len(marks), len(pairs), (marks, [(a.t, b.t) for a, b in pairs]))
+        self.assertGreater(len(pairs), 0)
+        self.assertAlmostEqual(marks[0]["t"], reset_t + instant, delta=1e-9)
+        self.assertAlmostEqual(marks[0]["v"], b["v0"] + slowing * instant, delta=1e-9)
+        for mark, (slipping, rolling) in zip(marks, pairs):
+            self.assertTrue(slipping.t < mark["t"] <= rolling.t, (slipping.t, mark, rolling.t))
+            left = (slipping.v + slipping.omega * R) / rate
+            self.assertAlmostEqual(mark["t"], slipping.t + left, delta=1e-9)
+            self.assertAlmostEqual(mark["v"], slipping.v + slowing * left, delta=1e-9)
+        print(f"slip -> roll marked at t = {[m['t'] for m in marks]} ({marks[0]['t'] - reset_t:.4f} s after the "
+              "reset)", file=sys.stderr)
 
     def rod_k(self) -> float:
         config = yaml.safe_load(rospy.ServiceProxy("/sim/get_config", GetConfig)().yaml)
@@ -365,12 +511,8 @@ class WebView(unittest.TestCase):
     def set_key(self, browser: Browser, body: str, key: str, value: str) -> Dict[str, Any]:
         browser.choose("set-body", body)
         browser.choose("set-key", key)
-        replies = browser.evaluate("rbs.replies.length")
         browser.type_into("set-value", value)
-        browser.click("set")
-        browser.wait("the answer to Set", f"rbs.replies.length > {replies}", DEADLINE)
-        reply: Dict[str, Any] = browser.evaluate("rbs.replies[rbs.replies.length - 1]")
-        return reply
+        return self.click_and_answer(browser, "set")
 
     def check_keys(self, browser: Browser, node: Listener) -> None:
         reply = self.set_key(browser, "rod", "k", "2000")
@@ -397,6 +539,8 @@ class WebView(unittest.TestCase):
                                              origin=f"http://127.0.0.1:{self.web_port}")
         hello = self.read_until(client, "hello")
         self.assertFalse(hello["control"])
+        self.assertEqual(hello["view"], {"plot_body": "bowler"}, "the teacher's last choice, for the class")
+        self.assertNotIn("addresses", hello)
         cases = [('{"op": "pause", "id": 1}', "refused: this page only shows"),
                  ('{"op": "set", "id": 2, "body": "rod", "key": "k", "value": 1}', "refused: this page only shows"),
                  ("{not json", "refused: not JSON"),
