@@ -27,7 +27,7 @@
 #include "rigid_body_sim/run/offline_run.h"
 #include "rigid_body_sim/run/sweep.h"
 
-namespace py = pybind11;
+namespace py = pybind11;  // py::module, not module_: Noetic's pybind11 2.4 has only that name
 
 namespace rigid_body_sim {
 
@@ -38,12 +38,12 @@ namespace {
 std::string yamlText(const py::object& value) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) {
-    return py::module_::import("yaml")
+    return py::module::import("yaml")
         .attr("safe_dump")(value, py::arg("default_flow_style") = true, py::arg("sort_keys") = false)
         .cast<std::string>();
   }
   throw py::type_error("expected YAML text (str) or a dict, not " +
-                       py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+                       std::string(Py_TYPE(value.ptr())->tp_name));
 }
 
 // A key's value from Python as a config file writes it: a number in its shortest round-trip form, a text as
@@ -95,7 +95,7 @@ py::array_t<double> toArray(const std::vector<double>& values) {
 }
 
 py::object toArray(const std::vector<std::string>& values) {
-  return py::module_::import("numpy").attr("array")(py::cast(values), py::arg("dtype") = "str");
+  return py::module::import("numpy").attr("array")(py::cast(values), py::arg("dtype") = "str");
 }
 
 // {field: value} of a body now.
@@ -361,8 +361,8 @@ class PyWorld {
  private:
   static WorldConfig load(const py::object& config) {
     try {
-      if (py::isinstance(config, py::module_::import("os").attr("PathLike"))) {
-        return loadWorldConfigFile(py::module_::import("os").attr("fspath")(config).cast<std::string>());
+      if (py::isinstance(config, py::module::import("os").attr("PathLike"))) {
+        return loadWorldConfigFile(py::module::import("os").attr("fspath")(config).cast<std::string>());
       }
       return parseWorldConfigText(yamlText(config), "(python)");
     } catch (const ConfigError& error) {

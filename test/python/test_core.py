@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rigid_body_sim.core (the core's Python module) against `simulate`, the truth it claims to be:
 - a World's run equals simulate's CSV bit for bit, for random valid configs of every body type (drawn from
-  the key descriptions the module exports) and sample rates, read back by rigid_body_sim.runs;
+  the key descriptions the module exports) and sample rates, read back by rigid_body_sim.runs, and the state
+  messages of simulate --bag (the node's) read back from the bag;
 - a refused config is a ValueError whose message is the line simulate --check prints after "simulate: "
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
@@ -126,6 +127,17 @@ class CoreCase(unittest.TestCase):
                 for field in fresh[body]:
                     if field != "t":
                         self.assertTrue(numpy.array_equal(bits(again[body][field]), bits(fresh[body][field])))
+
+    def test_a_bag_reads_back_into_the_same_arrays(self) -> None:
+        path = os.path.join(CONFIG_DIR, "demo.yaml")
+        with open(path) as f:
+            config = yaml.safe_load(f)
+        bag = os.path.join(self.tmp.name, "run.bag")
+        done, folder = self.simulate_run(config, "--duration", "3", "--bag", bag)  # the node's messages
+        self.assertEqual(done.returncode, 0, done.stderr)
+        mine = core.World(pathlib.Path(path)).run(3.0)
+        self.assert_same_run(mine, runs.read_bag(bag), "demo.yaml's bag")
+        self.assert_same_run(mine, runs.read_run(folder), "demo.yaml's CSV")
 
     def test_steps_and_state(self) -> None:
         world = core.World({"rate": 1000, "bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}})
