@@ -227,11 +227,18 @@ class PyWorld {
   // The loader's refusal (the line `simulate --check` prints after "simulate: ") is a ValueError.
   explicit PyWorld(const py::object& config) : session_(load(config), node_interface::ownNames(), 1) {}
 
-  double t() const { return session_.world().time(); }
-  std::int64_t steps() const { return session_.world().stepCount(); }
-  double dt() const { return session_.world().dt(); }
+  double t() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return session_.world().time();
+  }
+  std::int64_t steps() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return session_.world().stepCount();
+  }
+  double dt() const { return session_.world().dt(); }  // fixed by the config
 
   std::vector<std::string> bodies() const {
+    std::lock_guard<std::mutex> lock(mutex_);
     std::vector<std::string> names;
     for (const auto& body : session_.world().bodies()) names.push_back(body.name);
     return names;
@@ -427,7 +434,7 @@ class PyWorld {
   }
 
   Session session_;
-  std::mutex mutex_;  // a world used from several Python threads: one call at a time
+  mutable std::mutex mutex_;  // a world used from several Python threads: one call at a time
 };
 
 }  // namespace
