@@ -152,6 +152,26 @@ def text_program(report: Report, build: str, out: str, core_times: Dict[str, Lis
     ec = statistics.median(core_times["rodStep/euler_cromer"])
     report.row("2 text", "ratio, stepping alone (vs rod Euler-Cromer above)", [p / ec for p in per_step_py], "x",
                ">= 1000")
+    python_core(report, out, [c - statistics.median(startup) for c in cpp])
+
+
+def python_core(report: Report, out: str, simulate_own: List[float]) -> None:
+    """The same 10 s rod from Python (rigid_body_sim.core), against simulate's own time for it (its whole
+    process less its start-up) and against the text's program in the same process."""
+    say("the rod from Python (rigid_body_sim.core) against simulate and the text's program")
+    result = subprocess.run(["/usr/bin/python3", os.path.join(HERE, "python_core.py"), "--repeat", "7"],
+                            check=True, capture_output=True, text=True)
+    times = json.loads(result.stdout)
+    report.row("2 text", "rigid_body_sim.core: World(rod.yaml).run(10), in Python (arrays of 501 samples)",
+               [t * 1e3 for t in times["core"]], "ms")
+    report.row("2 text", "ratio, Python's run / simulate's own (whole process less start-up, medians)",
+               [statistics.median(times["core"]) / statistics.median(simulate_own)], "x", "<= 2")
+    report.row("2 text", "ratio, text's program / Python's run, one process (per run pairs, sorted)",
+               [t / c for t, c in zip(sorted(times["text"]), sorted(times["core"]))], "x", ">= 100")
+    python = hyperfine(["/usr/bin/python3 " + os.path.join(HERE, "python_core.py") + " --repeat 0"], runs=5,
+                       out=out)[0]
+    report.row("2 text", "  the same from a shell: python3's start-up, numpy and the module imported, one run",
+               [t * 1e3 for t in python], "ms")
 
 
 # --- 3-5. the node --------------------------------------------------------------------------------

@@ -3,7 +3,8 @@
 #                     pictures_rviz_*_view check them, and the panel's Plots tab at the end of pictures_rviz_panel
 #   make pictures     the screenshot and the plots of scripts/plot_run.py: demo.yaml (rollers, energy),
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
-#                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed
+#                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed;
+#                     and examples/python/text_vs_core.py's figure (docs/python.md)
 #   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them
 PICTURES_OUT = $(BUILD)/pictures
 SIMULATE = $(DEVEL)/lib/rigid_body_sim/simulate
@@ -34,6 +35,8 @@ pictures: screenshot
 	  --out-dir $(PICTURES_OUT)/theta0 >/dev/null
 	python3 scripts/plot_run.py config/rod.yaml $(PICTURES_OUT)/theta0 --out-dir $(PICTURES_OUT)/plots \
 	  --prefix theta0_
+	source $(DEVEL)/setup.bash && python3 examples/python/text_vs_core.py --figure $(PICTURES_OUT)/plots/text_vs_core.png
+	cp $(PICTURES_OUT)/plots/text_vs_core.png docs/images/
 	cp $(PICTURES_OUT)/plots/demo_rollers.png $(PICTURES_OUT)/plots/demo_energy.png \
 	  $(PICTURES_OUT)/plots/incline_race.png $(PICTURES_OUT)/plots/theta0_sweep_rod.png docs/images/
 	ls -l docs/images

@@ -232,7 +232,7 @@ FIGURES = [
            lambda r: [f"{finish_times(r['demo']['bowler'], spec(r, 'demo', 'bowler').slope)[0]:.4f}"]),
     Figure("docs/physics.md", r"u0 / \|du/dt\| = (\S+) / (\S+) s", bowler_closed_form),
     Figure("docs/rviz.md", r"`slip → roll at \S+ s \(closed form (\S+) s\)`", lambda r: [bowler_rolls_at(r)]),
-    Figure("docs/testing.md", r"between the closed form's instant\s+\((\S+) s\) and one state period later",
+    Figure("docs/testing.md", r"is at the closed form's instant after the Reset\s+\((\S+) s\) and its v then",
            lambda r: [bowler_rolls_at(r)]),
     Figure("docs/testing.md", r"\(1 \+ c\)/c − g sin φ\) = (\S+) s", lambda r: [bowler_rolls_at(r)]),
     Figure("docs/testing.md", r"the closed form's\s+instant after the Reset \(rviz_panel.py's formula, (\S+) s\)",

@@ -86,6 +86,10 @@ std::optional<WorldCommand::Kind> commandKindFromString(const std::string& name)
   return std::nullopt;
 }
 
+std::string refusalLine(const std::string& kind, const std::string& body, const std::string& why) {
+  return "refused " + kind + (body.empty() ? "" : " of '" + body + "'") + ", simulation unchanged: " + why;
+}
+
 std::string toString(WorldEvent::Kind kind) {
   switch (kind) {
     case WorldEvent::Kind::Gripped: return "gripped (started rolling, or came to rest)";

@@ -123,8 +123,7 @@ ChangeAnswer SimNode::applyHere(const std::string& kind, const std::string& body
     }
   } catch (const ConfigError& error) {
     answer.command.reset();
-    answer.why = "refused " + kind + (body.empty() ? "" : " of '" + body + "'") +
-                 ", simulation unchanged: " + error.what();
+    answer.why = refusalLine(kind, body, error.what());
   }
   answer.accepted = answer.why.empty();
   if (answer.accepted) answer.why = "ok";

@@ -123,12 +123,6 @@ OfflineSummary summaryOf(const World& world, std::int64_t samples, const EnergyT
   return summary;
 }
 
-// The last sample's index j: the last t = j / sample_rate not after the duration (rounding forgiven).
-std::int64_t lastSample(const WorldConfig& config, const OfflineOptions& options) {
-  return static_cast<std::int64_t>(
-      std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
-}
-
 // The session of a run of `config`, sampling at the options' rate; throws ConfigError on bad options.
 Session sessionOf(const WorldConfig& config, const OfflineOptions& options) {
   validate(options, config);
@@ -179,6 +173,11 @@ std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig&
 
 std::int64_t stepsPerSample(const OfflineOptions& options, const WorldConfig& config) {
   return stepsPerSample(config.rate, effectiveSampleRate(options, config));
+}
+
+std::int64_t lastSample(const WorldConfig& config, const OfflineOptions& options) {
+  return static_cast<std::int64_t>(
+      std::floor(options.duration * effectiveSampleRate(options, config) + 1e-9));
 }
 
 RunFiles::RunFiles(const std::string& out_dir, const std::string& bag, const WorldConfig& config,

@@ -2,6 +2,7 @@
 # The install space alone, as a user runs it: with nothing but INSTALL/setup.bash sourced (env -i: no devel
 # space, no source folder on any path), rospack finds the package in INSTALL, and
 #   rosrun rigid_body_sim simulate       writes the CSV of config/demo.yaml
+#   python3: rigid_body_sim.core         runs it again, bit for bit, read back with rigid_body_sim.runs
 #   rosrun rigid_body_sim plot_run.py    plots that CSV, with rosbag made unimportable (CSV needs no ROS)
 #   roslaunch rigid_body_sim sim.launch  duration:=3 record:=true on a master of its own: exit 0, the bag
 #                                        in ROS_HOME; with bag:=run.bag (and web:=true: the web view starts,
@@ -26,6 +27,14 @@ config=$share/config/demo.yaml
 
 rosrun rigid_body_sim simulate "$config" --duration 3 --out-dir "$work/csv" >/dev/null || fail "simulate"
 [ -s "$work/csv/rod.csv" ] || fail "simulate wrote no rod.csv"
+# rigid_body_sim.core from the install space: the same run, bit for bit, as simulate's CSV read back
+python3 - "$install" "$config" "$work/csv" <<'PY' || fail "rigid_body_sim.core"
+import pathlib, sys
+from rigid_body_sim import core, runs
+assert core.__file__.startswith(sys.argv[1] + "/"), core.__file__ + " is not the install space's"
+mine, theirs = core.World(pathlib.Path(sys.argv[2])).run(3.0), runs.read_run(sys.argv[3])
+assert mine.keys() == theirs.keys() and all((mine[b][f] == theirs[b][f]).all() for b in mine for f in mine[b])
+PY
 plot_run=$(catkin_find --libexec rigid_body_sim plot_run.py)
 [ "${plot_run#"$install"}" != "$plot_run" ] || fail "plot_run.py is not installed ($plot_run)"
 python3 - "$plot_run" "$config" "$work/csv" "$work/plots_csv" >/dev/null <<'PY' || fail "plot_run.py on CSV without rosbag"

@@ -33,4 +33,8 @@ struct WorldCommand {
 std::string toString(WorldCommand::Kind kind);  // config, reconfigure, spawn, delete, set_state, reset
 std::optional<WorldCommand::Kind> commandKindFromString(const std::string& name);
 
+// The one line that reports a refused change (`kind` as toString writes it, `body` empty for none, `why` the
+// ConfigError's): the node's WARN line and its services' message, the Python module's ValueError.
+std::string refusalLine(const std::string& kind, const std::string& body, const std::string& why);
+
 }  // namespace rigid_body_sim

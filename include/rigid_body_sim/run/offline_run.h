@@ -49,6 +49,9 @@ void validate(const OfflineOptions& options, const WorldConfig& config);
 // Steps between samples: rate / options.sample_rate, or rate / publish_rate without one.
 std::int64_t stepsPerSample(const OfflineOptions& options, const WorldConfig& config);
 
+// The last sample's index j: the last t = j / sample_rate not after the duration (rounding forgiven).
+std::int64_t lastSample(const WorldConfig& config, const OfflineOptions& options);
+
 // Opens the bag of options.bag for a run of `config` whose bodies start as `bodies`. This layer knows only
 // the sink interface; the ROS layer implements it (ros/bag_recorder.h), so that a run without a bag loads
 // no ROS library.
