@@ -26,14 +26,14 @@ screenshot: build
 
 pictures: screenshot
 	$(SIMULATE) config/demo.yaml --duration 10 --sample-rate 1000 --out-dir $(PICTURES_OUT)/demo >/dev/null
-	python3 scripts/plot_run.py config/demo.yaml $(PICTURES_OUT)/demo --out-dir $(PICTURES_OUT)/plots \
+	source $(DEVEL)/setup.bash && python3 scripts/plot_run.py config/demo.yaml $(PICTURES_OUT)/demo --out-dir $(PICTURES_OUT)/plots \
 	  --prefix demo_ --figures rollers,energy
 	$(SIMULATE) config/incline.yaml --duration 2 --sample-rate 1000 --out-dir $(PICTURES_OUT)/incline >/dev/null
-	python3 scripts/plot_run.py config/incline.yaml $(PICTURES_OUT)/incline --out-dir $(PICTURES_OUT)/plots \
+	source $(DEVEL)/setup.bash && python3 scripts/plot_run.py config/incline.yaml $(PICTURES_OUT)/incline --out-dir $(PICTURES_OUT)/plots \
 	  --prefix incline_ --figures race
 	$(SIMULATE) config/rod.yaml --sweep rod.theta0=0:6.283185307179586:$(THETA0_RODS) --duration 10 \
 	  --out-dir $(PICTURES_OUT)/theta0 >/dev/null
-	python3 scripts/plot_run.py config/rod.yaml $(PICTURES_OUT)/theta0 --out-dir $(PICTURES_OUT)/plots \
+	source $(DEVEL)/setup.bash && python3 scripts/plot_run.py config/rod.yaml $(PICTURES_OUT)/theta0 --out-dir $(PICTURES_OUT)/plots \
 	  --prefix theta0_
 	source $(DEVEL)/setup.bash && python3 examples/python/text_vs_core.py --figure $(PICTURES_OUT)/plots/text_vs_core.png
 	cp $(PICTURES_OUT)/plots/text_vs_core.png docs/images/
@@ -44,4 +44,4 @@ pictures: screenshot
 # The figures docs/physics.md and docs/sweeps.md state about runs, computed from those runs and written into
 # the docs (the ctest doc_figures fails while a doc differs).
 figures: build
-	python3 scripts/doc_figures.py $(SIMULATE) --write
+	source $(DEVEL)/setup.bash && python3 scripts/doc_figures.py $(SIMULATE) --write

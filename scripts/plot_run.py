@@ -332,9 +332,11 @@ def plot_energy(run: Run, specs: Specs, path: str) -> None:
             for start, end in contact_runs(rod_contacts(d, p.length)):
                 ax.axvspan(d["t"][start], d["t"][min(end, len(d["t"]) - 1)], color="lightcoral", alpha=0.4, lw=0)
             colour, shaded = "tab:blue", "an end in the floor"
-        else:
+        elif isinstance(p, RollerSpec):
             shade_slipping(ax, d["t"], d["mode"])
             colour, shaded = COLOURS.get(p.shape, "tab:blue"), "slipping"
+        else:  # a block: its energy falls while it slides
+            colour, shaded = "tab:pink", "sliding"
         ax.plot(d["t"], d["energy"], color=colour, lw=1.0)
         ax.set_ylabel("E (J)")
         spread = float(np.ptp(d["energy"]))
@@ -638,7 +640,7 @@ def summarise(run: Run, specs: Specs) -> Summary:
         p = specs[name]
         if isinstance(p, RodSpec):
             summary["rods"][name] = rod_energy_swing(d, p.length)
-        else:
+        elif isinstance(p, RollerSpec):
             summary["rollers"][name] = {"critical_angle": critical_angle(p), "slip_to_roll": slip_to_roll(d, p.radius),
                                         "finish_times": finish_times(d, p.slope)}
     return summary

@@ -4,8 +4,9 @@ processes and ROS masters.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
-The defaults below are the node's and simulate's (docs/configuration.md); test/tools/test_sim_tools.py
-checks them against the .cfg files (themselves checked against the core) and against simulate."""
+The defaults and units of keys are the core's exported description (rigid_body_sim.description, written by
+the build): run with the package's setup.bash sourced. test/tools/test_sim_tools.py checks them against
+simulate."""
 from __future__ import annotations
 
 import math
@@ -17,28 +18,20 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, Iterable, List, Optional, Set, Tuple, Union
 
 import yaml
+from rigid_body_sim import description
 
 Config = Dict[str, Any]
 
-WORLD_DEFAULTS: Dict[str, Any] = {"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "world_frame": "world",
-                                  "race": False}
-ROD_DEFAULTS: Dict[str, Any] = {"length": 1.0, "mass": 0.5, "k": 1000.0, "floor_length": 0.0, "floor_mu": 0.0,
-                                "integrator": "euler_cromer", "substeps": "auto", "x0": 0.0, "y0": 4.0, "vx0": 2.0,
-                                "vy0": 0.0, "theta0": 0.3, "omega0": 0.0}
-ROLLER_DEFAULTS: Dict[str, Any] = {"shape": "sphere", "radius": 0.1, "mass": 1.0, "incline_angle": 0.349,
-                                   "incline_length": 5.0, "mu_s": 0.3, "mu_d": 0.2, "x0": 0.0, "v0": 0.0,
-                                   "theta0": 0.0, "omega0": 0.0}
+# The defaults of the world's and each body type's keys: the core's description (rigid_body_sim.description).
+WORLD_DEFAULTS: Dict[str, Any] = {key["name"]: key["default"] for key in description.load()["world"]}
+ROD_DEFAULTS: Dict[str, Any] = description.defaults("rod")
+ROLLER_DEFAULTS: Dict[str, Any] = description.defaults("roller")
+BLOCK_DEFAULTS: Dict[str, Any] = description.defaults("block")
 # c = I / (M R^2) of the named shapes.
 INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
                                      "spherical_shell": 2.0 / 3.0}
-# The units of the numeric keys by body type, for axis labels ("" for a pure number), as the .cfg files'
-# descriptions give them.
-KEY_UNITS: Dict[str, Dict[str, str]] = {
-    "rod": {"length": "m", "floor_length": "m", "floor_mu": "", "mass": "kg", "k": "N/m", "x0": "m", "y0": "m",
-            "vx0": "m/s", "vy0": "m/s", "theta0": "rad", "omega0": "rad/s"},
-    "roller": {"inertia_factor": "", "radius": "m", "mass": "kg", "incline_angle": "rad", "incline_length": "m",
-               "mu_s": "", "mu_d": "", "x0": "m", "v0": "m/s", "theta0": "rad", "omega0": "rad/s"},
-}
+# The units of the keys by body type, for axis labels ("" for a pure number or a text): the description's.
+KEY_UNITS: Dict[str, Dict[str, str]] = {name: description.units(name) for name in description.body_types()}
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
 # column (docs/sweeps.md).
 FIRST_SWEEP_RESULT = "energy_drift"
@@ -46,7 +39,8 @@ FIRST_SWEEP_RESULT = "energy_drift"
 # own name, without a unit).
 SWEEP_RESULT_LABELS: Dict[str, Tuple[str, str]] = {"energy_drift": ("energy drift", "J"),
                                                    "bounces": ("bounces", ""),
-                                                   "slip_to_roll": ("slip-to-roll time", "s")}
+                                                   "slip_to_roll": ("slip-to-roll time", "s"),
+                                                   "stops_at": ("time it came to rest", "s")}
 
 
 # --- configs ------------------------------------------------------------------------------------------
@@ -95,12 +89,23 @@ class RollerSpec:
         return math.tan(self.angle) <= self.tan_critical()
 
 
-BodySpec = Union[RodSpec, RollerSpec]
+@dataclass
+class BlockSpec:
+    name: str
+    size: float
+    mass: float
+    angle: float  # incline_angle (rad)
+    slope: float  # incline_length (m)
+    mu_s: float
+    mu_d: float
+
+
+BodySpec = Union[RodSpec, RollerSpec, BlockSpec]
 
 
 def body_type(config: Config, name: str) -> str:
-    """`rod` or `roller` (a body without a type is refused by the config loader before any run)."""
-    return "rod" if config["bodies"][name].get("type") == "rod" else "roller"
+    """Its `type`: rod, roller or block (a body without one is refused by the config loader before any run)."""
+    return str(config["bodies"][name]["type"])
 
 
 def body_spec(config: Config, name: str) -> BodySpec:
@@ -109,6 +114,10 @@ def body_spec(config: Config, name: str) -> BodySpec:
     if body_type(config, name) == "rod":
         rod = {**ROD_DEFAULTS, **body}
         return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]), float(rod["floor_length"]))
+    if body_type(config, name) == "block":
+        block = {**BLOCK_DEFAULTS, **body}
+        return BlockSpec(name, float(block["size"]), float(block["mass"]), float(block["incline_angle"]),
+                         float(block["incline_length"]), float(block["mu_s"]), float(block["mu_d"]))
     roller = {**ROLLER_DEFAULTS, **body}
     shape = body.get("shape", "custom" if "inertia_factor" in body else ROLLER_DEFAULTS["shape"])
     c = float(body.get("inertia_factor", INERTIA_FACTORS.get(shape, math.nan)))

@@ -24,14 +24,14 @@ import re
 from dataclasses import dataclass
 from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Set, Tuple, Union
 
+from rigid_body_sim import description
+
 MAX_REQUEST_BYTES = 1024
 # The ~step service's own bound is 600 s of steps: this only keeps a number from being absurd on the wire.
 MAX_STEPS = 10_000_000
-# The keys a lesson changes, by body type: the slope, friction, the floor's spring and the initial conditions.
-LESSON_KEYS: Dict[str, Tuple[str, ...]] = {
-    "rod": ("k", "x0", "y0", "vx0", "vy0", "theta0", "omega0"),
-    "roller": ("incline_angle", "mu_s", "mu_d", "x0", "v0", "theta0", "omega0"),
-}
+# The keys a lesson changes, by body type (the slope, friction, the floor's spring and the initial
+# conditions): the core's description marks them.
+LESSON_KEYS: Dict[str, Tuple[str, ...]] = {kind: tuple(keys) for kind, keys in description.lesson_keys().items()}
 OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
                             "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"}}
 

@@ -57,7 +57,8 @@ import yaml
 from dynamic_reconfigure.msg import Config as ReconfigureConfig
 from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
-from rigid_body_sim.msg import Command, RodState, RollerState
+from rigid_body_sim import description
+from rigid_body_sim.msg import BlockState, Command, RodState, RollerState
 from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
@@ -67,12 +68,13 @@ from visualization_msgs.msg import MarkerArray
 # sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
 # devel-space relay runs it from its source path.
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import (INERTIA_FACTORS, KEY_UNITS, ROD_DEFAULTS, ROLLER_DEFAULTS, WORLD_DEFAULTS,  # noqa: E402
+from sim_tools import (INERTIA_FACTORS, KEY_UNITS, WORLD_DEFAULTS,  # noqa: E402
                        rospy_on_python39)
 from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,  # noqa: E402
                           finish_of_label, frame_message, parse_request, tied_places, websocket_text_frame)
 
-STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState)}
+STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState),
+               "rigid_body_sim/BlockState": ("block", BlockState)}
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
@@ -88,11 +90,10 @@ HEAD_TIMEOUT = 10.0  # s for a request's whole head, and for an idle kept-alive 
 
 
 def body_with_defaults(body: Dict[str, Any]) -> Dict[str, Any]:
-    """A body's config with the documented defaults filled in, and a roller's c."""
-    if body.get("type") == "rod":
-        return {**ROD_DEFAULTS, **body, "type": "rod"}
-    full: Dict[str, Any] = {**ROLLER_DEFAULTS, **body, "type": "roller"}
-    if "inertia_factor" not in body:
+    """A body's config with its type's defaults (the core's description) filled in, and a roller's c."""
+    kind = str(body["type"])
+    full: Dict[str, Any] = {**description.defaults(kind), **body}
+    if kind == "roller" and "inertia_factor" not in body:
         full["inertia_factor"] = INERTIA_FACTORS.get(str(full["shape"]), 0.4)
     return full
 

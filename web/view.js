@@ -8,7 +8,7 @@ const PLOT_WINDOW = 10; // s of simulated time in the plots, as the rviz panel's
 const KEEP = 12; // s of points kept per body
 const MIN_RADIUS = 10; // px: a body is drawn at least 20 px across (larger than to scale, its panel says so)
 const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spherical_shell: "#6bd06b",
-                  custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d" };
+                  custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d", block: "#ff66cc" };
 // The plots' lines: white, yellow and teal, none a body's colour (the rod's marked end excepted: its own).
 const PLOT_COLOURS = { first: "#f2f2f2", second: "#ffe066", third: "#3fd0c0" };
 const TEXT_SCALES = [0.8, 1, 1.25, 1.5, 2];
@@ -39,7 +39,12 @@ let ownChoice = false; // this page chose its plotted body itself (a student's: 
 const $ = (id) => document.getElementById(id);
 
 // --- physics the labels and plots show (docs/rviz.md: the panel's) -----------------------------------------
-function criticalAngle(b) { return Math.atan(b.mu_s * (1 + b.inertia_factor) / b.inertia_factor); }
+// The steepest slope static friction holds: a roller rolling, a block at rest.
+function criticalAngle(b) {
+  return Math.atan(b.type === "block" ? b.mu_s : b.mu_s * (1 + b.inertia_factor) / b.inertia_factor);
+}
+// How far a body on a slope reaches from its centre: a roller's radius, half a block's edge.
+function halfSize(b) { return b.type === "block" ? 0.5 * b.size : b.radius; }
 function deg(rad) { return (rad * 180 / Math.PI).toFixed(1) + "\u00b0"; }
 // Three decimals, without the "-0.000" of a tiny negative number.
 function fixed3(x) { return Math.abs(x) < 0.0005 ? "0.000" : x.toFixed(3); }
@@ -48,6 +53,7 @@ function kinetic(b, s) {
   if (b.type === "rod") {
     return 0.5 * b.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (b.mass * b.length * b.length / 12) * s.omega * s.omega;
   }
+  if (b.type === "block") return 0.5 * b.mass * s.v * s.v;
   return 0.5 * b.mass * s.v * s.v + 0.5 * b.inertia_factor * b.mass * b.radius * b.radius * s.omega * s.omega;
 }
 function rodEnds(b, s) {
@@ -169,7 +175,7 @@ function addState(body, s) {
     p.end_b = e.b;
   } else {
     p.v = s.v;
-    p.minus_omega_r = -s.omega * b.radius;
+    if (b.type !== "block") p.minus_omega_r = -s.omega * b.radius;
     if (!before || s.x < before.x - 1e-9) { // the first state seen, or a race's new lap
       const start = lapStart(b, s);
       if (start !== null) rbs.laps[body] = start;
@@ -404,7 +410,7 @@ function draw() {
 // --- the scene ---------------------------------------------------------------------------------------------
 function slopeBox(b) {
   const phi = b.incline_angle;
-  const R = b.radius;
+  const R = halfSize(b);
   const L = b.incline_length;
   const pad = Math.max(2 * R, 0.05 * L);
   // Above the top: a body starting there; below the foot: one waiting at a steep slope's foot (R below it).
@@ -415,12 +421,14 @@ function slopeBox(b) {
 
 function rollerLines(ctx, name, b, max) {
   const s = latest[name];
-  const title = name === b.shape ? name : `${name} (${b.shape})`;
+  const kind = b.type === "block" ? "block" : b.shape;
+  const title = name === kind ? name : `${name} (${kind})`;
   const finish = rbs.finishes && rbs.finishes[name];
   const head = finish ? [`${title}: ${ordinal(finish.place)},`, `${finish.time.toFixed(4)} s`]
     .concat(finish.closed_form === null ? [] : [`(closed form ${finish.closed_form.toFixed(4)} s)`])
     : [`${title}: ${s ? s.mode : "\u2013"}`];
-  const verdict = Math.tan(b.incline_angle) <= b.mu_s * (1 + b.inertia_factor) / b.inertia_factor ? "can roll" : "slips";
+  const holds = Math.tan(b.incline_angle) <= Math.tan(criticalAngle(b));
+  const verdict = b.type === "block" ? (holds ? "can stick" : "slides") : holds ? "can roll" : "slips";
   const info = [s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7", `\u03c6c = ${deg(criticalAngle(b))}`,
                 `(slope ${deg(b.incline_angle)}:`, `${verdict})`];
   return { head: wrap(ctx, head, max, true), info: wrap(ctx, info, max, false) };
@@ -480,7 +488,7 @@ function panelFrame(ctx, rect, head, info, lineH) {
 function drawRoller(ctx, rect, name, b, s, lineH) {
   const phi = b.incline_angle;
   const L = b.incline_length;
-  const R = b.radius;
+  const R = halfSize(b);
   const box = slopeBox(b);
   const lines = rollerLines(ctx, name, b, rect.w - 12);
   const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w,
@@ -523,6 +531,16 @@ function drawRoller(ctx, rect, name, b, s, lineH) {
   const rad = Math.max(R * scale, MIN_RADIUS);
   const cx = X(s.x * Math.cos(phi)) + rad * Math.sin(phi);
   const cy = Y(-s.x * Math.sin(phi)) - rad * Math.cos(phi);
+  if (b.type === "block") { // a square resting on the slope, turned with it
+    ctx.save();
+    ctx.translate(cx, cy);
+    ctx.rotate(phi);
+    ctx.fillStyle = COLOURS.block;
+    ctx.fillRect(-rad, -rad, 2 * rad, 2 * rad);
+    ctx.restore();
+    rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx: cx, sy: cy, r: rad });
+    return;
+  }
   const a = s.theta - phi;
   const sx = cx + rad * Math.cos(a);
   const sy = cy - rad * Math.sin(a);

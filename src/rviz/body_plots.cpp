@@ -194,9 +194,12 @@ void BodyPlots::select(const std::string& body) {
   if (type == "rigid_body_sim/RodState") {
     state_ =
         nh.subscribe<RodState>(server + "/state", 100, [this](const RodState::ConstPtr& s) { onRod(*s); });
-  } else {
+  } else if (type == "rigid_body_sim/RollerState") {
     state_ = nh.subscribe<RollerState>(server + "/state", 100,
                                        [this](const RollerState::ConstPtr& s) { onRoller(*s); });
+  } else if (type == "rigid_body_sim/BlockState") {
+    state_ = nh.subscribe<BlockState>(server + "/state", 100,
+                                      [this](const BlockState::ConstPtr& s) { onBlock(*s); });
   }
 }
 
@@ -220,14 +223,19 @@ void BodyPlots::build(const std::string& type) {
     connect(charts_.back().view->chart(), &QChart::plotAreaChanged, this, follow);
     charts_.push_back(makeChart("friction on the body, along the slope", "F (N)"));
     addTrack(charts_.back(), "friction", "friction", new QLineSeries());
+  } else if (type == "rigid_body_sim/BlockState") {
+    charts_.push_back(makeChart("speed along the slope", "speed (m/s)"));
+    addTrack(charts_.back(), "v", "v", new QLineSeries());
+    charts_.push_back(makeChart("friction on the block, along the slope", "F (N)"));
+    addTrack(charts_.back(), "friction", "friction", new QLineSeries());
   } else {
     charts_.push_back(makeChart("height of each end", "y (m)"));
     addTrack(charts_.back(), "y_end_plus", "y + (L/2) sin \u03b8", new QLineSeries());
     addTrack(charts_.back(), "y_end_minus", "y \u2212 (L/2) sin \u03b8", new QLineSeries());
   }
-  charts_.push_back(makeChart(type == "rigid_body_sim/RollerState" ? "energy (potential 0 at the slope's top)"
-                                                                   : "energy (potential 0 at floor level)",
-                              "E (J)"));
+  const bool on_slope = type != "rigid_body_sim/RodState";
+  charts_.push_back(makeChart(
+      on_slope ? "energy (potential 0 at the slope's top)" : "energy (potential 0 at floor level)", "E (J)"));
   addTrack(charts_.back(), "energy", "total", new QLineSeries());
   addTrack(charts_.back(), "kinetic", "kinetic", new QLineSeries());
   addTrack(charts_.back(), "potential", "potential", new QLineSeries());
@@ -349,7 +357,7 @@ void BodyPlots::savePng() {
 }
 
 void BodyPlots::setParameters(const dynamic_reconfigure::Config& config) {
-  rod_.mass = roller_.mass = parameter(config, "mass");
+  rod_.mass = roller_.mass = block_.mass = parameter(config, "mass");
   rod_.length = parameter(config, "length");
   roller_.radius = parameter(config, "radius");
   roller_.inertia_factor = parameter(config, "inertia_factor");  // the shape's c, or a custom one
@@ -405,6 +413,16 @@ void BodyPlots::onRoller(const RollerState& state) {
   append(charts_[1], 0, state.t, state.friction);
   const Roller roller(roller_, RollerInitial{state.x, state.v, state.theta, state.omega});
   appendEnergies(charts_[2], state.t, state.energy, roller.kineticEnergy());
+}
+
+void BodyPlots::onBlock(const BlockState& state) {
+  if (!recording() || charts_.size() != 3 || state.t <= origin_) return;
+  trim(state.t);
+  restarted(state.t, state.x, state.v);
+  append(charts_[0], 0, state.t, state.v);
+  append(charts_[1], 0, state.t, state.friction);
+  const Block block(block_, BlockInitial{state.x, state.v});
+  appendEnergies(charts_[2], state.t, state.energy, block.kineticEnergy());
 }
 
 // A slipping phase that begins (the first state, a restart, a rolling body that starts slipping) takes the

@@ -156,7 +156,10 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
         nh.subscribe<RodState>(state_topic, 1, [this](const RodState::ConstPtr& s) { onRodState(*s); }));
   } else if (state_type_ == "rigid_body_sim/RollerState") {
     subscribers_.push_back(nh.subscribe<RollerState>(
-        state_topic, 1, [this](const RollerState::ConstPtr& s) { onRollerState(*s); }));
+        state_topic, 1, [this](const RollerState::ConstPtr& s) { onSlopeState(s->t, s->mode, s->energy); }));
+  } else if (state_type_ == "rigid_body_sim/BlockState") {
+    subscribers_.push_back(nh.subscribe<BlockState>(
+        state_topic, 1, [this](const BlockState::ConstPtr& s) { onSlopeState(s->t, s->mode, s->energy); }));
   }
 }
 
@@ -468,12 +471,12 @@ void BodySection::clearPendingNote() {
   showMessage("", false);
 }
 
-void BodySection::onRollerState(const RollerState& state) {
+void BodySection::onSlopeState(double t, const std::string& mode, double energy) {
   motion_->setText(QString("%1 · E = %2 J (potential 0 with its centre at the slope's top)")
-                       .arg(QString::fromStdString(state.mode))
-                       .arg(fixed(state.energy, 3)));
+                       .arg(QString::fromStdString(mode))
+                       .arg(fixed(energy, 3)));
   clearPendingNote();
-  on_time_(state.t);
+  on_time_(t);
 }
 
 }  // namespace rigid_body_sim

@@ -143,7 +143,8 @@ QHBoxLayout* SimPanel::spawnRow() {
   spawn_kind_->setObjectName("spawn_kind");
   spawn_kind_->addItem("rod");
   for (const Shape shape : namedShapes()) spawn_kind_->addItem(QString::fromStdString(toString(shape)));
-  spawn_kind_->setToolTip("a rod, or a roller of this shape; its other keys take their defaults");
+  spawn_kind_->addItem("block");
+  spawn_kind_->setToolTip("a rod, a roller of this shape or a block; its other keys take their defaults");
   auto* spawn_button = button("Spawn", "spawn", "~spawn: a new body, starting now", this);
   row->addWidget(spawn_name_, 1);
   row->addWidget(spawn_kind_);
@@ -392,13 +393,14 @@ void SimPanel::step() {
       [this](const std::string& text) { showStatus(QString::fromStdString(text)); });
 }
 
-// A rod, or a roller of the chosen shape: the node gives every other key its documented default.
+// A rod, a roller of the chosen shape or a block: the node gives every other key its documented default.
 void SimPanel::spawn() {
   const std::string name = spawn_name_->text().trimmed().toStdString();
   const std::string kind = spawn_kind_->currentText().toStdString();
   Spawn srv;
   srv.request.name = name;
-  srv.request.body = kind == "rod" ? "{type: rod}" : "{type: roller, shape: " + kind + "}";
+  const bool roller = shapeFromString(kind).has_value();
+  srv.request.body = roller ? "{type: roller, shape: " + kind + "}" : "{type: " + kind + "}";
   callChange(ns_ + "/spawn", srv, "spawned '" + name + "' (" + kind + ")");
 }
 

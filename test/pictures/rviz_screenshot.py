@@ -436,7 +436,7 @@ def check_picture(image: np.ndarray, scene: Scene, camera: pc.Camera, config: Co
             ends = checker.rod_ends(spec.name, spec.length)
             rod_line = pc.segment_mask(checker.shape, *ends, 6.0) if ends else np.zeros_like(covered)
             checker.floor_under(spec.name, labels | rod_line)
-        else:
+        elif isinstance(spec, RollerSpec):
             checker.slope(spec.name, slopes, bodies_only)
             checker.roller(spec.name, spec.shape, discs.get(spec.name), labels | checker.in_front_of(spec.name, discs))
             checker.roller_size(spec.name, spec.shape, discs.get(spec.name))

@@ -12,7 +12,7 @@ Pure functions of a PublishedScene (markers by (ns, id), world poses of frames) 
 so that they run on the scene rviz was sent (rviz_screenshot) and on a recorded run (views_over_a_run)."""
 import os
 import sys
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -21,7 +21,7 @@ from picture_check import Finding
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                                 "scripts"))
-from sim_tools import RodSpec, RollerSpec  # noqa: E402
+from sim_tools import BodySpec, RodSpec, RollerSpec  # noqa: E402
 
 MIN_BODY_PX = 20
 # Each text's characters at least this high (a line's height: rviz draws a text's scale.z as its character
@@ -253,11 +253,18 @@ def rod_floor(scene: Any, camera: pc.Camera, rod: str, unbounded: bool, grid: Di
     return findings
 
 
-def view_checks(scene: Any, camera: pc.Camera, specs: Sequence[Union[RodSpec, RollerSpec]],
+def reach(spec: BodySpec) -> float:
+    """How far a body reaches from its centre: a roller's radius, half a rod's length or a block's edge."""
+    if isinstance(spec, RollerSpec):
+        return spec.radius
+    return 0.5 * (spec.length if isinstance(spec, RodSpec) else spec.size)
+
+
+def view_checks(scene: Any, camera: pc.Camera, specs: Sequence[BodySpec],
                 grid: Dict[str, Any], inset: int = 0) -> List[Finding]:
     """Every rule above on the published geometry: labels by their bodies, boards, all in the view (inset
     pixels inside it) and apart; rollers large enough; slopes apart; each rod over its floor (and grid)."""
-    reaches = {spec.name: (spec.radius if isinstance(spec, RollerSpec) else 0.5 * spec.length) for spec in specs}
+    reaches = {spec.name: reach(spec) for spec in specs}
     rollers = {spec.name: spec.radius for spec in specs if isinstance(spec, RollerSpec)}
     found = labels(scene, camera, reaches, inset) + text_sizes(scene, camera) + body_sizes(scene, camera, rollers)
     found += lanes(scene, camera)

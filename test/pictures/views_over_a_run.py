@@ -34,6 +34,7 @@ CASES: List[Tuple[str, str, Dict[str, Dict[str, float]]]] = [
     ("lesson_race.rviz", "race_below.yaml", {"cylinder": {"incline_angle": 0.6}}),
     ("lesson_race.rviz", "race_below.yaml", {"sphere": {"incline_length": 3.5}, "ring": {"radius": 0.2}}),
     ("lesson_race.rviz", "race_slip.yaml", {}),
+    ("lesson_race.rviz", "race_block.yaml", {}),
     ("lesson_above.rviz", "race_above.yaml", {}),
     ("incline.rviz", "incline.yaml", {}),
     ("rod.rviz", "rod.yaml", {}),

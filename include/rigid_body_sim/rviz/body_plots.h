@@ -39,9 +39,11 @@
 #include <dynamic_reconfigure/Config.h>
 #include <ros/ros.h>
 
+#include "rigid_body_sim/BlockState.h"
 #include "rigid_body_sim/Command.h"
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
+#include "rigid_body_sim/core/block.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/call_queue.h"
@@ -111,6 +113,7 @@ class BodyPlots : public QWidget {
   void style(Chart& chart, const Style& style);
   void onRod(const RodState& state);
   void onRoller(const RollerState& state);
+  void onBlock(const BlockState& state);
   void onCommand(const Command& command);
   bool recording() const;
   bool restarted(double t, double x, double v);
@@ -141,6 +144,7 @@ class BodyPlots : public QWidget {
   bool parameters_known_ = false;
   RodParams rod_;
   RollerParams roller_;
+  BlockParams block_;
   double gravity_ = 0;  // the world's; 0 until known (no closed form then)
   std::string last_mode_;
   double origin_ = 0;  // t of the last reset or config: the t axis starts there

@@ -18,6 +18,7 @@
 #include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
 
+#include "rigid_body_sim/BlockState.h"
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
 
@@ -68,8 +69,8 @@ class BodySection : public QGroupBox {
   void showValues(const dynamic_reconfigure::Config& values);
   void request(dynamic_reconfigure::Config asked, const std::string& key, const QString& asked_text);
   void onRodState(const RodState& state);
-  void onRollerState(const RollerState& state);
-  void holdIfReadOnly(QWidget* widget);  // disabled, its tool tip the reason
+  void onSlopeState(double t, const std::string& mode, double energy);  // a roller's or a block's
+  void holdIfReadOnly(QWidget* widget);                                 // disabled, its tool tip the reason
 
   std::string name_, server_, state_type_;
   CallQueue& calls_;
