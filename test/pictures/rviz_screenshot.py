@@ -51,6 +51,7 @@ LAUNCH_CONFIGS = {"sim.launch": ("demo.yaml", "sim.rviz"), "rod.launch": ("rod.y
                   "incline.launch": ("incline.yaml", "incline.rviz"),
                   "lesson.launch": ("race_below.yaml", "lesson_race.rviz"),
                   "lesson.launch part:=above": ("race_above.yaml", "lesson_above.rviz"),
+                  "lesson.launch part:=block": ("race_block.yaml", "lesson_race.rviz"),
                   "lesson.launch part:=rod": ("rod.yaml", "lesson_rod.rviz")}
 Outline = Tuple[str, Any]
 Disc = Tuple[np.ndarray, Any, float]  # mask, centre pixel, radius in pixels
@@ -86,7 +87,7 @@ class Scene(rules.PublishedScene):
     """What the node published, as it comes: world poses of every frame, markers by (ns, id), latest states."""
 
     def __init__(self, rospy: Any, config: Config) -> None:
-        from rigid_body_sim.msg import RodState, RollerState
+        from rigid_body_sim.testing import STATE_TYPES
         from tf2_msgs.msg import TFMessage
         from visualization_msgs.msg import MarkerArray
         super().__init__()
@@ -105,7 +106,7 @@ class Scene(rules.PublishedScene):
             rospy.Subscriber("/sim/markers", MarkerArray, self.on_markers, "/sim/markers", queue_size=100)]
         for name, body in config["bodies"].items():
             self.subscribers.append(rospy.Subscriber(
-                f"/sim/{name}/state", RodState if body["type"] == "rod" else RollerState,
+                f"/sim/{name}/state", STATE_TYPES[body["type"]],
                 lambda msg, name=name: self.on_state(name, msg), queue_size=100))
 
     def on_state(self, name: str, msg: Any) -> None:

@@ -30,7 +30,7 @@ import rosgraph
 import rospy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
-from rigid_body_sim.msg import RodState, RollerState
+from rigid_body_sim.testing import STATE_TYPES
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
 from sim_tools import (Config, free_port, load_config, state_fields, subscribe_to_the_rest, wait_for,  # noqa: E402
@@ -86,7 +86,7 @@ class Listener:
     def __init__(self, config: Config) -> None:
         self.states: States = {name: [] for name in config["bodies"]}
         self.subs = [rospy.Subscriber(f"/sim/{name}/state",
-                                      RodState if body["type"] == "rod" else RollerState,
+                                      STATE_TYPES[body["type"]],
                                       lambda msg, name=name: self.states[name].append(msg), queue_size=None)
                      for name, body in config["bodies"].items()]
 
