@@ -7,7 +7,7 @@ ASAN_BUILD ?= build/asan
 # max_total_time only stops a hang (100000 runs take 15 to 100 s here, by the load).
 FUZZ_RUNS ?= 100000
 FUZZ_SECONDS ?= 300
-FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/io/config_loader.cpp $(wildcard src/core/*.cpp)
+FUZZ_SOURCES := test/fuzz/fuzz_config_loader.cpp src/io/config_loader.cpp $(wildcard src/core/*.cpp src/core/types/*.cpp)
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 export ASAN_OPTIONS := halt_on_error=1:detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS := halt_on_error=1:print_stacktrace=1
@@ -16,7 +16,7 @@ EXTRA_TESTS += fuzz asan
 
 .PHONY: fuzz asan
 
-$(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h) | deps
+$(FUZZ_BUILD)/fuzz_config_loader: $(FUZZ_SOURCES) $(wildcard include/rigid_body_sim/*/*.h include/rigid_body_sim/core/types/*.h src/core/types/*.h) | deps
 	mkdir -p $(FUZZ_BUILD) && touch $(FUZZ_BUILD)/CATKIN_IGNORE  # keeps catkin_lint out of it
 	clang++ -std=c++17 -g -O1 -fsanitize=fuzzer $(SANITIZE) -Iinclude $(FUZZ_SOURCES) -lyaml-cpp -o $@
 
