@@ -53,6 +53,9 @@ std::string asString(const std::string& body, const std::string& key, const YAML
 // The booleans of YAML 1.1, as rosparam reads a file for the node: true, yes, on / false, no, off, any case.
 bool asBool(const std::string& body, const std::string& key, const YAML::Node& node) {
   const std::string allowed = "true or false (or yes, no, on, off)";
+  if (node.IsScalar() && node.Tag() == "!") {  // quoted: a text, as a quoted number is
+    throw ConfigError(body, key, "\"" + node.Scalar() + "\" (quoted: a text)", allowed + ", without quotes");
+  }
   std::string text = asString(body, key, node, allowed);
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char ch) { return std::tolower(ch); });
   if (text == "true" || text == "yes" || text == "on") return true;

@@ -74,6 +74,21 @@ XmlRpc::XmlRpcValue privateParams(const ros::NodeHandle& private_node) {
   return params;
 }
 
+namespace {
+// True for a text that YAML 1.1 reads as a number or a boolean when it is not quoted (rosparam's reading).
+bool readsAsNumberOrBool(const std::string& text) {
+  try {
+    const YAML::Node plain = YAML::Load(text);
+    double number = 0.0;
+    bool boolean = false;
+    return plain.IsScalar() && plain.Tag() == "?" &&
+           (YAML::convert<double>::decode(plain, number) || YAML::convert<bool>::decode(plain, boolean));
+  } catch (const YAML::Exception&) {
+    return false;  // no scalar at all: a text
+  }
+}
+}  // namespace
+
 YAML::Node toYaml(XmlRpc::XmlRpcValue& value) {
   switch (value.getType()) {
     case XmlRpc::XmlRpcValue::TypeStruct: {
@@ -95,7 +110,14 @@ YAML::Node toYaml(XmlRpc::XmlRpcValue& value) {
       text << static_cast<double>(value);
       return YAML::Node(text.str());
     }
-    case XmlRpc::XmlRpcValue::TypeString: return YAML::Node(static_cast<std::string>(value));
+    case XmlRpc::XmlRpcValue::TypeString: {
+      // A string that a file would have given as a number or a boolean was quoted there ("0.5", "true"): it
+      // is tagged as the parser tags a quoted scalar ("!"), so that the loader refuses it where a number or
+      // a boolean is due with the same line as for the file. Any other text reads as the file's plain one.
+      YAML::Node text(static_cast<std::string>(value));
+      if (readsAsNumberOrBool(text.Scalar())) text.SetTag("!");
+      return text;
+    }
     default: return YAML::Node();
   }
 }
