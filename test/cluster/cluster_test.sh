@@ -8,6 +8,7 @@
 set -euo pipefail
 export PATH=/usr/bin:$PATH
 devel=$(realpath "$1")
+set +u; source "$devel/setup.bash"; set -u  # slurm_sweep reads the package's description
 dir=$(realpath -m "$2")
 simulate=$devel/lib/rigid_body_sim/simulate
 sweep=(config/rod.yaml --sweep rod.theta0=0:6.283185307179586:10000 --duration 10)
