@@ -30,7 +30,7 @@ BLOCK_DEFAULTS: Dict[str, Any] = description.defaults("block")
 # c = I / (M R^2) of the named shapes.
 INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
                                      "spherical_shell": 2.0 / 3.0}
-# The units of the keys by body type, for axis labels ("" for a pure number or a text): the description's.
+# The units of the number keys by body type, for axis labels ("" for a pure number): the description's.
 KEY_UNITS: Dict[str, Dict[str, str]] = {name: description.units(name) for name in description.body_types()}
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
 # column (docs/sweeps.md).

@@ -47,7 +47,8 @@ def defaults(type_name: str) -> Dict[str, Any]:
 
 
 def units(type_name: str) -> Dict[str, str]:
-    return {k["name"]: k["unit"] for k in keys(type_name)}
+    """The unit of each number key ("" for a pure number); text keys have none and are not listed."""
+    return {k["name"]: k["unit"] for k in keys(type_name) if k["kind"] == "number"}
 
 
 def lesson_keys() -> Dict[str, List[str]]:
