@@ -5,7 +5,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
