@@ -15,7 +15,8 @@ FILE = "body_types.json"
 
 def _candidates(extra: Sequence[str]) -> List[str]:
     import rigid_body_sim  # its __path__: the devel (or install) folder and, in devel, the source folder
-    return [os.path.join(folder, FILE) for folder in [*extra, *rigid_body_sim.__path__]]
+    package_folders = list(getattr(rigid_body_sim, "__path__", []))  # getattr: Debian 11's mypy knows no __path__
+    return [os.path.join(folder, FILE) for folder in [*extra, *package_folders]]
 
 
 @functools.lru_cache(maxsize=None)
