@@ -1,5 +1,7 @@
 #include "rigid_body_sim/ros/reconfigure_servers.h"
 
+#include <algorithm>
+#include <thread>
 #include <utility>
 
 #include <ros/callback_queue.h>
@@ -40,6 +42,15 @@ Config withKeysOf(const std::string& body, const Config& current, const std::map
 
 }  // namespace
 
+XmlRpc::XmlRpcValue parameterValues(const dynamic_reconfigure::Config& config) {
+  XmlRpc::XmlRpcValue values;
+  for (const auto& parameter : config.bools) values[parameter.name] = static_cast<bool>(parameter.value);
+  for (const auto& parameter : config.ints) values[parameter.name] = parameter.value;
+  for (const auto& parameter : config.strs) values[parameter.name] = parameter.value;
+  for (const auto& parameter : config.doubles) values[parameter.name] = parameter.value;
+  return values;
+}
+
 ReconfigureServers::ReconfigureServers(ros::NodeHandle private_node, Change change, Lookup lookup)
     : private_node_(std::move(private_node)), change_(std::move(change)), lookup_(std::move(lookup)) {}
 
@@ -69,32 +80,44 @@ void ReconfigureServers::startAll(std::function<WorldConfig()> config) {
 
 void ReconfigureServers::stop() { stopped_ = true; }
 
+// A batch of servers at a time, made on kStartThreads threads at once: each server's four calls to the
+// master wait mostly for the master, which answers each call on a thread of its own. The spinner thread
+// waits for the batch (at most some 0.1 s), then the callbacks behind it run.
 void ReconfigureServers::startNext() {
-  while (!waiting_.empty() && ros::ok() && !stopped_) {
+  constexpr std::size_t kBatch = 64;
+  constexpr std::size_t kStartThreads = 4;
+  std::vector<BodyConfig> batch;
+  while (!waiting_.empty() && batch.size() < kBatch && ros::ok() && !stopped_) {
     const std::string name = waiting_.front();
     waiting_.pop_front();
     if (servers_.count(name)) continue;
-    const std::optional<BodyConfig> body = lookup_(name);
-    if (!body) continue;
-    start(*body);
-    defer([this] { startNext(); });
-    return;
+    if (std::optional<BodyConfig> body = lookup_(name)) batch.push_back(std::move(*body));
   }
+  if (batch.empty()) return;
+  std::vector<BodyServer> made(batch.size());
+  std::vector<std::thread> threads;
+  for (std::size_t first = 0; first < std::min(kStartThreads, batch.size()); ++first) {
+    threads.emplace_back([&, first] {
+      for (std::size_t i = first; i < batch.size(); i += kStartThreads) made[i] = serverOf(batch[i]);
+    });
+  }
+  for (auto& thread : threads) thread.join();
+  for (std::size_t i = 0; i < batch.size(); ++i) servers_[batch[i].name] = std::move(made[i]);
+  defer([this] { startNext(); });
 }
 
-// The body's values go to its server before its callback is set, so that they win over the .cfg defaults;
-// the first callback then finds nothing to change.
-void ReconfigureServers::start(const BodyConfig& body) {
+void ReconfigureServers::start(const BodyConfig& body) { servers_[body.name] = serverOf(body); }
+
+ReconfigureServers::BodyServer ReconfigureServers::serverOf(const BodyConfig& body) {
   const ros::NodeHandle body_node(private_node_, body.name);
   const std::string name = body.name;
-  std::visit(
-      [&](const auto& config) {
+  return std::visit(
+      [&](const auto& config) -> BodyServer {
         using Config = std::decay_t<decltype(config)>;
         using Request = typename RosBodyType<TypeOfConfig<Config>>::Reconfigure;
-        auto server = std::make_unique<dynamic_reconfigure::Server<Request>>(mutex_, body_node);
-        server->updateConfig(toReconfigure(config));
-        server->setCallback([this, name](Request& request, uint32_t) { onRequest<Config>(name, request); });
-        servers_[name] = std::move(server);
+        return std::make_unique<BodyReconfigureServer<Request>>(
+            body_node, mutex_, toReconfigure(config),
+            [this, name](Request& request) { onRequest<Config>(name, request); });
       },
       body.config);
 }
@@ -116,7 +139,7 @@ void ReconfigureServers::follow(const WorldCommand& command) {
   std::visit(
       [&](const auto& config) {  // a reconfigure keeps the body's type (World::apply refuses another)
         if (auto* running = std::get_if<ServerOf<TypeOfConfig<decltype(config)>>>(&server->second)) {
-          (*running)->updateConfig(toReconfigure(config));
+          (*running)->update(toReconfigure(config));
         }
       },
       command.config.config);

@@ -3,8 +3,8 @@
 // then shows what runs (a refused or partly refused request snaps back).
 //
 // Owned by the spinner thread: every call, and every server callback, comes from it. The servers start
-// after stepping has (each takes some 40 calls to the master: the first states of a thousand bodies do not
-// wait), one per callback behind those waiting, so that the node's services answer meanwhile. A body
+// after stepping has (each takes four calls to the master: the first states of a thousand bodies do not
+// wait), a batch per callback behind those waiting, so that the node's services answer meanwhile. A body
 // spawned meanwhile has its own already; one deleted meanwhile gets none.
 #pragma once
 
@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 
 #include "rigid_body_sim/core/command.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/ros/body_reconfigure_server.h"
 #include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {
@@ -57,7 +57,7 @@ class ReconfigureServers {
 
  private:
   template <class Type>
-  using ServerOf = std::unique_ptr<dynamic_reconfigure::Server<typename RosBodyType<Type>::Reconfigure>>;
+  using ServerOf = std::unique_ptr<BodyReconfigureServer<typename RosBodyType<Type>::Reconfigure>>;
   template <class List>
   struct ServerVariant;
   template <class... Types>
@@ -69,6 +69,7 @@ class ReconfigureServers {
   void defer(std::function<void()> work);  // behind the callbacks waiting on the spinner thread
   void startNext();
   void start(const BodyConfig& body);
+  BodyServer serverOf(const BodyConfig& body);  // any thread: touches nothing of this object but mutex_
   template <class Config, class Request>
   void onRequest(const std::string& name, Request& request);
 
@@ -76,9 +77,7 @@ class ReconfigureServers {
   Change change_;
   Lookup lookup_;
   std::atomic<bool> stopped_{false};
-  // Held while a server calls back (dynamic_reconfigure warns of deadlocks when updateConfig is called on
-  // a server that has its own).
-  boost::recursive_mutex mutex_;
+  boost::recursive_mutex mutex_;               // held while a server changes or calls back
   std::map<std::string, BodyServer> servers_;  // by body name
   std::deque<std::string> waiting_;            // bodies whose server startAll has yet to start
 };
