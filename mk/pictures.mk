@@ -5,7 +5,8 @@
 #                     incline.yaml (the race) and a sweep of the text's random θ0 (the rod's bounces and
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed;
 #                     and examples/python/text_vs_core.py's figure (docs/python.md)
-#   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them
+#   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them,
+#                     and the key tables of docs/configuration.md, from the description
 PICTURES_OUT = $(BUILD)/pictures
 SIMULATE = $(DEVEL)/lib/rigid_body_sim/simulate
 # θ0 = i 2π/1000 (0 and 2π both included): θ0 + π (the same rod, its ends swapped) is on the grid too
@@ -45,3 +46,4 @@ pictures: screenshot
 # the docs (the ctest doc_figures fails while a doc differs).
 figures: build
 	source $(DEVEL)/setup.bash && python3 scripts/doc_figures.py $(SIMULATE) --write
+	$(DEVEL)/lib/rigid_body_sim/describe_body_types --docs docs/configuration.md
