@@ -1,6 +1,6 @@
 // niceTicks: the panel's chart ticks are distinct numbers, never "-0", and a flat series gets a readable
 // span.
-#include "rigid_body_sim/core/axis_ticks.h"
+#include "rigid_body_sim/rviz/axis_ticks.h"
 
 #include <gtest/gtest.h>
 

@@ -20,9 +20,9 @@
 
 #include <dynamic_reconfigure/Config.h>
 
-#include "rigid_body_sim/core/axis_ticks.h"
 #include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/rviz/axis_ticks.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
 
 namespace rigid_body_sim {

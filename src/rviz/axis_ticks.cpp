@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/axis_ticks.h"
+#include "rigid_body_sim/rviz/axis_ticks.h"
 
 #include <algorithm>
 #include <cmath>
