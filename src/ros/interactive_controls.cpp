@@ -10,6 +10,8 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
+#include "rigid_body_sim/ros/body_types_ros.h"
+
 namespace rigid_body_sim {
 
 namespace {
@@ -22,7 +24,6 @@ using visualization_msgs::Marker;
 const std::string kVelocitySuffix = "/velocity";
 constexpr double kGhostAlpha = 0.45;  // the handles are see-through: the body shows through them
 constexpr double kTipSize = 0.1;      // m, the velocity handle's knob
-constexpr double kRodGhostThickness = 0.08;
 
 geometry_msgs::Quaternion aboutZ(double angle) {
   geometry_msgs::Quaternion q;
@@ -57,14 +58,8 @@ geometry_msgs::Point point(double x, double y) {
   return p;
 }
 
-std_msgs::ColorRGBA colour(float r, float g, float b) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = kGhostAlpha;
-  return c;
-}
+// The handles' colours: see-through.
+std_msgs::ColorRGBA colour(float r, float g, float b) { return rgba(r, g, b, kGhostAlpha); }
 
 // A control whose axis (rviz: the control's x axis) is the frame's z: planar moves and turns about z.
 InteractiveMarkerControl zAxisControl(const std::string& name, std::uint8_t mode) {
@@ -117,94 +112,46 @@ InteractiveMarker baseMarker(const BodyConfig& body, const std::string& name,
   return marker;
 }
 
-std::vector<InteractiveMarker> rodMarkers(const BodyConfig& body, const RodConfig& rod) {
-  const RodMotion& a = rod.initial;
-  InteractiveMarker place = baseMarker(body, body.name, body.name + ": drag to place, ring to turn");
-  place.pose.position = point(a.x, a.y);
-  place.pose.orientation = aboutZ(a.theta);
-  place.scale = static_cast<float>(std::max(0.5, rod.params.length));
-  InteractiveMarkerControl move = zAxisControl("move", InteractiveMarkerControl::MOVE_PLANE);
+BodyHandles handlesOf(const BodyConfig& body) {
+  return std::visit(
+      [](const auto& config) { return RosBodyType<TypeOfConfig<decltype(config)>>::handles(config); },
+      body.config);
+}
+
+// The ghost to drag: along the slope's x for a body on a slope, in its plane and turned for one that turns.
+InteractiveMarker placeMarker(const BodyConfig& body, const BodyHandles& handles) {
+  const bool turns = handles.angle_key != nullptr;
+  InteractiveMarker place = baseMarker(
+      body, body.name, body.name + (turns ? ": drag to place, ring to turn" : ": slide along the slope"));
+  place.pose.position = point(handles.position.x(), handles.position.y());
+  place.pose.orientation = aboutZ(handles.angle);
+  place.scale = static_cast<float>(handles.size);
+  InteractiveMarkerControl move =
+      handles.y_key ? zAxisControl("move", InteractiveMarkerControl::MOVE_PLANE) : xAxisControl("slide");
   Marker ghost;
-  ghost.type = Marker::CUBE;
-  ghost.scale.x = rod.params.length;
-  ghost.scale.y = ghost.scale.z = kRodGhostThickness;
+  ghost.type = handles.ghost.type;
+  ghost.scale.x = handles.ghost.scale.x();
+  ghost.scale.y = handles.ghost.scale.y();
+  ghost.scale.z = handles.ghost.scale.z();
   ghost.color = colour(1.0f, 0.9f, 0.2f);
   move.markers.push_back(ghost);
-  place.controls = {move, zAxisControl("turn", InteractiveMarkerControl::ROTATE_AXIS)};
+  place.controls = {move};
+  if (turns) place.controls.push_back(zAxisControl("turn", InteractiveMarkerControl::ROTATE_AXIS));
+  return place;
+}
 
-  const double dx = a.vx * kVelocityArrowScale, dy = a.vy * kVelocityArrowScale;
+// The knob at the tip of the initial velocity's arrow.
+InteractiveMarker throwMarker(const BodyConfig& body, const BodyHandles& handles) {
+  const Eigen::Vector2d arrow = handles.velocity * kVelocityArrowScale;
   InteractiveMarker throw_ = baseMarker(body, body.name + kVelocitySuffix, "");
-  throw_.pose.position = point(a.x + dx, a.y + dy);
+  throw_.pose.position = point(handles.position.x() + arrow.x(), handles.position.y() + arrow.y());
   throw_.scale = 0.3f;
-  InteractiveMarkerControl aim = zAxisControl("aim", InteractiveMarkerControl::MOVE_PLANE);
-  aim.markers = {knob(), velocityArrow(dx, dy)};
+  InteractiveMarkerControl aim =
+      handles.vy_key ? zAxisControl("aim", InteractiveMarkerControl::MOVE_PLANE) : xAxisControl("aim");
+  aim.markers = {knob(), velocityArrow(arrow.x(), arrow.y())};
   throw_.controls = {aim};
-  return {place, throw_};
+  return throw_;
 }
-
-// A body on a slope: a ghost of its shape (`ghost_type`, `ghost_size` across) to slide along the slope at
-// its initial position, its centre `half_height` above the slope, and a knob for its initial velocity.
-std::vector<InteractiveMarker> slopeMarkers(const BodyConfig& body, double x0, double v0, double half_height,
-                                            int ghost_type, double ghost_size) {
-  InteractiveMarker place = baseMarker(body, body.name, body.name + ": slide along the slope");
-  place.pose.position = point(x0, half_height);
-  place.scale = static_cast<float>(std::max(0.5, 4.0 * half_height));
-  InteractiveMarkerControl slide = xAxisControl("slide");
-  Marker ghost;
-  ghost.type = ghost_type;
-  ghost.scale.x = ghost.scale.y = ghost.scale.z = ghost_size;
-  ghost.color = colour(1.0f, 0.9f, 0.2f);
-  slide.markers.push_back(ghost);
-  place.controls = {slide};
-
-  const double dx = v0 * kVelocityArrowScale;
-  InteractiveMarker throw_ = baseMarker(body, body.name + kVelocitySuffix, "");
-  throw_.pose.position = point(x0 + dx, half_height);
-  throw_.scale = 0.3f;
-  InteractiveMarkerControl aim = xAxisControl("aim");
-  aim.markers = {knob(), velocityArrow(dx, 0.0)};
-  throw_.controls = {aim};
-  return {place, throw_};
-}
-
-// Each type's markers, and the keys a drop of them sets: one overload a config type.
-std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const RodConfig& rod) {
-  return rodMarkers(body, rod);
-}
-std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const RollerConfig& roller) {
-  const double r = roller.params.radius;
-  return slopeMarkers(body, roller.initial.x0, roller.initial.v0, r, Marker::SPHERE, 2.4 * r);
-}
-std::vector<InteractiveMarker> markersOf(const BodyConfig& body, const BlockConfig& block) {
-  const double size = block.params.size;
-  return slopeMarkers(body, block.initial.x0, block.initial.v0, 0.5 * size, Marker::CUBE, 1.2 * size);
-}
-
-// A drop at (x, y) of the body's marker (or, `velocity`, of its knob): a rod's place and angle, or its
-// velocity; a body on a slope's position along it, or its velocity.
-std::map<std::string, double> droppedKeys(const RodConfig& rod, bool velocity, double x, double y,
-                                          const geometry_msgs::Pose& pose) {
-  const RodMotion& a = rod.initial;
-  if (velocity) return {{"vx0", (x - a.x) / kVelocityArrowScale}, {"vy0", (y - a.y) / kVelocityArrowScale}};
-  return {{"x0", x}, {"y0", y}, {"theta0", angleAboutZ(pose.orientation)}};
-}
-std::map<std::string, double> slopeDrop(double x0, bool velocity, double x) {
-  if (velocity) return {{"v0", (x - x0) / kVelocityArrowScale}};
-  return {{"x0", x}};
-}
-std::map<std::string, double> droppedKeys(const RollerConfig& roller, bool velocity, double x, double,
-                                          const geometry_msgs::Pose&) {
-  return slopeDrop(roller.initial.x0, velocity, x);
-}
-std::map<std::string, double> droppedKeys(const BlockConfig& block, bool velocity, double x, double,
-                                          const geometry_msgs::Pose&) {
-  return slopeDrop(block.initial.x0, velocity, x);
-}
-
-// Whether the body's marker turns (its drop reads an orientation): a rod's only.
-bool turns(const RodConfig&) { return true; }
-bool turns(const RollerConfig&) { return false; }
-bool turns(const BlockConfig&) { return false; }
 
 }  // namespace
 
@@ -212,12 +159,21 @@ InteractiveControls::InteractiveControls(const std::string& server_ns, std::stri
                                          DropHandler on_drop)
     : server_(server_ns), frame_prefix_(std::move(frame_prefix)), on_drop_(std::move(on_drop)) {}
 
+// A drop at (x, y) of the body's ghost: its position (and angle); of its knob: its velocity.
 std::map<std::string, double> InteractiveControls::dropped(const BodyConfig& body, const std::string& marker,
                                                            const geometry_msgs::Pose& pose) {
-  const bool velocity = marker == body.name + kVelocitySuffix;
+  const BodyHandles handles = handlesOf(body);
   const double x = pose.position.x, y = pose.position.y;
-  return std::visit([&](const auto& config) { return droppedKeys(config, velocity, x, y, pose); },
-                    body.config);
+  std::map<std::string, double> keys;
+  if (marker == body.name + kVelocitySuffix) {
+    keys[handles.vx_key] = (x - handles.position.x()) / kVelocityArrowScale;
+    if (handles.vy_key) keys[handles.vy_key] = (y - handles.position.y()) / kVelocityArrowScale;
+    return keys;
+  }
+  keys[handles.x_key] = x;
+  if (handles.y_key) keys[handles.y_key] = y;
+  if (handles.angle_key) keys[handles.angle_key] = angleAboutZ(pose.orientation);
+  return keys;
 }
 
 void InteractiveControls::show(const WorldConfig& config) {
@@ -237,8 +193,8 @@ void InteractiveControls::show(const WorldConfig& config) {
 }
 
 void InteractiveControls::insert(const BodyConfig& body) {
-  auto markers = std::visit([&](const auto& config) { return markersOf(body, config); }, body.config);
-  for (auto& marker : markers) {
+  const BodyHandles handles = handlesOf(body);
+  for (auto marker : {placeMarker(body, handles), throwMarker(body, handles)}) {
     marker.header.frame_id = frame_prefix_ + fixedFrameOf(body);
     server_.insert(
         marker, [this](const auto& feedback) { onFeedback(feedback); }, InteractiveMarkerFeedback::MOUSE_UP);
@@ -257,8 +213,7 @@ void InteractiveControls::onFeedback(const visualization_msgs::InteractiveMarker
     return;
   }
   const BodyConfig body = found->second;  // the handler may replace bodies_ (through show)
-  const bool reads_orientation =
-      std::visit([](const auto& config) { return turns(config); }, body.config) && marker == body.name;
+  const bool reads_orientation = handlesOf(body).angle_key != nullptr && marker == body.name;
   const std::string fault = poseFault(reads_orientation, feedback->pose);
   if (!fault.empty()) ROS_WARN_STREAM("drop of marker '" << marker << "' refused: " << fault);
   std::string why;

@@ -4,45 +4,6 @@ namespace rigid_body_sim {
 
 ros::Time simStamp(double t) { return ros::Time(0, 1) + ros::Duration(t); }
 
-RodState toStateMsg(double t, const Rod& rod) {
-  RodState msg;
-  msg.t = t;
-  msg.x = rod.state().x;
-  msg.y = rod.state().y;
-  msg.theta = rod.state().theta;
-  msg.vx = rod.state().vx;
-  msg.vy = rod.state().vy;
-  msg.omega = rod.state().omega;
-  msg.energy = rod.energy();
-  return msg;
-}
-
-RollerState toStateMsg(double t, const Roller& roller) {
-  RollerState msg;
-  msg.t = t;
-  msg.x = roller.state().x;
-  msg.v = roller.state().v;
-  msg.theta = roller.state().theta;
-  msg.omega = roller.state().omega;
-  msg.mode = toString(roller.mode());
-  msg.friction = roller.frictionForce();
-  msg.normal = roller.normalForce();
-  msg.energy = roller.energy();
-  return msg;
-}
-
-BlockState toStateMsg(double t, const Block& block) {
-  BlockState msg;
-  msg.t = t;
-  msg.x = block.state().x;
-  msg.v = block.state().v;
-  msg.mode = toString(block.mode());
-  msg.friction = block.frictionForce();
-  msg.normal = block.normalForce();
-  msg.energy = block.energy();
-  return msg;
-}
-
 StateMsg toStateMsg(double t, const Body& body) {
   return std::visit([t](const auto& model) -> StateMsg { return toStateMsg(t, model); }, body.model);
 }

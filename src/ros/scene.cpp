@@ -13,6 +13,15 @@
 
 namespace rigid_body_sim {
 
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a) {
+  std_msgs::ColorRGBA color;
+  color.r = r;
+  color.g = g;
+  color.b = b;
+  color.a = a;
+  return color;
+}
+
 namespace {
 
 // --- placement (m) -------------------------------------------------------------------------------
@@ -43,10 +52,6 @@ constexpr double kBoundedFloorWidth = 0.8;    // across a rod's plane
 constexpr double kBoundedFloorRaise = 0.005;  // its top above the floor's, so that both show
 constexpr double kSlopeThickness = 0.05;
 constexpr double kSlopeWidth = 0.8 * kMinLaneSpacing;
-constexpr double kRodThickness = 0.05;
-constexpr double kCylinderLength = 0.8;  // of a cylinder's diameter
-constexpr double kRingWidth = 0.15;      // of a ring's radius
-constexpr int kRingSegments = 48;
 constexpr double kSpokeLength = 2.02;  // of the radius: just out of the body
 constexpr double kSpokeWidth = 0.25;   // of the radius
 constexpr double kTrailWidth = 0.01;
@@ -82,100 +87,21 @@ double textWidth(const std::string& text) {
   return kGlyphWidth * kLabelHeight * static_cast<double>(longest);
 }
 
-std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f) {
-  std_msgs::ColorRGBA color;
-  color.r = r;
-  color.g = g;
-  color.b = b;
-  color.a = a;
-  return color;
-}
-
 const std_msgs::ColorRGBA kFloorColour = rgba(0.75f, 0.75f, 0.75f);
 const std_msgs::ColorRGBA kBoundedFloorColour = rgba(0.5f, 0.5f, 0.5f);
 const std_msgs::ColorRGBA kSlopeColour = rgba(0.55f, 0.4f, 0.25f);
 const std_msgs::ColorRGBA kSpokeColour = rgba(0.1f, 0.1f, 0.1f);
 const std_msgs::ColorRGBA kLabelColour = rgba(1, 1, 1);
 
-// Each body type's look, one overload a model type (a type without its own does not compile): its colour,
-// its slope if it is on one, how far it reaches from its centre, its pose in its fixed frame, its shape.
-std_msgs::ColorRGBA colourOf(const Rod&) { return rgba(0.1f, 0.3f, 0.9f); }
-std_msgs::ColorRGBA colourOf(const Block&) { return rgba(0.0f, 0.65f, 0.7f); }
-std_msgs::ColorRGBA colourOf(const Roller& roller) {
-  switch (roller.params().shape) {
-    case Shape::Sphere: return rgba(0.9f, 0.1f, 0.1f);
-    case Shape::Cylinder: return rgba(0.1f, 0.8f, 0.1f);
-    case Shape::Ring: return rgba(1.0f, 0.6f, 0.0f);
-    case Shape::SphericalShell: return rgba(0.7f, 0.1f, 0.9f);
-    case Shape::Custom: return rgba(0.6f, 0.6f, 0.6f);
-  }
-  return rgba(1, 1, 1);
+// Every body's look, as its type gives it (ros/types/<type>_ros.h).
+BodyLook lookOf(const Body& body) {
+  return std::visit([](const auto& model) { return RosBodyType<TypeOfModel<decltype(model)>>::look(model); },
+                    body.model);
 }
-
-struct Incline {
-  double angle;
-  double length;
-};
-std::optional<Incline> inclineOf(const Rod&) { return std::nullopt; }
-std::optional<Incline> inclineOf(const Roller& roller) {
-  return Incline{roller.params().incline_angle, roller.params().incline_length};
-}
-std::optional<Incline> inclineOf(const Block& block) {
-  return Incline{block.params().incline_angle, block.params().incline_length};
-}
-
-// Its half width across the lane (a rod's thickness) and how far above its centre it reaches whatever its
-// angle (its label floats above that).
-double radiusOf(const Rod&) { return kRodThickness; }
-double radiusOf(const Roller& roller) { return roller.params().radius; }
-double radiusOf(const Block& block) { return 0.5 * block.params().size; }
-double reachOf(const Rod& rod) { return 0.5 * rod.params().length; }
-double reachOf(const Roller& roller) { return radiusOf(roller); }
-double reachOf(const Block& block) { return radiusOf(block); }
-
-// Its centre and rotation in its fixed frame (a body on a slope rests on it).
-Eigen::Isometry3d poseOf(const Rod& rod) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(rod.state().x, rod.state().y, 0.0));
-  pose.rotate(Eigen::AngleAxisd(rod.state().theta, Eigen::Vector3d::UnitZ()));
-  return pose;
-}
-Eigen::Isometry3d poseOf(const Roller& roller) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(roller.state().x, roller.params().radius, 0.0));
-  pose.rotate(Eigen::AngleAxisd(roller.state().theta, Eigen::Vector3d::UnitZ()));
-  return pose;
-}
-Eigen::Isometry3d poseOf(const Block& block) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translate(Eigen::Vector3d(block.state().x, 0.5 * block.params().size, 0.0));
-  return pose;
-}
-
-// A dark bar through the centre that turns with the body, so that rolling and slipping can be told apart
-// at a glance: a roller's only.
-bool hasSpoke(const Rod&) { return false; }
-// tan of the steepest slope its static friction holds (rolling, or at rest), for its board.
-std::optional<double> criticalTangentOf(const Rod&) { return std::nullopt; }
-std::optional<double> criticalTangentOf(const Roller& roller) {
-  return criticalTangent(roller.params().mu_s, roller.params().inertia_factor);
-}
-std::optional<double> criticalTangentOf(const Block& block) { return block.params().mu_s; }
-bool hasSpoke(const Roller&) { return true; }
-bool hasSpoke(const Block&) { return false; }
-
-std_msgs::ColorRGBA bodyColour(const Body& body) {
-  return std::visit([](const auto& model) { return colourOf(model); }, body.model);
-}
-std::optional<Incline> inclineOf(const Body& body) {
-  return std::visit([](const auto& model) { return inclineOf(model); }, body.model);
-}
-double radiusOf(const Body& body) {
-  return std::visit([](const auto& model) { return radiusOf(model); }, body.model);
-}
-double reachOf(const Body& body) {
-  return std::visit([](const auto& model) { return reachOf(model); }, body.model);
-}
+std_msgs::ColorRGBA bodyColour(const Body& body) { return lookOf(body).colour; }
+std::optional<Incline> inclineOf(const Body& body) { return lookOf(body).incline; }
+double radiusOf(const Body& body) { return lookOf(body).radius; }
+double reachOf(const Body& body) { return lookOf(body).reach; }
 
 visualization_msgs::Marker marker(const char* ns, int id, int type, const std::string& frame,
                                   const ros::Time& stamp) {
@@ -248,53 +174,24 @@ double laneSpacing(const LaneLoad& load, double steeper_angle, double steeper_he
   return std::max(least, std::min(clear, kMaxTagSpacing));
 }
 
-visualization_msgs::Marker shapeMarker(const Rod& rod, const std::string& frame, int id) {
-  auto m = sceneMarker(kNsBody, id, visualization_msgs::Marker::CYLINDER, frame);
-  // A marker cylinder lies along its z; the rod lies along its frame's x.
-  m.pose.orientation.y = std::sin(kPi / 4);
-  m.pose.orientation.w = std::cos(kPi / 4);
-  m.scale.x = m.scale.y = kRodThickness;
-  m.scale.z = rod.params().length;
-  return m;
-}
-
-visualization_msgs::Marker shapeMarker(const Block& block, const std::string& frame, int id) {
-  auto cube = sceneMarker(kNsBody, id, visualization_msgs::Marker::CUBE, frame);
-  cube.scale.x = cube.scale.y = cube.scale.z = block.params().size;
-  return cube;
-}
-
-visualization_msgs::Marker shapeMarker(const Roller& roller, const std::string& frame, int id) {
-  const RollerParams& p = roller.params();
-  const double d = 2.0 * p.radius;
-  if (p.shape == Shape::Ring) {
-    auto ring = sceneMarker(kNsBody, id, visualization_msgs::Marker::LINE_STRIP, frame);
-    ring.scale.x = kRingWidth * p.radius;
-    for (int i = 0; i <= kRingSegments; ++i) {
-      const double a = 2.0 * kPi * i / kRingSegments;
-      ring.points.push_back(toPoint({p.radius * std::cos(a), p.radius * std::sin(a), 0.0}));
-    }
-    return ring;
-  }
-  const bool cylinder = p.shape == Shape::Cylinder;
-  auto shape = sceneMarker(
-      kNsBody, id, cylinder ? visualization_msgs::Marker::CYLINDER : visualization_msgs::Marker::SPHERE,
-      frame);
-  shape.scale.x = shape.scale.y = d;
-  shape.scale.z = cylinder ? kCylinderLength * d : d;
-  return shape;
-}
-
-// Drawn in the body's own frame and locked to it: TF moves it, not the marker stream.
+// Its shape, drawn in the body's own frame and locked to it: TF moves it, not the marker stream.
 visualization_msgs::Marker bodyMarker(const Body& body, const std::string& frame, int id) {
-  visualization_msgs::Marker m =
-      std::visit([&](const auto& model) { return shapeMarker(model, frame, id); }, body.model);
+  const BodyShape shape = std::visit(
+      [](const auto& model) { return RosBodyType<TypeOfModel<decltype(model)>>::shape(model); }, body.model);
+  auto m = sceneMarker(kNsBody, id, shape.type, frame);
+  m.scale.x = shape.scale.x();
+  m.scale.y = shape.scale.y();
+  m.scale.z = shape.scale.z();
+  m.pose.orientation.x = shape.orientation.x();
+  m.pose.orientation.y = shape.orientation.y();
+  m.pose.orientation.z = shape.orientation.z();
+  m.pose.orientation.w = shape.orientation.w();
+  for (const auto& point : shape.points) m.points.push_back(toPoint(point));
   m.color = bodyColour(body);
-  m.frame_locked = true;
   return m;
 }
 
-// The spoke (hasSpoke), along the body's x.
+// The spoke (BodyLook::spoke), along the body's x.
 visualization_msgs::Marker spokeMarker(const Body& body, const std::string& frame, int id) {
   const double r = radiusOf(body);
   auto spoke = sceneMarker(kNsSpoke, id, visualization_msgs::Marker::CUBE, frame);
@@ -338,13 +235,12 @@ std::string labelText(const Body& body, bool critical_angle) {
   std::snprintf(energy, sizeof energy, "E = %.3f J", std::abs(e) < 5e-4 ? 0.0 : e);  // never "-0.000"
   if (!inclineOf(body)) return body.name + ":\n" + energy;
   std::string mode;
-  std::optional<double> critical_tangent;  // the steepest slope its static friction holds
   std::visit(
       [&](const auto& model) {
         for (const auto& field : stateFields(model)) mode += field.text;  // its one text field
-        critical_tangent = criticalTangentOf(model);
       },
       body.model);
+  const std::optional<double> critical_tangent = lookOf(body).critical_tangent;
   const std::string head = body.name + ": " + mode + "\n";
   if (!critical_angle || !critical_tangent) return head + energy;
   // Section 16.3.2's, for its mu_s and shape, in place of the energy (the panel plots it): a class sees
@@ -545,23 +441,18 @@ std::vector<BodyPlacement> placeBodies(const std::vector<Body>& bodies, const st
   std::vector<BodyPlacement> placements;
   for (const auto& body : bodies) {
     const std::string frame = frame_prefix + fixedFrameOf(body);
-    const auto on_slope = [&](const auto& model) {
-      const Incline incline = *inclineOf(model);
+    const BodyLook look = lookOf(body);
+    if (look.incline) {
+      const Incline incline = *look.incline;
       const double top = incline.length * std::sin(incline.angle);
       const Lane& lane = lanes[static_cast<std::size_t>(on_slopes++)];
       placements.push_back(
           {frame, uprightPlane({lane.top_x, lane.y, top}, incline.angle), incline.length, 0.0, ""});
-    };
-    std::visit(
-        Overloaded{[&](const Rod& rod) {
-                     const double floor_length = rod.params().floor_length;
-                     placements.push_back(
-                         {frame, uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0, floor_length,
-                          floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
-                   },
-                   [&](const Roller& roller) { on_slope(roller); },
-                   [&](const Block& block) { on_slope(block); }},
-        body.model);
+    } else {
+      placements.push_back({frame, uprightPlane({0.0, -kRodPlaneSpacing * rods++, 0.0}, 0.0), 0.0,
+                            look.floor_length,
+                            look.floor_length > 0.0 ? "" : frame_prefix + groundFrameOf(body.name)});
+    }
   }
   return placements;
 }
@@ -573,9 +464,7 @@ Eigen::Isometry3d worldFromGround(const BodyPlacement& placement, const Body& bo
   return ground;
 }
 
-Eigen::Isometry3d frameFromBody(const Body& body) {
-  return std::visit([](const auto& model) { return poseOf(model); }, body.model);
-}
+Eigen::Isometry3d frameFromBody(const Body& body) { return lookOf(body).pose; }
 
 int MarkerOptions::ring() const {
   if (seconds <= 0.0) return 0;
@@ -629,8 +518,7 @@ bool Scene::rebuild(const std::vector<Body>& bodies) {
     if (!placements_[i].ground_frame.empty()) scene.markers.push_back(groundMarker(placements_[i], id + 1));
     if (placements_[i].slope_length > 0.0) scene.markers.push_back(slopeMarker(placements_[i], id));
     scene.markers.push_back(bodyMarker(bodies[i], frame, id));
-    if (std::visit([](const auto& model) { return hasSpoke(model); }, bodies[i].model))
-      scene.markers.push_back(spokeMarker(bodies[i], frame, id));
+    if (lookOf(bodies[i]).spoke) scene.markers.push_back(spokeMarker(bodies[i], frame, id));
   }
   if (scene == scene_) return false;
   scene_ = std::move(scene);

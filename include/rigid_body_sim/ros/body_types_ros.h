@@ -1,39 +1,17 @@
-// Each body type's ROS side: its state message and its reconfigure server's config. A type registered in
-// core/body_types.h without its specialization here does not compile.
+// Every body type's ROS side, each in its own files (ros/types/<type>_ros.h: its state message, reconfigure
+// config, look and handles). A type registered in core/body_types.h without its specialization does not
+// compile.
 #pragma once
 
 #include <variant>
 
-#include "rigid_body_sim/BlockReconfigureConfig.h"
-#include "rigid_body_sim/BlockState.h"
-#include "rigid_body_sim/RodReconfigureConfig.h"
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerReconfigureConfig.h"
-#include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/core/body_types.h"
+#include "rigid_body_sim/ros/body_look.h"
+#include "rigid_body_sim/ros/types/block_ros.h"
+#include "rigid_body_sim/ros/types/rod_ros.h"
+#include "rigid_body_sim/ros/types/roller_ros.h"
 
 namespace rigid_body_sim {
-
-template <class Type>
-struct RosBodyType;
-
-template <>
-struct RosBodyType<RodType> {
-  using StateMsg = RodState;
-  using Reconfigure = RodReconfigureConfig;
-};
-
-template <>
-struct RosBodyType<RollerType> {
-  using StateMsg = RollerState;
-  using Reconfigure = RollerReconfigureConfig;
-};
-
-template <>
-struct RosBodyType<BlockType> {
-  using StateMsg = BlockState;
-  using Reconfigure = BlockReconfigureConfig;
-};
 
 template <class List>
 struct RosVariants;

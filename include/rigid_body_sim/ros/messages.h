@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <type_traits>
 #include <variant>
 
 #include <geometry_msgs/Point.h>
@@ -20,9 +21,10 @@ ros::Time simStamp(double t);
 
 // The state messages carry the fields of core/state_fields.h (test_messages checks the definitions); the
 // header is left to the caller.
-RodState toStateMsg(double t, const Rod& rod);
-RollerState toStateMsg(double t, const Roller& roller);
-BlockState toStateMsg(double t, const Block& block);
+template <class Model, class = std::enable_if_t<!std::is_same_v<Model, Body>>>
+auto toStateMsg(double t, const Model& model) {
+  return RosBodyType<TypeOfModel<Model>>::state(t, model);
+}
 StateMsg toStateMsg(double t, const Body& body);
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& point);
