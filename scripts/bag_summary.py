@@ -2,17 +2,12 @@
 """Summary of a rigid_body_sim recording: messages per topic, slip-to-roll times, the rod's bounces and
 energy drift. The config gives each rod's length."""
 import argparse
-import os
 import sys
 from typing import Any, Dict, List, Tuple
 
 import rosbag
 import yaml
-
-# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
-# runs this file from elsewhere.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import RodSpec, body_of_state_topic, body_spec, load_config, rod_end_below_floor  # noqa: E402
+from rigid_body_sim.sim_tools import RodSpec, body_of_state_topic, body_spec, load_config, rod_end_below_floor
 
 
 def roller_line(msgs: List[Any]) -> str:

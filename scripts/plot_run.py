@@ -34,13 +34,9 @@ from typing import Any, Callable, Dict, List, Optional, Set, Tuple
 
 import matplotlib
 import numpy as np
-
-# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
-# runs this file from elsewhere.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec,  # noqa: E402
-                       SweepColumns, body_spec, is_sweep_header, key_unit, labelled, load_config, read_states,
-                       rod_end_below_floor, state_fields, sweep_columns)
+from rigid_body_sim.sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec, SweepColumns,
+                                      body_spec, is_sweep_header, key_unit, labelled, load_config, read_states,
+                                      rod_end_below_floor, state_fields, sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)

@@ -14,10 +14,9 @@ from typing import Any, Dict, List, Optional, Tuple
 import rospy
 from dynamic_reconfigure.client import Client
 from rigid_body_sim.msg import RodState, RollerState
+from rigid_body_sim.sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib,
+                                      state_numbers, subscribers, wait_for, world_value)
 from rigid_body_sim.srv import Step
-
-from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, subscribers,
-                       wait_for, world_value)
 
 
 class Body:

@@ -59,19 +59,16 @@ from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
 from rigid_body_sim import description
 from rigid_body_sim.msg import BlockState, Command, RodState, RollerState
+from rigid_body_sim.sim_tools import INERTIA_FACTORS, KEY_UNITS, WORLD_DEFAULTS, rospy_on_python39
+from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,
+                                         finish_of_label, frame_message, parse_request, tied_places,
+                                         websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, SetBool
 from visualization_msgs.msg import MarkerArray
 
-# sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
-# devel-space relay runs it from its source path.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import (INERTIA_FACTORS, KEY_UNITS, WORLD_DEFAULTS,  # noqa: E402
-                       rospy_on_python39)
-from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,  # noqa: E402
-                          finish_of_label, frame_message, parse_request, tied_places, websocket_text_frame)
 
 STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState),
                "rigid_body_sim/BlockState": ("block", BlockState)}

@@ -16,9 +16,7 @@ from typing import Dict, List, Tuple
 
 import rosbag
 from rigid_body_sim.cfg import RollerReconfigureConfig
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import sim_tools  # noqa: E402  (the path above first)
+from rigid_body_sim import sim_tools
 
 
 def csv_rows(path: str) -> List[Dict[str, str]]:

@@ -61,12 +61,10 @@ from rigid_body_sim.msg import Command, RodState, RollerState
 from rigid_body_sim.srv import GetConfig
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
+from rigid_body_sim.sim_tools import (INERTIA_FACTORS, ROD_DEFAULTS, ROLLER_DEFAULTS, free_port, load_config,
+                                      rospy_on_python39, wait_for)
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from browser import Browser, end  # noqa: E402
-from sim_tools import (INERTIA_FACTORS, ROD_DEFAULTS, ROLLER_DEFAULTS, free_port, load_config,  # noqa: E402
-                       rospy_on_python39, wait_for)
+from browser import Browser, end
 
 rospy_on_python39()
 ARGS: Any = None
