@@ -48,7 +48,7 @@ class SimulateCase(unittest.TestCase):
 class Defaults(SimulateCase):
     def test_inertia_factors_are_the_cores(self) -> None:
         """The named shapes' c, which the description does not carry: the roller's default is the sphere's."""
-        self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.ROLLER_DEFAULTS["shape"]],
+        self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.DEFAULTS["roller"]["shape"]],
                          RollerReconfigureConfig.defaults["inertia_factor"])
 
     def test_world_defaults_are_what_simulate_does(self) -> None:
@@ -57,7 +57,7 @@ class Defaults(SimulateCase):
         rows = csv_rows(os.path.join(folder, "rod.csv"))
         self.assertEqual(len(rows) - 1, sim_tools.WORLD_DEFAULTS["publish_rate"])  # samples in a second
         self.assertEqual(float(rows[1]["t"]), 1 / sim_tools.WORLD_DEFAULTS["publish_rate"])
-        rod = sim_tools.ROD_DEFAULTS  # E = M g y0 + M vx0^2 / 2 at t = 0
+        rod = sim_tools.DEFAULTS["rod"]  # E = M g y0 + M vx0^2 / 2 at t = 0
         gravity = (float(rows[0]["energy"]) - 0.5 * rod["mass"] * rod["vx0"] ** 2) / (rod["mass"] * rod["y0"])
         self.assertAlmostEqual(gravity, sim_tools.WORLD_DEFAULTS["gravity"], delta=1e-12)
         with rosbag.Bag(os.path.join(folder, "run.bag")) as bag:
