@@ -12,7 +12,7 @@ With `~control` a page opened with `?token=<the token this node prints>` may pau
 change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
 body every following page plots and switch to another lesson part the bodies can take (its config's keys,
 from the config/ beside ~web_root); any other request, or any from a page without the token, is refused in
-one line (web_protocol.py), on that page alone. The token goes only to this process's standard output (the
+one line (rigid_body_sim.web_protocol), on that page alone. The token goes only to this process's standard output (the
 launching terminal), never to /rosout or a log file; the page that brings it gets it back as an HttpOnly
 cookie for its WebSocket alone (a reload stays the teacher's page) and an address without it.
 
@@ -112,7 +112,7 @@ class World:
         self.lesson_parts = parts or {}
         self.settings: Dict[str, Any] = dict(WORLD_DEFAULTS)
         self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
-        self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
+        self.topics: Dict[str, str] = {}  # body -> its type, from the master's state topics
         self.source = "none"  # node (a live node), replay (a played bag), ended (a replay that ended), none
         self.player = ""  # in a replay: the node that plays the state topics (rosbag play: pause_playback)
         self.paused = False

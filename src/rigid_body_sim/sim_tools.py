@@ -1,6 +1,6 @@
-"""What the Python tools of rigid_body_sim share: a config's values with the documented defaults, the
-state messages of a bag, the rod's contact with the floor, the columns of a sweep, and waiting on
-processes and ROS masters.
+"""What the Python tools of rigid_body_sim share: a config's values with the documented defaults, each body
+type's spec (SPECS, by its `type`: what Python knows of one type and no other), the state messages of a
+bag, the rod's contact with the floor, the columns of a sweep, and waiting on processes and ROS masters.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.

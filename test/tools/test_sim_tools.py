@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/sim_tools.py against the C++ it describes: its defaults and units are the core's exported description
+"""rigid_body_sim.sim_tools against the C++ it describes: its defaults and units are the core's exported description
 (rigid_body_sim.description), and what simulate does with a config that leaves every key out; its
 shape factors are the ones the core's rolling friction follows; a CSV header and a state message name the same
 fields; it reads a sweep's header as simulate writes it, and has words for every column a sweep adds.

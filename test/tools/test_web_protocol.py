@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The web view's requests and frames (scripts/web_protocol.py), without ROS or a network: every well-formed
+"""The web view's requests and frames (rigid_body_sim.web_protocol), without ROS or a network: every well-formed
 request parses to what it says; every malformed, oversized, unexpected or uncontrolled one is refused with
 one line, of its own kind; a full frame queue drops its oldest frame and counts it; frames carry the doubles
 exactly.
