@@ -17,12 +17,10 @@ from dataclasses import dataclass, field
 from typing import IO, Any, Dict, List, Optional, Sequence, Set, Tuple
 
 import yaml
+from rigid_body_sim.sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, subscribers, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from sim_tools import (free_port, node_pid, resident_kib, rospy_on_python39, subscribers,  # noqa: E402
-                       wait_for)
 
 DOC = os.path.join(ROOT, "docs", "performance.md")
 BEGIN = "<!-- make bench writes from here: do not edit by hand -->"

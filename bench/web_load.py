@@ -33,12 +33,12 @@ import time
 import urllib.request
 from typing import Any, Dict, List, Optional
 
+from rigid_body_sim.sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, wait_for
+
+from run_bench import cpu_seconds
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-sys.path.insert(0, HERE)
-from run_bench import cpu_seconds  # noqa: E402
-from sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, wait_for  # noqa: E402
 
 rospy_on_python39()
 

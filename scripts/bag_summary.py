@@ -2,20 +2,16 @@
 """Summary of a rigid_body_sim recording: messages per topic, slip-to-roll times, the rod's bounces and
 energy drift. The config gives each rod's length."""
 import argparse
-import os
 import sys
-from typing import Any, Dict, List, Tuple
+from typing import Any, Callable, Dict, List, Tuple
 
 import rosbag
 import yaml
-
-# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
-# runs this file from elsewhere.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import RodSpec, body_of_state_topic, body_spec, load_config, rod_end_below_floor  # noqa: E402
+from rigid_body_sim.sim_tools import (BlockSpec, RodSpec, RollerSpec, body_of_state_topic, body_spec, load_config,
+                                      rod_end_below_floor)
 
 
-def roller_line(msgs: List[Any]) -> str:
+def roller_line(msgs: List[Any], _: RollerSpec) -> str:
     rolls = [b.t for a, b in zip(msgs, msgs[1:]) if a.mode == "slipping" and b.mode == "rolling"]
     sampling = f"sampled every {msgs[1].t - msgs[0].t:g} s" if len(msgs) > 1 else "a single sample"
     return (", slip-to-roll seen at t = " + (", ".join(f"{t:g}" for t in rolls) or "never") +
@@ -27,6 +23,15 @@ def rod_line(msgs: List[Any], rod: RodSpec) -> str:
     bounces = sum(1 for a, b in zip(contacts, contacts[1:]) if b and not a)
     drift = max(abs(m.energy - msgs[0].energy) for m in msgs) / abs(msgs[0].energy)
     return f", {bounces} bounces seen, largest energy swing {100 * drift:.2f} %"
+
+
+def block_line(msgs: List[Any], _: BlockSpec) -> str:
+    return f"; final mode {msgs[-1].mode}"
+
+
+# What each body type's line adds, by its `type`.
+LINES: Dict[str, Callable[[List[Any], Any], str]] = {RodSpec.TYPE: rod_line, RollerSpec.TYPE: roller_line,
+                                                     BlockSpec.TYPE: block_line}
 
 
 def read_bag(path: str) -> Tuple[Dict[str, int], Dict[str, List[Any]]]:
@@ -69,7 +74,7 @@ def main() -> int:
     for name, msgs in states.items():
         spec = body_spec(config, name)
         line = f"{name}: t {msgs[0].t:g} .. {msgs[-1].t:g} s, energy {msgs[0].energy:.6g} -> {msgs[-1].energy:.6g} J"
-        print(line + (rod_line(msgs, spec) if isinstance(spec, RodSpec) else roller_line(msgs)))
+        print(line + LINES[spec.TYPE](msgs, spec))
     return 0
 
 

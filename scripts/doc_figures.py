@@ -20,10 +20,9 @@ import tempfile
 from typing import Any, Callable, Dict, List, NamedTuple
 
 import numpy as np
+from rigid_body_sim.sim_tools import RodSpec, RollerSpec, body_spec, load_config
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_run import finish_times, load_csv_folder, rod_energy_swing, slip_to_roll  # noqa: E402
-from sim_tools import RodSpec, RollerSpec, body_spec, load_config  # noqa: E402
+from plot_run import finish_times, load_csv_folder, rod_energy_swing, slip_to_roll
 
 PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 THETA0_RODS = 1001  # theta0 = i 2 pi / 1000: theta0 + pi and pi - theta0 are on the grid too

@@ -34,13 +34,9 @@ from typing import Any, Callable, Dict, List, Optional, Set, Tuple
 
 import matplotlib
 import numpy as np
-
-# sim_tools.py lies beside this file (in the source, and in the install space); rosrun's devel-space relay
-# runs this file from elsewhere.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import (SWEEP_RESULT_LABELS, BodySpec, Config, RodSpec, RollerSpec,  # noqa: E402
-                       SweepColumns, body_spec, is_sweep_header, key_unit, labelled, load_config, read_states,
-                       rod_end_below_floor, state_fields, sweep_columns)
+from rigid_body_sim.sim_tools import (SWEEP_RESULT_LABELS, BlockSpec, BodySpec, Config, RodSpec, RollerSpec,
+                                      SweepColumns, body_spec, is_sweep_header, key_unit, labelled, load_config,
+                                      read_states, rod_end_below_floor, state_fields, sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
@@ -323,20 +319,13 @@ def zoom_on_contact(ax: Any, d: Columns, swing: Optional[Event], colour: str) ->
 
 def plot_energy(run: Run, specs: Specs, path: str) -> None:
     names = list(run)
-    heights = [2 if isinstance(specs[n], RodSpec) else 1 for n in names]
+    looks = [TYPES[specs[n].TYPE] for n in names]
+    heights = [look.energy_height for look in looks]
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.6 * sum(heights) + 0.4), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": heights})
-    for ax, name in zip(axes[:, 0], names):
+    for ax, name, look in zip(axes[:, 0], names, looks):
         d, p = run[name], specs[name]
-        if isinstance(p, RodSpec):
-            for start, end in contact_runs(rod_contacts(d, p.length)):
-                ax.axvspan(d["t"][start], d["t"][min(end, len(d["t"]) - 1)], color="lightcoral", alpha=0.4, lw=0)
-            colour, shaded = "tab:blue", "an end in the floor"
-        elif isinstance(p, RollerSpec):
-            shade_slipping(ax, d["t"], d["mode"])
-            colour, shaded = COLOURS.get(p.shape, "tab:blue"), "slipping"
-        else:  # a block: its energy falls while it slides
-            colour, shaded = "tab:pink", "sliding"
+        colour, shaded = look.shade_energy(ax, d, p)
         ax.plot(d["t"], d["energy"], color=colour, lw=1.0)
         ax.set_ylabel("E (J)")
         spread = float(np.ptp(d["energy"]))
@@ -344,11 +333,58 @@ def plot_energy(run: Run, specs: Specs, path: str) -> None:
             ax.set_ylim(d["energy"].mean() - 1, d["energy"].mean() + 1)
             shaded += f"; constant to {spread:.1e} J"
         ax.set_title(f"{name}: energy (shaded: {shaded})", fontsize=9)
-        if isinstance(p, RodSpec):
-            zoom_on_contact(ax, d, rod_energy_swing(d, p.length)["largest_swing"], colour)
+        look.zoom_energy(ax, d, p, colour)
     axes[-1, 0].set_xlabel("t (s)")
     fig.tight_layout()
     save(fig, path)
+
+
+# --- each body type's own look --------------------------------------------------------------------
+def shade_rod_contacts(ax: Any, d: Columns, p: RodSpec) -> Tuple[str, str]:
+    for start, end in contact_runs(rod_contacts(d, p.length)):
+        ax.axvspan(d["t"][start], d["t"][min(end, len(d["t"]) - 1)], color="lightcoral", alpha=0.4, lw=0)
+    return "tab:blue", "an end in the floor"
+
+
+def zoom_on_rod_contact(ax: Any, d: Columns, p: RodSpec, colour: str) -> None:
+    zoom_on_contact(ax, d, rod_energy_swing(d, p.length)["largest_swing"], colour)
+
+
+def rod_numbers(d: Columns, p: RodSpec) -> Dict[str, Any]:
+    return rod_energy_swing(d, p.length)
+
+
+def shade_roller_slipping(ax: Any, d: Columns, p: RollerSpec) -> Tuple[str, str]:
+    shade_slipping(ax, d["t"], d["mode"])
+    return COLOURS.get(p.shape, "tab:blue"), "slipping"
+
+
+def roller_numbers(d: Columns, p: RollerSpec) -> Dict[str, Any]:
+    return {"critical_angle": critical_angle(p), "slip_to_roll": slip_to_roll(d, p.radius),
+            "finish_times": finish_times(d, p.slope)}
+
+
+def nothing(*_: Any) -> None:
+    pass
+
+
+@dataclass(frozen=True)
+class TypeLook:
+    """How plot_run draws and sums up the bodies of one type."""
+    # Shades the energy's axes (ax, columns, spec) and gives (the line's colour, what the shading shows).
+    shade_energy: Callable[..., Tuple[str, str]]
+    energy_height: int = 1  # the energy axes' share of the figure's height
+    zoom_energy: Callable[..., None] = nothing  # (ax, columns, spec, colour): an inset after the line
+    summary: Optional[Tuple[str, Callable[..., Dict[str, Any]]]] = None  # (its group, its numbers)
+
+
+# Each body type's look, by its `type`.
+TYPES: Dict[str, TypeLook] = {
+    RodSpec.TYPE: TypeLook(shade_rod_contacts, energy_height=2, zoom_energy=zoom_on_rod_contact,
+                           summary=("rods", rod_numbers)),
+    RollerSpec.TYPE: TypeLook(shade_roller_slipping, summary=("rollers", roller_numbers)),
+    BlockSpec.TYPE: TypeLook(lambda ax, d, p: ("tab:pink", "sliding")),  # its energy falls while it slides
+}
 
 
 # --- sweeps ----------------------------------------------------------------------------------------
@@ -631,18 +667,17 @@ def print_sweep_summary(summary: Dict[str, Any]) -> None:
 
 # --- main ------------------------------------------------------------------------------------------
 def summarise(run: Run, specs: Specs) -> Summary:
-    summary: Summary = {"rods": {}, "rollers": {}}
+    summary: Summary = {look.summary[0]: {} for look in TYPES.values() if look.summary}
     for name, d in run.items():
         steps = np.diff(d["t"])
         gaps = int((steps > 1.5 * np.median(steps)).sum()) if len(steps) else 0
         if gaps:  # e.g. rosbag record dropping messages of a node run as fast as possible
             print(f"plot_run: warning: {name}: {gaps} gaps in the samples", file=sys.stderr)
         p = specs[name]
-        if isinstance(p, RodSpec):
-            summary["rods"][name] = rod_energy_swing(d, p.length)
-        elif isinstance(p, RollerSpec):
-            summary["rollers"][name] = {"critical_angle": critical_angle(p), "slip_to_roll": slip_to_roll(d, p.radius),
-                                        "finish_times": finish_times(d, p.slope)}
+        look = TYPES[p.TYPE]
+        if look.summary:
+            group, numbers = look.summary
+            summary[group][name] = numbers(d, p)
     return summary
 
 

@@ -8,7 +8,7 @@ from typing import Dict
 
 import rosbag
 
-from sim_tools import load_config, world_value
+from rigid_body_sim.sim_tools import load_config, world_value
 
 
 def report(expected: Dict[str, int], recorded: Dict[str, int]) -> int:

@@ -9,34 +9,34 @@ import random
 import sys
 import threading
 import time
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import rospy
 from dynamic_reconfigure.client import Client
-from rigid_body_sim.msg import RodState, RollerState
+from rigid_body_sim.sim_tools import (BlockSpec, BodySpec, RodSpec, RollerSpec, SlopeSpec, body_specs, load_config,
+                                      node_pid, resident_kib, state_message, state_numbers, subscribers, wait_for,
+                                      world_value)
 from rigid_body_sim.srv import Step
-
-from sim_tools import (BodySpec, RodSpec, body_specs, load_config, node_pid, resident_kib, state_numbers, subscribers,
-                       wait_for, world_value)
 
 
 class Body:
     """The received states of one body and its energy drift inside each segment: between two reconfigures,
-    and for a roller also between two laps (it restarts where it leaves the slope). A rod's energy swings
-    inside a contact (Euler-Cromer); a roller's is conserved while it rolls and only falls while it slips."""
+    and for a body on a slope also between two laps (it restarts where it leaves the slope). A rod's energy
+    swings inside a contact (Euler-Cromer); a roller's is conserved while it rolls and only falls while it
+    slips, a block's only falls while it slides."""
 
     def __init__(self, spec: BodySpec, dt: float) -> None:
         self.spec, self.name, self.dt = spec, spec.name, dt
-        self.rod = isinstance(spec, RodSpec)
+        self.on_slope = isinstance(spec, SlopeSpec)
         self.count = 0
         self.last_t = -1.0
         self.prev: Any = None
         self.ref: Optional[float] = None       # energy at the first sample of the segment
-        self.roll_ref: Optional[float] = None  # rollers: energy at the first sample of the current rolling stretch
+        self.roll_ref: Optional[float] = None  # on a slope: energy at the first sample of the current rolling stretch
         self.max_drift = 0.0                   # J, over all segments
-        self.max_rel = 0.0                     # rods: drift / energy at the segment's start
-        self.max_gain = -math.inf              # rollers: the largest energy increase over a segment
-        self.max_roll = 0.0                    # rollers: the largest |drift| while rolling
+        self.max_rel = 0.0                     # off a slope: drift / energy at the segment's start
+        self.max_gain = -math.inf              # on a slope: the largest energy increase over a segment
+        self.max_roll = 0.0                    # on a slope: the largest |drift| while rolling
         self.nonfinite = 0
 
     def new_segment(self) -> None:
@@ -44,7 +44,7 @@ class Body:
 
     def restarted(self, msg: Any) -> bool:
         """A lap: x moved otherwise than the mean velocity allows between two samples."""
-        if self.rod or self.prev is None:
+        if not self.on_slope or self.prev is None:
             return False
         return abs(msg.x - self.prev.x - 0.5 * (msg.v + self.prev.v) * self.dt) > 0.01
 
@@ -61,7 +61,7 @@ class Body:
             self.ref = msg.energy
         drift = msg.energy - self.ref
         self.max_drift = max(self.max_drift, abs(drift))
-        if self.rod:
+        if not self.on_slope:
             if self.ref > 0:
                 self.max_rel = max(self.max_rel, abs(drift) / self.ref)
             return
@@ -74,17 +74,33 @@ class Body:
         self.max_roll = max(self.max_roll, abs(msg.energy - self.roll_ref))
 
 
-def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
-    """A random, valid reconfigure of one body: k or mu, and new initial conditions."""
-    if isinstance(spec, RodSpec):
-        # On a bounded floor (floor_length > 0) x0 must lie on it: from 0, as far as 2 m.
-        x0 = rng.uniform(0, min(2.0, spec.floor_length)) if spec.floor_length > 0 else rng.uniform(-1, 1)
-        return {"k": 10 ** rng.uniform(2, 5), "x0": x0, "y0": rng.uniform(0.5, 5),
-                "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
-                "omega0": rng.uniform(-10, 10)}
+def rod_change(rng: random.Random, spec: RodSpec) -> Dict[str, float]:
+    """k and new initial conditions."""
+    # On a bounded floor (floor_length > 0) x0 must lie on it: from 0, as far as 2 m.
+    x0 = rng.uniform(0, min(2.0, spec.floor_length)) if spec.floor_length > 0 else rng.uniform(-1, 1)
+    return {"k": 10 ** rng.uniform(2, 5), "x0": x0, "y0": rng.uniform(0.5, 5),
+            "vx0": rng.uniform(-3, 3), "vy0": rng.uniform(-3, 3), "theta0": rng.uniform(0, 2 * math.pi),
+            "omega0": rng.uniform(-10, 10)}
+
+
+def slope_change(rng: random.Random, spec: SlopeSpec) -> Dict[str, float]:
+    """mu and a new start on the slope."""
     mu_s = rng.uniform(0, 1)
-    return {"mu_s": mu_s, "mu_d": rng.uniform(0, mu_s), "x0": rng.uniform(0, spec.slope / 2),
-            "v0": rng.uniform(-2, 4), "theta0": 0.0, "omega0": rng.uniform(-30, 30)}
+    return {"mu_s": mu_s, "mu_d": rng.uniform(0, mu_s), "x0": rng.uniform(0, spec.slope / 2), "v0": rng.uniform(-2, 4)}
+
+
+def roller_change(rng: random.Random, spec: RollerSpec) -> Dict[str, float]:
+    """mu, a new start on the slope and a spin."""
+    return {**slope_change(rng, spec), "theta0": 0.0, "omega0": rng.uniform(-30, 30)}
+
+
+# A random, valid reconfigure of one body, by its `type`.
+CHANGES: Dict[str, Callable[[random.Random, Any], Dict[str, float]]] = {
+    RodSpec.TYPE: rod_change, RollerSpec.TYPE: roller_change, BlockSpec.TYPE: slope_change}
+
+
+def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
+    return CHANGES[spec.TYPE](rng, spec)
 
 
 class Driver:
@@ -120,7 +136,7 @@ class Driver:
         def on_state(msg: Any) -> None:
             with self.lock:
                 body.on_state(msg)
-        return rospy.Subscriber(f"/sim/{body.name}/state", RodState if body.rod else RollerState, on_state,
+        return rospy.Subscriber(f"/sim/{body.name}/state", state_message(body.spec.TYPE), on_state,
                                 queue_size=None, tcp_nodelay=True)
 
     def wait_until_every_body_at(self, t: float) -> None:
@@ -164,9 +180,9 @@ class Driver:
               f"(change {rss[-1][1] - rss[0][1]:+d} kB); recorder {rss[0][2]} -> {rss[-1][2]} kB")
         print("body      type    states received/expected  non-finite  max |dE| in a segment   notes")
         for b in self.bodies:
-            note = (f"max |dE|/E0 = {b.max_rel:.3g}" if b.rod else
-                    f"largest gain {b.max_gain:.3g} J; max |dE| while rolling {b.max_roll:.3g} J")
-            print(f"{b.name:9s} {'rod' if b.rod else 'roller':7s} {b.count:8d}/{expected:<8d}          "
+            note = (f"largest gain {b.max_gain:.3g} J; max |dE| while rolling {b.max_roll:.3g} J" if b.on_slope
+                    else f"max |dE|/E0 = {b.max_rel:.3g}")
+            print(f"{b.name:9s} {b.spec.TYPE:7s} {b.count:8d}/{expected:<8d}          "
                   f"{b.nonfinite:4d}        {b.max_drift:12.6g} J    {note}")
         bad = [b.name for b in self.bodies if b.count != expected or b.nonfinite]
         if bad:

@@ -12,7 +12,7 @@ With `~control` a page opened with `?token=<the token this node prints>` may pau
 change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
 body every following page plots and switch to another lesson part the bodies can take (its config's keys,
 from the config/ beside ~web_root); any other request, or any from a page without the token, is refused in
-one line (web_protocol.py), on that page alone. The token goes only to this process's standard output (the
+one line (rigid_body_sim.web_protocol), on that page alone. The token goes only to this process's standard output (the
 launching terminal), never to /rosout or a log file; the page that brings it gets it back as an HttpOnly
 cookie for its WebSocket alone (a reload stays the teacher's page) and an address without it.
 
@@ -58,23 +58,21 @@ from dynamic_reconfigure.msg import Config as ReconfigureConfig
 from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
 from rigid_body_sim import description
-from rigid_body_sim.msg import BlockState, Command, RodState, RollerState
+from rigid_body_sim.msg import Command
+from rigid_body_sim.sim_tools import KEY_UNITS, WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
+from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,
+                                         finish_of_label, frame_message, parse_request, tied_places,
+                                         websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, SetBool
 from visualization_msgs.msg import MarkerArray
 
-# sim_tools.py and web_protocol.py lie beside this file (in the source, and in the install space); rosrun's
-# devel-space relay runs it from its source path.
-sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
-from sim_tools import (INERTIA_FACTORS, KEY_UNITS, WORLD_DEFAULTS,  # noqa: E402
-                       rospy_on_python39)
-from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,  # noqa: E402
-                          finish_of_label, frame_message, parse_request, tied_places, websocket_text_frame)
 
-STATE_TYPES = {"rigid_body_sim/RodState": ("rod", RodState), "rigid_body_sim/RollerState": ("roller", RollerState),
-               "rigid_body_sim/BlockState": ("block", BlockState)}
+# The state messages' types ("rigid_body_sim/RodState") -> (the body type, the message).
+STATE_TYPES = {message._type: (name, message) for name, message in
+               ((name, state_message(name)) for name in description.body_types())}
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
@@ -87,15 +85,6 @@ MAX_HEADERS = 16 * 1024  # bytes of its header lines: more is answered 431
 # MAX_URL and MAX_HEADERS, so that an overlong one is answered (within HEAD_TIMEOUT, whatever its pace).
 READ_HEAD_LIMIT = 4 * 1024 * 1024
 HEAD_TIMEOUT = 10.0  # s for a request's whole head, and for an idle kept-alive connection
-
-
-def body_with_defaults(body: Dict[str, Any]) -> Dict[str, Any]:
-    """A body's config with its type's defaults (the core's description) filled in, and a roller's c."""
-    kind = str(body["type"])
-    full: Dict[str, Any] = {**description.defaults(kind), **body}
-    if kind == "roller" and "inertia_factor" not in body:
-        full["inertia_factor"] = INERTIA_FACTORS.get(str(full["shape"]), 0.4)
-    return full
 
 
 def state_dict(msg: Any) -> Dict[str, Any]:
@@ -112,7 +101,7 @@ def lesson_parts(config_dir: str) -> Dict[str, Dict[str, Dict[str, Any]]]:
             with open(os.path.join(config_dir, name)) as text:
                 config = yaml.safe_load(text) or {}
             parts[found.group(1) or found.group(2)] = {
-                body: body_with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
+                body: with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
     return parts
 
 
@@ -123,7 +112,7 @@ class World:
         self.lesson_parts = parts or {}
         self.settings: Dict[str, Any] = dict(WORLD_DEFAULTS)
         self.bodies: Dict[str, Dict[str, Any]] = {}  # from the config and the commands
-        self.topics: Dict[str, str] = {}  # body -> rod | roller, from the master's state topics
+        self.topics: Dict[str, str] = {}  # body -> its type, from the master's state topics
         self.source = "none"  # node (a live node), replay (a played bag), ended (a replay that ended), none
         self.player = ""  # in a replay: the node that plays the state topics (rosbag play: pause_playback)
         self.paused = False
@@ -132,7 +121,7 @@ class World:
 
     def set_config(self, config: Dict[str, Any]) -> None:
         self.settings = {key: config.get(key, value) for key, value in WORLD_DEFAULTS.items()}
-        self.bodies = {name: body_with_defaults(body or {}) for name, body in (config.get("bodies") or {}).items()}
+        self.bodies = {name: with_defaults(body or {}) for name, body in (config.get("bodies") or {}).items()}
 
     def kinds(self) -> Dict[str, str]:
         """{body: rod | roller}: the bodies with a state topic."""
@@ -158,7 +147,7 @@ class World:
         bodies = {}
         for name, kind in sorted(self.topics.items()):
             known = self.bodies.get(name)
-            bodies[name] = known if known and known["type"] == kind else body_with_defaults({"type": kind})
+            bodies[name] = known if known and known["type"] == kind else with_defaults({"type": kind})
         return json.dumps({"type": "world", "source": self.source, "paused": self.paused,
                            "settings": self.settings, "bodies": bodies, "parts": self.parts(), "part": self.part()})
 
@@ -480,7 +469,7 @@ class WebView:
         if msg.kind == "config" and isinstance(payload, dict):
             self.world.set_config(payload)
         elif msg.kind in ("reconfigure", "spawn") and isinstance(payload, dict):
-            self.world.bodies[msg.body] = body_with_defaults(payload)
+            self.world.bodies[msg.body] = with_defaults(payload)
         elif msg.kind == "delete":
             self.world.bodies.pop(msg.body, None)
         elif msg.kind == "reset":

@@ -20,11 +20,12 @@ from dynamic_reconfigure import DynamicReconfigureParameterException
 from dynamic_reconfigure.client import Client
 from std_srvs.srv import Empty
 
-from rigid_body_sim.msg import BlockState, RodState, RollerState
+from rigid_body_sim import description
+from rigid_body_sim.sim_tools import state_message
 from rigid_body_sim.srv import GetConfig, Step
 
 DEADLINE = 10.0  # wall seconds of every wait unless told otherwise
-STATE_TYPES = {"rod": RodState, "roller": RollerState, "block": BlockState}  # a body's `type` -> its state message
+STATE_TYPES = {name: state_message(name) for name in description.body_types()}  # a body's `type` -> its state message
 # A state's t is a step count over rate: the one meant at t may come out a rounding below it.
 T_TOLERANCE = 1e-9
 

@@ -6,14 +6,11 @@ the states of every body at t = 0, 1/publish_rate, ... and at T, and one /tf mes
                                                 unflushed chunk holds (a bag recovered by rosbag reindex)
 Both from t = 0: sim.launch starts stepping once the recorder has subscribed to every state topic and /tf."""
 import argparse
-import os
 import sys
 from typing import Any, Dict, List, NoReturn, Set
 
 import rosbag
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import load_config, steps_per_sample, world_value  # noqa: E402  (the path above first)
+from rigid_body_sim.sim_tools import load_config, steps_per_sample, world_value
 
 CHUNK = 768 * 1024  # rosbag record's default --chunksize (768 kB)
 

@@ -23,9 +23,7 @@ from typing import Any, Dict, List, Set
 
 import rosgraph
 import yaml
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import free_port, load_config, wait_for  # noqa: E402
+from rigid_body_sim.sim_tools import free_port, load_config, wait_for
 
 
 class Run:

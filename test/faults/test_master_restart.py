@@ -18,9 +18,7 @@ import time
 from typing import List
 
 import rosgraph
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import free_port, node_pid, wait_for  # noqa: E402
+from rigid_body_sim.sim_tools import free_port, node_pid, wait_for
 
 FORGOT_LINE = "no longer knows this node"
 EXIT_STATUS = 3

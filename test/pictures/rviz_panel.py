@@ -32,13 +32,12 @@ from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 import yaml
+from rigid_body_sim.sim_tools import KEY_UNITS, body_type, free_port, load_config, state_fields, wait_for
 
 import rviz_screenshot as shot
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import KEY_UNITS, body_type, free_port, load_config, state_fields, wait_for  # noqa: E402
 
 REFUSAL_COLOUR = (230, 90, 60)  # the panel's refusal text (kRefusalStyle, body_section.h)
 TYPED_K = 2000.0

@@ -21,13 +21,13 @@ import tempfile
 import time
 from typing import Any, Optional
 
+from rigid_body_sim.sim_tools import load_config
+
 import rviz_screenshot as shot
 from rviz_panel import Findings, Panel, run_launched
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import load_config  # noqa: E402
 
 DURATION = 6.0  # simulated seconds recorded
 STALLED_CLOCKS = 100  # /clock messages at one time in a row: the player stands (paused, it sends 100 a second)

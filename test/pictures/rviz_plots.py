@@ -21,12 +21,12 @@ import tempfile
 import time
 from typing import Any, Dict, List, Tuple
 
+from rigid_body_sim.sim_tools import load_config
+
 import rviz_screenshot as shot
 from rviz_panel import HERE, Findings, Panel, closed_form_slip_to_roll, run_launched, xdotool
 
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import load_config  # noqa: E402
 
 MIN_CHART = (600, 300)  # px, each chart in the projector window
 MIN_TEXT_PX = 14

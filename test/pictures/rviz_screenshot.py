@@ -23,18 +23,17 @@ import xmlrpc.client
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
-import rospkg
 import yaml
+from rigid_body_sim.sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_config,
+                                      rospy_on_python39, wait_for, world_value)
 
 import picture_check as pc
 import view_rules as rules
 from picture_check import Finding, Pixel
+from rviz_log import rviz_error_lines
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import (Config, RodSpec, RollerSpec, body_spec, free_port, load_config,  # noqa: E402
-                       rospy_on_python39, wait_for, world_value)
 
 STATUS_COLOURS = {"error": (178, 23, 46), "warn": (192, 128, 0)}  # rviz's StatusProperty text colours
 # What a class must see from the back row at 1600x900: bodies this many pixels across, a rod this long (the
@@ -749,20 +748,6 @@ def try_render_window() -> Optional[Tuple[int, int, int, int]]:
 def flag(what: str, ok: bool) -> Finding:
     """A yes/no finding."""
     return pc.Finding(what, "-", 1, int(ok), 1)
-
-
-def rviz_error_lines() -> List[str]:
-    """ERROR lines of rviz's own output (roslaunch keeps it in the log folder's latest/: $ROS_LOG_DIR, or
-    $ROS_HOME/log), or one line saying that there is no such output: an absent log is no clean one."""
-    folder = os.path.join(rospkg.get_log_dir(), "latest")
-    names = [name for name in sorted(os.listdir(folder)) if name.startswith("rviz")] if os.path.isdir(folder) else []
-    if not names:
-        return [f"no output of rviz in {folder}"]
-    lines: List[str] = []
-    for name in names:
-        with open(os.path.join(folder, name), errors="replace") as f:
-            lines += [line.strip() for line in f if re.search(r"\bERROR\b", line)]
-    return lines
 
 
 def read_png(path: str) -> np.ndarray:

@@ -17,10 +17,10 @@ import unittest
 from collections import Counter
 from typing import Any, Dict, List, Optional
 
+from rigid_body_sim.sim_tools import free_port, load_config
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import free_port, load_config  # noqa: E402  (the path above first)
 
 PLOT = os.path.join(PACKAGE, "scripts", "plot_run.py")
 CONFIG = os.path.join(PACKAGE, "config", "demo.yaml")

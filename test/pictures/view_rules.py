@@ -10,18 +10,13 @@ markers and transforms, projected with the view's camera), not on pixels:
 
 Pure functions of a PublishedScene (markers by (ns, id), world poses of frames) and a picture_check.Camera,
 so that they run on the scene rviz was sent (rviz_screenshot) and on a recorded run (views_over_a_run)."""
-import os
-import sys
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+from rigid_body_sim.sim_tools import BodySpec, RodSpec, RollerSpec
 
 import picture_check as pc
 from picture_check import Finding
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
-                                "scripts"))
-from sim_tools import BodySpec, RodSpec, RollerSpec  # noqa: E402
 
 MIN_BODY_PX = 20
 # Each text's characters at least this high (a line's height: rviz draws a text's scale.z as its character

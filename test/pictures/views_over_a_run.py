@@ -16,13 +16,12 @@ from typing import Any, Dict, List, Tuple
 
 import rosbag
 import yaml
+from rigid_body_sim.sim_tools import body_spec, load_config
 
 import picture_check as pc
 import view_rules as rules
 
 PACKAGE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(PACKAGE, "scripts"))
-from sim_tools import body_spec, load_config  # noqa: E402
 
 # (view, config, changes as the panel makes them: {body: {key: value}}) for each saved view as its launch
 # opens it, and with a change of each kind (the demo's: pictures_rviz_look_change's).

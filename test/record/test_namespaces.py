@@ -27,10 +27,8 @@ import rosgraph
 import rospy
 import tf2_ros
 from tf2_msgs.msg import TFMessage
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import (Config, body_of_state_topic, free_port, load_config, rospy_on_python39,  # noqa: E402
-                       subscribe_to_the_rest, wait_for, world_value)
+from rigid_body_sim.sim_tools import (Config, body_of_state_topic, free_port, load_config, rospy_on_python39,
+                                      subscribe_to_the_rest, wait_for, world_value)
 
 rospy_on_python39()
 

@@ -31,10 +31,8 @@ import rospy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 from rigid_body_sim.testing import STATE_TYPES
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import (Config, free_port, load_config, state_fields, subscribe_to_the_rest, wait_for,  # noqa: E402
-                       world_value)
+from rigid_body_sim.sim_tools import (Config, free_port, load_config, state_fields, subscribe_to_the_rest, wait_for,
+                                      world_value)
 
 States = Dict[str, List[Any]]
 

@@ -26,12 +26,10 @@ import rosbag
 import rosgraph
 import rospy
 from rigid_body_sim.msg import RodState
+from rigid_body_sim.sim_tools import (body_of_state_topic, free_port, load_config, read_states, state_fields,
+                                      wait_for, world_value)
 from rigid_body_sim.srv import Delete, SetState, Spawn, Step
 from std_srvs.srv import Empty
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from sim_tools import (body_of_state_topic, free_port, load_config, read_states, state_fields, wait_for,  # noqa: E402
-                       world_value)  # noqa: E402
 
 ARGS: Any = None
 

@@ -102,11 +102,10 @@ class RvizLog(Case):
     without it is a finding, never a clean log."""
 
     def error_lines(self) -> List[str]:
-        sys.path.insert(0, os.path.join(ROOT, "test", "pictures"))
-        import rviz_screenshot
+        rviz_log = load_module(os.path.join(ROOT, "test", "pictures", "rviz_log.py"))
         os.environ["ROS_LOG_DIR"] = self.tmp.name
         try:
-            lines: List[str] = rviz_screenshot.rviz_error_lines()
+            lines: List[str] = rviz_log.rviz_error_lines()
         finally:
             del os.environ["ROS_LOG_DIR"]
         return lines
@@ -125,8 +124,11 @@ class RvizLog(Case):
         self.assertEqual(self.error_lines(), [])
 
 
-def load_run_bench() -> Any:
-    spec = importlib.util.spec_from_file_location("run_bench", os.path.join(ROOT, "bench", "run_bench.py"))
+def load_module(path: str) -> Any:
+    """A module of another folder's tool or test (bench/, test/pictures/), loaded from its file: neither folder
+    is a package, nor on this script's path."""
+    name = os.path.splitext(os.path.basename(path))[0]
+    spec = importlib.util.spec_from_file_location(name, path)
     # isinstance, not `is not None`: bullseye's typeshed types spec.loader as a protocol without exec_module.
     assert spec is not None and isinstance(spec.loader, importlib.abc.Loader)
     module = importlib.util.module_from_spec(spec)
@@ -136,7 +138,7 @@ def load_run_bench() -> Any:
 
 class RunBench(Case):
     def test_the_1khz_config_whatever_the_source_writes(self) -> None:
-        run_bench = load_run_bench()
+        run_bench = load_module(os.path.join(ROOT, "bench", "run_bench.py"))
         for text in ("publish_rate: 50.0\n", "publish_rate: 50\n", "publish_rate:   5e1\n", ""):
             with open(self.path("source.yaml"), "w") as f:
                 f.write(text + "rate: 1000.0\nbodies: {rod: {type: rod}}\n")

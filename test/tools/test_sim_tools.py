@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""scripts/sim_tools.py against the C++ it describes: its defaults and units are the core's exported description
+"""rigid_body_sim.sim_tools against the C++ it describes: its defaults and units are the core's exported description
 (rigid_body_sim.description), and what simulate does with a config that leaves every key out; its
 shape factors are the ones the core's rolling friction follows; a CSV header and a state message name the same
 fields; it reads a sweep's header as simulate writes it, and has words for every column a sweep adds.
@@ -16,9 +16,7 @@ from typing import Dict, List, Tuple
 
 import rosbag
 from rigid_body_sim.cfg import RollerReconfigureConfig
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-import sim_tools  # noqa: E402  (the path above first)
+from rigid_body_sim import sim_tools
 
 
 def csv_rows(path: str) -> List[Dict[str, str]]:
@@ -50,7 +48,7 @@ class SimulateCase(unittest.TestCase):
 class Defaults(SimulateCase):
     def test_inertia_factors_are_the_cores(self) -> None:
         """The named shapes' c, which the description does not carry: the roller's default is the sphere's."""
-        self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.ROLLER_DEFAULTS["shape"]],
+        self.assertEqual(sim_tools.INERTIA_FACTORS[sim_tools.DEFAULTS["roller"]["shape"]],
                          RollerReconfigureConfig.defaults["inertia_factor"])
 
     def test_world_defaults_are_what_simulate_does(self) -> None:
@@ -59,7 +57,7 @@ class Defaults(SimulateCase):
         rows = csv_rows(os.path.join(folder, "rod.csv"))
         self.assertEqual(len(rows) - 1, sim_tools.WORLD_DEFAULTS["publish_rate"])  # samples in a second
         self.assertEqual(float(rows[1]["t"]), 1 / sim_tools.WORLD_DEFAULTS["publish_rate"])
-        rod = sim_tools.ROD_DEFAULTS  # E = M g y0 + M vx0^2 / 2 at t = 0
+        rod = sim_tools.DEFAULTS["rod"]  # E = M g y0 + M vx0^2 / 2 at t = 0
         gravity = (float(rows[0]["energy"]) - 0.5 * rod["mass"] * rod["vx0"] ** 2) / (rod["mass"] * rod["y0"])
         self.assertAlmostEqual(gravity, sim_tools.WORLD_DEFAULTS["gravity"], delta=1e-12)
         with rosbag.Bag(os.path.join(folder, "run.bag")) as bag:

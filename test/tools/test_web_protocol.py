@@ -1,19 +1,16 @@
 #!/usr/bin/env python3
-"""The web view's requests and frames (scripts/web_protocol.py), without ROS or a network: every well-formed
+"""The web view's requests and frames (rigid_body_sim.web_protocol), without ROS or a network: every well-formed
 request parses to what it says; every malformed, oversized, unexpected or uncontrolled one is refused with
 one line, of its own kind; a full frame queue drops its oldest frame and counts it; frames carry the doubles
 exactly.
 
 Usage: test_web_protocol.py"""
 import json
-import os
-import sys
 import unittest
 from typing import Any, Dict, Optional
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-from web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, FrameQueue, Refusal, Request,  # noqa: E402
-                          finish_of_label, frame_message, parse_request, tied_places)
+from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, FrameQueue, Refusal, Request,
+                                         finish_of_label, frame_message, parse_request, tied_places)
 
 BODIES = {"rod": "rod", "sphere": "roller"}
 

@@ -34,11 +34,9 @@ from typing import Any, Dict, List, Optional
 
 import rospy
 from rigid_body_sim.srv import Step
+from rigid_body_sim.sim_tools import INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from browser import Browser, end  # noqa: E402
-from sim_tools import INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for  # noqa: E402
+from browser import Browser, end
 
 rospy_on_python39()
 ARGS: Any = None

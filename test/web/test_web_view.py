@@ -57,16 +57,14 @@ from typing import Any, Dict, List, NamedTuple, Optional
 import rospy
 import websocket
 import yaml
-from rigid_body_sim.msg import Command, RodState, RollerState
+from rigid_body_sim.msg import Command
 from rigid_body_sim.srv import GetConfig
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
+from rigid_body_sim.sim_tools import (free_port, load_config, rospy_on_python39, state_message, wait_for,
+                                      with_defaults)
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from browser import Browser, end  # noqa: E402
-from sim_tools import (INERTIA_FACTORS, ROD_DEFAULTS, ROLLER_DEFAULTS, free_port, load_config,  # noqa: E402
-                       rospy_on_python39, wait_for)
+from browser import Browser, end
 
 rospy_on_python39()
 ARGS: Any = None
@@ -83,7 +81,7 @@ class Listener:
         self.commands: List[Command] = []
         self.warnings: List[str] = []
         for body, kind in bodies.items():
-            rospy.Subscriber(f"/sim/{body}/state", RodState if kind == "rod" else RollerState,
+            rospy.Subscriber(f"/sim/{body}/state", state_message(kind),
                              lambda m, b=body: self.on_state(b, m), queue_size=1000)
         rospy.Subscriber("/sim/paused", Bool, self.on_paused)
         rospy.Subscriber("/sim/commands", Command, self.on_command, queue_size=1000)
@@ -122,10 +120,8 @@ class WebView(unittest.TestCase):
     def setUp(self) -> None:
         self.tmp = tempfile.mkdtemp(prefix="rbs_web_")
         self.config = load_config(ARGS.config)
-        self.kinds = {name: "rod" if b.get("type") == "rod" else "roller" for name, b in self.config["bodies"].items()}
-        self.bodies = {name: ({**ROD_DEFAULTS, **b} if self.kinds[name] == "rod"
-                              else {**ROLLER_DEFAULTS, **b, "c": INERTIA_FACTORS[b.get("shape", "sphere")]})
-                       for name, b in self.config["bodies"].items()}
+        self.kinds = {name: str(b["type"]) for name, b in self.config["bodies"].items()}
+        self.bodies = {name: with_defaults(b) for name, b in self.config["bodies"].items()}
         self.web_port = free_port()
         self.log: List[str] = []
         self.launch: Optional["subprocess.Popen[str]"] = None
@@ -467,7 +463,7 @@ class WebView(unittest.TestCase):
                 self.assertEqual(points["end_a"][1], s["y"] + 0.5 * L * math.sin(s["theta"]))
                 self.assertEqual(points["end_b"][1], s["y"] - 0.5 * L * math.sin(s["theta"]))
             else:
-                M, R, c = b["mass"], b["radius"], b["c"]
+                M, R, c = b["mass"], b["radius"], b["inertia_factor"]
                 kinetic = 0.5 * M * s["v"] ** 2 + 0.5 * c * M * R * R * s["omega"] ** 2
                 self.assertEqual(points["v"][1], s["v"])
                 self.assertEqual(points["minus_omega_r"][1], -s["omega"] * R)
@@ -487,7 +483,7 @@ class WebView(unittest.TestCase):
             after = [m for m in node.states["bowler"] if m.t > reset_t]
         pairs = [(a, b) for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling"]
         b = self.bodies["bowler"]
-        g, phi, c, R = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["c"], b["radius"]
+        g, phi, c, R = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["inertia_factor"], b["radius"]
         rate = b["mu_d"] * g * math.cos(phi) * (1 + c) / c - g * math.sin(phi)  # -du/dt, u = v + omega R > 0
         slowing = g * math.sin(phi) - b["mu_d"] * g * math.cos(phi)  # dv/dt
         instant = (b["v0"] + b["omega0"] * R) / rate

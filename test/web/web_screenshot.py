@@ -11,17 +11,14 @@ import os
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 
 import rospy
 from rigid_body_sim.msg import RollerState, RodState
 from std_srvs.srv import Empty
+from rigid_body_sim.sim_tools import free_port, rospy_on_python39, wait_for
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from browser import Browser, end  # noqa: E402
-from sim_tools import free_port, rospy_on_python39, wait_for  # noqa: E402
+from browser import Browser, end
 
 rospy_on_python39()
 DEADLINE = 60.0

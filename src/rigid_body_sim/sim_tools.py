@@ -1,6 +1,6 @@
-"""What the Python tools of rigid_body_sim share: a config's values with the documented defaults, the
-state messages of a bag, the rod's contact with the floor, the columns of a sweep, and waiting on
-processes and ROS masters.
+"""What the Python tools of rigid_body_sim share: a config's values with the documented defaults, each body
+type's spec (SPECS, by its `type`: what Python knows of one type and no other), the state messages of a
+bag, the rod's contact with the floor, the columns of a sweep, and waiting on processes and ROS masters.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
@@ -15,21 +15,16 @@ import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, Iterable, List, Optional, Set, Tuple, Union
+from typing import Any, Callable, ClassVar, Dict, Iterable, List, Optional, Set, Tuple, Type, Union
 
 import yaml
 from rigid_body_sim import description
 
 Config = Dict[str, Any]
 
-# The defaults of the world's and each body type's keys: the core's description (rigid_body_sim.description).
+# The defaults of the world's and each body type's keys (by its `type`): the core's description.
 WORLD_DEFAULTS: Dict[str, Any] = {key["name"]: key["default"] for key in description.load()["world"]}
-ROD_DEFAULTS: Dict[str, Any] = description.defaults("rod")
-ROLLER_DEFAULTS: Dict[str, Any] = description.defaults("roller")
-BLOCK_DEFAULTS: Dict[str, Any] = description.defaults("block")
-# c = I / (M R^2) of the named shapes.
-INERTIA_FACTORS: Dict[str, float] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
-                                     "spherical_shell": 2.0 / 3.0}
+DEFAULTS: Dict[str, Dict[str, Any]] = {name: description.defaults(name) for name in description.body_types()}
 # The units of the number keys by body type, for axis labels ("" for a pure number): the description's.
 KEY_UNITS: Dict[str, Dict[str, str]] = {name: description.units(name) for name in description.body_types()}
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
@@ -61,25 +56,73 @@ def steps_per_sample(config: Config) -> int:
 
 
 @dataclass(frozen=True)
-class RodSpec:
+class Body:
+    """What a body type's spec shares: the type it is the spec of, the body's name, and a body's keys with
+    its defaults."""
+
+    TYPE: ClassVar[str]
     name: str
+
+    @classmethod
+    def keys(cls, given: Config) -> Config:
+        """A body's keys: its config's, its type's defaults where it leaves one out."""
+        return {**DEFAULTS[cls.TYPE], **given}
+
+
+@dataclass(frozen=True)
+class RodSpec(Body):
+    TYPE: ClassVar[str] = "rod"
     length: float
     mass: float
     k: float
     floor_length: float = 0.0  # m of floor from x = 0; 0: unbounded
 
+    @classmethod
+    def of(cls, name: str, given: Config) -> RodSpec:
+        rod = cls.keys(given)
+        return cls(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]), float(rod["floor_length"]))
+
 
 @dataclass(frozen=True)
-class RollerSpec:
-    name: str
-    shape: str  # a named shape, or "custom"
-    c: float  # I / (M R^2)
-    radius: float
-    mass: float
+class SlopeSpec(Body):
+    """A body on a slope of its own: the slope and the friction on it."""
     angle: float  # incline_angle (rad)
     slope: float  # incline_length (m)
     mu_s: float
     mu_d: float
+
+    @staticmethod
+    def slope_of(body: Config) -> Tuple[float, float, float, float]:
+        return (float(body["incline_angle"]), float(body["incline_length"]), float(body["mu_s"]),
+                float(body["mu_d"]))
+
+
+@dataclass(frozen=True)
+class RollerSpec(SlopeSpec):
+    TYPE: ClassVar[str] = "roller"
+    # c = I / (M R^2) of the named shapes: the description names the shapes (the choices of `shape`) but not
+    # their c (test_sim_tools holds these to simulate's).
+    INERTIA_FACTORS: ClassVar[Dict[str, float]] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
+                                                   "spherical_shell": 2.0 / 3.0}
+    shape: str  # a named shape, or "custom"
+    c: float  # I / (M R^2)
+    radius: float
+    mass: float
+
+    @classmethod
+    def keys(cls, given: Config) -> Config:
+        """With its shape (custom when the config gives a c alone) and the c of a named shape (the
+        description's default c for a shape without one, which the config loader refuses)."""
+        roller = super().keys(given)
+        shape = given.get("shape", "custom" if "inertia_factor" in given else roller["shape"])
+        c = given.get("inertia_factor", cls.INERTIA_FACTORS.get(shape, roller["inertia_factor"]))
+        return {**roller, "shape": shape, "inertia_factor": float(c)}
+
+    @classmethod
+    def of(cls, name: str, given: Config) -> RollerSpec:
+        roller = cls.keys(given)
+        return cls(name, *cls.slope_of(roller), shape=str(roller["shape"]), c=float(roller["inertia_factor"]),
+                   radius=float(roller["radius"]), mass=float(roller["mass"]))
 
     def tan_critical(self) -> float:
         """tan(phi_c) = mu_s (1 + c) / c: the steepest slope on which it can roll without slipping."""
@@ -89,41 +132,46 @@ class RollerSpec:
         return math.tan(self.angle) <= self.tan_critical()
 
 
-@dataclass
-class BlockSpec:
-    name: str
+@dataclass(frozen=True)
+class BlockSpec(SlopeSpec):
+    TYPE: ClassVar[str] = "block"
     size: float
     mass: float
-    angle: float  # incline_angle (rad)
-    slope: float  # incline_length (m)
-    mu_s: float
-    mu_d: float
+
+    @classmethod
+    def of(cls, name: str, given: Config) -> BlockSpec:
+        block = cls.keys(given)
+        return cls(name, *cls.slope_of(block), size=float(block["size"]), mass=float(block["mass"]))
 
 
 BodySpec = Union[RodSpec, RollerSpec, BlockSpec]
+# Each body type's spec by its `type`: where what Python knows of one type and no other lives.
+SPECS: Dict[str, Union[Type[RodSpec], Type[RollerSpec], Type[BlockSpec]]] = {
+    RodSpec.TYPE: RodSpec, RollerSpec.TYPE: RollerSpec, BlockSpec.TYPE: BlockSpec}
+INERTIA_FACTORS = RollerSpec.INERTIA_FACTORS
 
 
 def body_type(config: Config, name: str) -> str:
-    """Its `type`: rod, roller or block (a body without one is refused by the config loader before any run)."""
+    """Its `type` (a body without one is refused by the config loader before any run)."""
     return str(config["bodies"][name]["type"])
+
+
+def with_defaults(body: Config) -> Config:
+    """A body's keys (with its `type`), its type's defaults filled in and what its type derives from them (a
+    roller's c from its shape)."""
+    return SPECS[str(body["type"])].keys(body)
 
 
 def body_spec(config: Config, name: str) -> BodySpec:
     """One body's values, the documented defaults where the config leaves a key out."""
-    body = config["bodies"][name]
-    if body_type(config, name) == "rod":
-        rod = {**ROD_DEFAULTS, **body}
-        return RodSpec(name, float(rod["length"]), float(rod["mass"]), float(rod["k"]), float(rod["floor_length"]))
-    if body_type(config, name) == "block":
-        block = {**BLOCK_DEFAULTS, **body}
-        return BlockSpec(name, float(block["size"]), float(block["mass"]), float(block["incline_angle"]),
-                         float(block["incline_length"]), float(block["mu_s"]), float(block["mu_d"]))
-    roller = {**ROLLER_DEFAULTS, **body}
-    shape = body.get("shape", "custom" if "inertia_factor" in body else ROLLER_DEFAULTS["shape"])
-    c = float(body.get("inertia_factor", INERTIA_FACTORS.get(shape, math.nan)))
-    return RollerSpec(name, shape, c, float(roller["radius"]), float(roller["mass"]),
-                      float(roller["incline_angle"]), float(roller["incline_length"]), float(roller["mu_s"]),
-                      float(roller["mu_d"]))
+    return SPECS[body_type(config, name)].of(name, config["bodies"][name])
+
+
+def state_message(type_name: str) -> Any:
+    """A body type's state message: rigid_body_sim/<Type>State (RodState for a rod)."""
+    from rigid_body_sim import msg  # only here: a run of CSV files needs no ROS message
+
+    return getattr(msg, type_name.capitalize() + "State")
 
 
 def body_specs(config: Config) -> List[BodySpec]:

@@ -61,7 +61,7 @@ def _whole(value: Any) -> bool:
 
 def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Collection[str] = ()) -> Request:
     """The request in `text` (a WebSocket message), or Refusal. `control`: the page holds the token;
-    `bodies`: {name: "rod" | "roller"} of the world the view knows; `parts`: the lesson parts it can take."""
+    `bodies`: {name: its type} of the world the view knows; `parts`: the lesson parts it can take."""
     if not isinstance(text, str):
         raise Refusal("binary", "refused: a binary message (requests are JSON text)")
     if len(text.encode()) > MAX_REQUEST_BYTES:
