@@ -151,7 +151,7 @@ TEST(Docs, DesignsExampleConfigIsTheDefaults) {
 
 // DESIGN.md's "Where to add a key, a topic, a service, a body type" against the tree: every file it names
 // exists (a header or source by its path under include/rigid_body_sim/ or src/, others from the package's
-// root), and every type it names (a class, a struct or an alias) is declared in a header.
+// root), and every type it names (a class, a struct or an alias) or macro is declared in a header.
 TEST(Docs, WhereToAddNamesWhatIsThere) {
   const std::string design = slurp(packageFile("docs/DESIGN.md"));
   const std::size_t start = design.find("## Where to add a key, a topic, a service, a body type");
@@ -178,7 +178,8 @@ TEST(Docs, WhereToAddNamesWhatIsThere) {
       const std::string type = name.substr(name.rfind(':') == std::string::npos ? 0 : name.rfind(':') + 1);
       const bool declared = headers.find("class " + type) != std::string::npos ||
                             headers.find("struct " + type) != std::string::npos ||
-                            headers.find("using " + type + " =") != std::string::npos;
+                            headers.find("using " + type + " =") != std::string::npos ||
+                            headers.find("#define " + type + "(") != std::string::npos;
       EXPECT_TRUE(declared) << name << " is declared in no header";
     }
   }
