@@ -20,6 +20,7 @@
 #include <variant>
 #include <vector>
 
+#include "rigid_body_sim/core/description.h"
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/io/config_loader.h"
@@ -115,54 +116,9 @@ py::dict stateDict(const Body& body) {
   return state;
 }
 
-// A key of a body type as Python reads it: its name, unit, meaning, what a change does, its default, what it
-// allows (a number's range, a text's choices or rule).
-template <class Config>
-py::dict describeKey(const BodyKey<Config>& key) {
-  py::dict out;
-  const Config defaults{};
-  out["name"] = key.name;
-  out["unit"] = key.unit;
-  out["meaning"] = key.meaning;
-  out["change"] = key.change == KeyChange::Restart ? "restart" : "apply";
-  out["allowed"] = key.allowed();
-  if (key.isNumber()) {
-    out["default"] = key.number(defaults);
-    out["min"] = key.range.min;
-    out["max"] = key.range.max;
-    out["min_open"] = key.range.min_open;
-    out["max_open"] = key.range.max_open;
-  } else {
-    out["default"] = key.written() ? py::object(py::str(key.text(defaults))) : py::object(py::none());
-    out["choices"] = key.choices ? py::cast(key.choices()) : py::object(py::none());
-  }
-  out["state_field"] = key.state_field ? py::object(py::str(key.state_field)) : py::object(py::none());
-  return out;
-}
-
-// Calls f(BodyType<Config>) for every alternative of BodyConfig::config: every body type, in the variant's
-// order.
-template <class F, std::size_t... I>
-void forEachBodyType(F&& f, std::index_sequence<I...>) {
-  using Configs = decltype(BodyConfig::config);
-  (f(bodyType<std::variant_alternative_t<I, Configs>>()), ...);
-}
-template <class F>
-void forEachBodyType(F&& f) {
-  forEachBodyType(std::forward<F>(f),
-                  std::make_index_sequence<std::variant_size_v<decltype(BodyConfig::config)>>());
-}
-
-// {type: [key descriptions]} of every body type.
-py::dict describeBodyTypes() {
-  py::dict types;
-  forEachBodyType([&](const auto& type) {
-    py::list keys;
-    for (const auto& key : type.keys) keys.append(describeKey(key));
-    types[type.type] = keys;
-  });
-  return types;
-}
+// The one exported description of the body types (core/description.h), the document describe_body_types
+// writes into body_types.json, parsed by Python's json: the same dicts and lists json.load gives of the file.
+py::object bodyTypes() { return py::module::import("json").attr("loads")(bodyTypesJson()); }
 
 // The CSV text of a sweep as arrays by column: numbers as float64 (an empty cell, a roller that never went
 // from slipping to rolling, as nan), a column with a text in it as str.
@@ -469,6 +425,7 @@ PYBIND11_MODULE(core, m) {
            "simulate --sweep BODY.KEY=START:STOP:N ... on this world's config, on `jobs` threads (0: every "
            "core): {column: numpy array}, sweep.csv's columns");
 
-  m.def("body_types", &rigid_body_sim::describeBodyTypes,
-        "{type: [its keys: name, unit, meaning, change, default, allowed, ...]}, from the core's key tables");
+  m.def("body_types", &rigid_body_sim::bodyTypes,
+        "the body types' description, the document of body_types.json as json.load reads it: {\"types\": "
+        "{type: {\"keys\": [...], \"state_fields\": [...], ...}}, \"world\": [...], \"max_bodies\": n}");
 }

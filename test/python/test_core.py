@@ -6,9 +6,11 @@
 - a refused config is a ValueError whose message is the line simulate --check prints after "simulate: "
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
-- the keys' descriptions are the core's (the README's key tables check them against the docs).
+- core.body_types() is the exported description (body_types.json) as json reads it.
 Usage: test_core.py SIMULATE_EXE   (with the package's devel or install space sourced)"""
 import argparse
+import json
+import math
 import os
 import pathlib
 import random
@@ -24,7 +26,7 @@ import numpy
 import yaml
 
 import rigid_body_sim.core as core  # a compiled module: mypy knows no more of it
-from rigid_body_sim import runs
+from rigid_body_sim import description, runs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BAD_INPUT = os.path.join(HERE, "..", "bad_input", "configs.yaml")
@@ -34,30 +36,31 @@ Run = Dict[str, Dict[str, numpy.ndarray]]
 
 
 def draw_body(rng: random.Random, keys: List[Dict[str, Any]]) -> Dict[str, Any]:
-    """A body of a type with each key left out or drawn near its default (within its range), or among its
-    choices: most draws are valid, and World says which are not."""
+    """A body of a type with each key a config file writes left out or drawn near its default (within its
+    range), or among its choices: most draws are valid, and World says which are not."""
     body: Dict[str, Any] = {}
     for key in keys:
-        if rng.random() < 0.5 or key["default"] is None:
+        if rng.random() < 0.5 or not key["written"]:
             continue
-        if key.get("choices"):
-            body[key["name"]] = rng.choice(key["choices"])
-        elif "min" in key:
-            default = key["default"]
-            value = default * rng.uniform(0.5, 1.5) + rng.uniform(-1.0, 1.0)
-            body[key["name"]] = min(max(value, key["min"]), key["max"])
+        if key["kind"] == "text":
+            if key["choices"]:
+                body[key["name"]] = rng.choice(key["choices"])
+        else:
+            low, high = key["range"]["min"], key["range"]["max"]  # None: unbounded
+            value = key["default"] * rng.uniform(0.5, 1.5) + rng.uniform(-1.0, 1.0)
+            body[key["name"]] = min(max(value, -math.inf if low is None else low), math.inf if high is None else high)
     return body
 
 
 def draw_config(rng: random.Random) -> Tuple[Dict[str, Any], float]:
     """A valid config of one to three bodies of random types, and a sample rate that divides its rate."""
-    types = core.body_types()
+    types = core.body_types()["types"]
     while True:
         rate = rng.choice([500.0, 1000.0, 2000.0])
         config: Dict[str, Any] = {"rate": rate, "publish_rate": 50.0, "race": rng.random() < 0.2, "bodies": {}}
         for i in range(rng.randint(1, 3)):
             kind = rng.choice(sorted(types))
-            config["bodies"][f"b{i}"] = dict(type=kind, **draw_body(rng, types[kind]))
+            config["bodies"][f"b{i}"] = dict(type=kind, **draw_body(rng, types[kind]["keys"]))
         try:
             core.World(config)
         except ValueError:
@@ -109,7 +112,7 @@ class CoreCase(unittest.TestCase):
             world = core.World(config)
             self.assert_same_run(world.run(duration, sample_rate=sample_rate), runs.read_run(folder), what)
             self.assertEqual(world.t, duration, what)
-        self.assertEqual(kinds, set(core.body_types()), "every body type drawn")
+        self.assertEqual(kinds, set(core.body_types()["types"]), "every body type drawn")
 
     def test_text_rod_and_demo_for_ten_seconds(self) -> None:
         for name in ["rod.yaml", "demo.yaml"]:
@@ -269,20 +272,26 @@ class CoreCase(unittest.TestCase):
         with self.assertRaises(ValueError):
             core.World(config).sweep(["rod.stiffness=1:2:3"])
 
-    def test_key_descriptions_are_the_cores(self) -> None:
+    def test_key_descriptions_are_the_exported_ones(self) -> None:
         types = core.body_types()
-        rod = {key["name"]: key for key in types["rod"]}
+        # The one description: the document describe_body_types wrote beside the module, as json reads it.
+        with open(os.path.join(os.path.dirname(core.__file__), "body_types.json"), encoding="utf-8") as f:
+            self.assertEqual(types, json.load(f))
+        self.assertEqual(types, description.load())
+        rod = {key["name"]: key for key in types["types"]["rod"]["keys"]}
         self.assertEqual(rod["k"]["unit"], "N/m")
         self.assertEqual(rod["k"]["default"], 1000.0)
         self.assertEqual(rod["theta0"]["state_field"], "theta")
-        self.assertEqual(rod["x0"]["change"], "restart")
+        self.assertTrue(rod["x0"]["restarts"])
         self.assertEqual(rod["integrator"]["choices"], ["euler_cromer", "velocity_verlet", "rk4"])
-        # Every default is what a body of that type without keys runs with.
-        for kind, keys in types.items():
-            saved = yaml.safe_load(core.World({"bodies": {"b": {"type": kind}}}).config())["bodies"]["b"]
-            for key in keys:
-                if key["default"] is not None:
+        # Every default is what a body of that type without keys runs with, and its state fields a run's.
+        for kind, described in types["types"].items():
+            world = core.World({"bodies": {"b": {"type": kind}}})
+            saved = yaml.safe_load(world.config())["bodies"]["b"]
+            for key in described["keys"]:
+                if key["written"]:
                     self.assertEqual(saved[key["name"]], key["default"], f"{kind}.{key['name']}")
+            self.assertEqual([field["name"] for field in described["state_fields"]], list(world.state("b")))
 
 
 def main() -> None:
