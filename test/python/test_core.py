@@ -6,6 +6,7 @@
 - a refused config is a ValueError whose message is the line simulate --check prints after "simulate: "
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
+- a run with a bag writes the bag simulate --bag writes, byte for byte, and it reads back into the run's arrays;
 - core.body_types() is the exported description (body_types.json) as json reads it.
 Usage: test_core.py SIMULATE_EXE   (with the package's devel or install space sourced)"""
 import argparse
@@ -66,6 +67,16 @@ def draw_config(rng: random.Random) -> Tuple[Dict[str, Any], float]:
         except ValueError:
             continue
         return config, rng.choice([rate, rate / 10, 50.0])
+
+
+def bag_messages(path: str) -> List[Tuple[str, int, str, str, bytes, Dict[str, str]]]:
+    """A bag's messages in their order, each as it is stored: topic, time (ns), type, md5sum, the serialised
+    message and its connection's header."""
+    import rosbag  # only here: the other tests need no ROS
+
+    with rosbag.Bag(path) as bag:
+        return [(topic, stamp.to_nsec(), raw[0], raw[2], bytes(raw[1]), dict(header))
+                for topic, raw, stamp, header in bag.read_messages(raw=True, return_connection_header=True)]
 
 
 def bits(array: numpy.ndarray) -> Any:
@@ -292,6 +303,39 @@ class CoreCase(unittest.TestCase):
                 if key["written"]:
                     self.assertEqual(saved[key["name"]], key["default"], f"{kind}.{key['name']}")
             self.assertEqual([field["name"] for field in described["state_fields"]], list(world.state("b")))
+
+    def test_a_bag_from_python_is_simulates(self) -> None:
+        for name, duration, sample_rate in [("demo.yaml", "3", None), ("rod.yaml", "2.5", 100.0)]:
+            path = os.path.join(CONFIG_DIR, name)
+            with open(path) as f:
+                config = yaml.safe_load(f)
+            theirs = os.path.join(self.tmp.name, name + ".simulate.bag")
+            args = ["--duration", duration, "--bag", theirs]
+            if sample_rate:
+                args += ["--sample-rate", repr(sample_rate)]
+            done, folder = self.simulate_run(config, *args)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            mine = os.path.join(self.tmp.name, name + ".core.bag")
+            run = core.World(pathlib.Path(path)).run(float(duration), sample_rate=sample_rate,
+                                                     bag=pathlib.Path(mine))
+            self.assertEqual(bag_messages(mine), bag_messages(theirs), name)
+            with open(mine, "rb") as a, open(theirs, "rb") as b:
+                self.assertTrue(a.read() == b.read(), f"{name}: the two bag files, byte for byte")
+            self.assert_same_run(run, runs.read_bag(mine), f"{name}'s bag read back")
+            self.assert_same_run(run, runs.read_run(folder), f"{name}'s CSV")
+        # Only a World as loaded: a bag begins with its config at t = 0.
+        world = core.World({"bodies": {"rod": {"type": "rod"}}})
+        world.step(3)
+        with self.assertRaises(ValueError) as refused:
+            world.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
+        self.assertEqual(str(refused.exception), "a bag is the run of a World as loaded (t = 0, nothing "
+                         "changed), as simulate --bag writes it; this one is at t = 0.003 after 0 change(s)")
+        self.assertEqual(world.steps, 3)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "late.bag.active")))
+        changed = core.World({"bodies": {"rod": {"type": "rod"}}})
+        changed.set("rod", k=2000)
+        with self.assertRaises(ValueError):
+            changed.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
 
 
 def main() -> None:
