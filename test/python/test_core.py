@@ -7,9 +7,11 @@
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
 - a run with a bag writes the bag simulate --bag writes, byte for byte, and it reads back into the run's arrays;
-- core.body_types() is the exported description (body_types.json) as json reads it.
+- core.body_types() is the exported description (body_types.json) as json reads it;
+- the typing stub core.pyi names what the module has (mypy's stubtest).
 Usage: test_core.py SIMULATE_EXE   (with the package's devel or install space sourced)"""
 import argparse
+import ast
 import json
 import math
 import os
@@ -26,7 +28,7 @@ from typing import Any, Dict, List, Set, Tuple
 import numpy
 import yaml
 
-import rigid_body_sim.core as core  # a compiled module: mypy knows no more of it
+import rigid_body_sim.core as core  # a compiled module; mypy reads its stub, rigid_body_sim/core.pyi
 from rigid_body_sim import description, runs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -336,6 +338,23 @@ class CoreCase(unittest.TestCase):
         changed.set("rod", k=2000)
         with self.assertRaises(ValueError):
             changed.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
+
+    def test_the_stub_is_the_modules(self) -> None:
+        stub = os.path.join(os.path.dirname(core.__file__), "core.pyi")
+        with open(stub) as f:
+            tree = ast.parse(f.read())
+        public = {node.name: node for node in tree.body
+                  if isinstance(node, (ast.ClassDef, ast.FunctionDef)) and not node.name.startswith("_")}
+        self.assertEqual(set(public), {name for name in dir(core) if not name.startswith("_")})
+        world = public["World"]
+        assert isinstance(world, ast.ClassDef)
+        members = {node.name for node in world.body if isinstance(node, ast.FunctionDef)}
+        self.assertEqual(members - {"__init__"}, {name for name in dir(core.World) if not name.startswith("_")})
+        # mypy's stubtest: every name, property and function of the stub against the module as it runs.
+        done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "--concise", "rigid_body_sim.core"],
+                              capture_output=True, text=True, timeout=100,
+                              env=dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(stub))))
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
 
 
 def main() -> None:
