@@ -7,6 +7,7 @@
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
 - a run with a bag writes the bag simulate --bag writes, byte for byte, and it reads back into the run's arrays;
+  a run without one loads no ROS library;
 - core.body_types() is the exported description (body_types.json) as json reads it;
 - the typing stub core.pyi names what the module has (mypy's stubtest).
 Usage: test_core.py SIMULATE_EXE   (with the package's devel or install space sourced)"""
@@ -338,6 +339,21 @@ class CoreCase(unittest.TestCase):
         changed.set("rod", k=2000)
         with self.assertRaises(ValueError):
             changed.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
+
+    def test_a_world_without_a_bag_loads_no_ros_library(self) -> None:
+        program = ("import sys\nfrom rigid_body_sim import core\n"
+                   "core.World({'bodies': {'rod': {'type': 'rod'}}}).run(1.0)\n"
+                   "with open('/proc/self/maps') as f: maps = f.read()\n"
+                   "core.World({'bodies': {'rod': {'type': 'rod'}}}).run(1.0, bag=sys.argv[1])\n"
+                   "with open('/proc/self/maps') as f: print('libroscpp' in maps, 'librosbag' in maps, "
+                   "'librosbag' in f.read())\n")
+        done = subprocess.run([sys.executable, "-c", program, os.path.join(self.tmp.name, "rod.bag")],
+                              capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.split(), ["False", "False", "True"], "roscpp, rosbag before; rosbag after")
+        with self.assertRaises(RuntimeError) as failed:
+            core.World({"bodies": {"rod": {"type": "rod"}}}).run(1.0, bag=os.path.join(self.tmp.name, "no", "x.bag"))
+        self.assertIn(os.path.join(self.tmp.name, "no", "x.bag.active"), str(failed.exception))
 
     def test_the_stub_is_the_modules(self) -> None:
         stub = os.path.join(os.path.dirname(core.__file__), "core.pyi")
