@@ -12,7 +12,7 @@ import os
 import sys
 import time
 
-import rigid_body_sim.core as core  # a compiled module: mypy knows no more of it
+import rigid_body_sim.core as core  # a compiled module; mypy reads its stub, rigid_body_sim/core.pyi
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "test", "data"))

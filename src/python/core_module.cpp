@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -20,6 +21,7 @@
 #include <variant>
 #include <vector>
 
+#include "rigid_body_sim/core/description.h"
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/io/config_loader.h"
@@ -115,53 +117,19 @@ py::dict stateDict(const Body& body) {
   return state;
 }
 
-// A key of a body type as Python reads it: its name, unit, meaning, what a change does, its default, what it
-// allows (a number's range, a text's choices or rule).
-template <class Config>
-py::dict describeKey(const BodyKey<Config>& key) {
-  py::dict out;
-  const Config defaults{};
-  out["name"] = key.name;
-  out["unit"] = key.unit;
-  out["meaning"] = key.meaning;
-  out["change"] = key.change == KeyChange::Restart ? "restart" : "apply";
-  out["allowed"] = key.allowed();
-  if (key.isNumber()) {
-    out["default"] = key.number(defaults);
-    out["min"] = key.range.min;
-    out["max"] = key.range.max;
-    out["min_open"] = key.range.min_open;
-    out["max_open"] = key.range.max_open;
-  } else {
-    out["default"] = key.written() ? py::object(py::str(key.text(defaults))) : py::object(py::none());
-    out["choices"] = key.choices ? py::cast(key.choices()) : py::object(py::none());
-  }
-  out["state_field"] = key.state_field ? py::object(py::str(key.state_field)) : py::object(py::none());
-  return out;
-}
+// The one exported description of the body types (core/description.h), the document describe_body_types
+// writes into body_types.json, parsed by Python's json: the same dicts and lists json.load gives of the file.
+py::object bodyTypes() { return py::module::import("json").attr("loads")(bodyTypesJson()); }
 
-// Calls f(BodyType<Config>) for every alternative of BodyConfig::config: every body type, in the variant's
-// order.
-template <class F, std::size_t... I>
-void forEachBodyType(F&& f, std::index_sequence<I...>) {
-  using Configs = decltype(BodyConfig::config);
-  (f(bodyType<std::variant_alternative_t<I, Configs>>()), ...);
-}
-template <class F>
-void forEachBodyType(F&& f) {
-  forEachBodyType(std::forward<F>(f),
-                  std::make_index_sequence<std::variant_size_v<decltype(BodyConfig::config)>>());
-}
-
-// {type: [key descriptions]} of every body type.
-py::dict describeBodyTypes() {
-  py::dict types;
-  forEachBodyType([&](const auto& type) {
-    py::list keys;
-    for (const auto& key : type.keys) keys.append(describeKey(key));
-    types[type.type] = keys;
-  });
-  return types;
+// The bag writer of `simulate --bag` (ros/bag_recorder.h), from rigid_body_sim._bag: that module links the
+// ros layer, this one does not, so that a World without a bag loads no ROS library (simulate hands a run with
+// --bag over to simulate_ros the same way).
+SinkOpener bagOpener() {
+  static const char* const kName = "rigid_body_sim.SinkOpener";
+  const py::object capsule = py::module::import("rigid_body_sim._bag").attr("opener")();
+  void* const opener = PyCapsule_GetPointer(capsule.ptr(), kName);
+  if (!opener) throw py::error_already_set();
+  return *static_cast<const SinkOpener*>(opener);
 }
 
 // The CSV text of a sweep as arrays by column: numbers as float64 (an empty cell, a roller that never went
@@ -225,7 +193,8 @@ class TempDir {
 class PyWorld {
  public:
   // The loader's refusal (the line `simulate --check` prints after "simulate: ") is a ValueError.
-  explicit PyWorld(const py::object& config) : session_(load(config), node_interface::ownNames(), 1) {}
+  explicit PyWorld(const py::object& config)
+      : loaded_(load(config)), session_(loaded_, node_interface::ownNames(), 1) {}
 
   double t() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -258,8 +227,15 @@ class PyWorld {
 
   // Samples every body at t now and every rate / sample_rate steps for `duration` s, as `simulate` samples
   // from t = 0: options checked as its options (one line), the last sample at the last multiple of
-  // 1 / sample_rate not after the duration.
-  py::dict run(double duration, std::optional<double> sample_rate) {
+  // 1 / sample_rate not after the duration. With a bag path, writes at every sample what `simulate --bag`
+  // writes (through the same BagRecorder), from a World as loaded: its config, then its states from t = 0.
+  py::dict run(double duration, std::optional<double> sample_rate, const py::object& bag) {
+    std::string bag_path;
+    SinkOpener open_bag;
+    if (!bag.is_none()) {
+      bag_path = py::module::import("os").attr("fspath")(bag).cast<std::string>();
+      open_bag = bagOpener();  // imported with the GIL held
+    }
     std::vector<BodySamples> bodies;
     std::vector<double> times;
     {
@@ -274,16 +250,27 @@ class PyWorld {
       } catch (const ConfigError& error) {
         throw py::value_error(error.what());
       }
+      const World& world = session_.world();
+      if (!bag_path.empty() && (world.stepCount() != 0 || session_.commandsApplied() != 0)) {
+        throw py::value_error(
+            "a bag is the run of a World as loaded (t = 0, nothing changed), as simulate "
+            "--bag writes it; this one is at t = " +
+            formatNumber(world.time()) + " after " + std::to_string(session_.commandsApplied()) +
+            " change(s)");
+      }
+      // Opened before the first sample, with the config as loaded: simulate's RunFiles opens it so.
+      const std::unique_ptr<SampleSink> sink = openSink(bag_path, loaded_, world.bodies(), open_bag);
       const std::int64_t every = stepsPerSample(options, config);
       const std::int64_t last = lastSample(config, options);
-      const World& world = session_.world();
       bodies.resize(world.bodies().size());
       times.reserve(static_cast<std::size_t>(last + 1));
       for (std::int64_t j = 0; j <= last; ++j) {
         if (j > 0) session_.advance(every);
         times.push_back(world.time());
         for (std::size_t b = 0; b < bodies.size(); ++b) sample(world.bodies()[b], bodies[b]);
+        if (sink) sink->write(world);
       }
+      if (sink) sink->commit();
     }
     py::dict out;
     for (const auto& body : bodies) {
@@ -433,6 +420,7 @@ class PyWorld {
     }
   }
 
+  const WorldConfig loaded_;  // the config as loaded: the one a bag starts with
   Session session_;
   mutable std::mutex mutex_;  // a world used from several Python threads: one call at a time
 };
@@ -456,8 +444,10 @@ PYBIND11_MODULE(core, m) {
       .def("step", &PyWorld::step, py::arg("n") = 1, "take n steps")
       .def("state", &PyWorld::state, py::arg("name"), "{field: value} of a body now (the CSV's columns)")
       .def("run", &PyWorld::run, py::arg("duration") = 10.0, py::arg("sample_rate") = py::none(),
+           py::arg("bag") = py::none(),
            "step `duration` s, sampling every body now and at every 1 / sample_rate (None: publish_rate): "
-           "{body: {field: numpy array}}, simulate's CSV columns bit for bit")
+           "{body: {field: numpy array}}, simulate's CSV columns bit for bit; with `bag` (a path), from a "
+           "World as loaded, also the bag simulate --bag writes")
       .def("set", &PyWorld::set, py::arg("name"), "set keys of a body, as a reconfigure does")
       .def("set_state", &PyWorld::setState, py::arg("name"), "move a body now (settable state fields)")
       .def("spawn", &PyWorld::spawn, py::arg("name"), py::arg("body"), "a new body (YAML map text or dict)")
@@ -469,6 +459,7 @@ PYBIND11_MODULE(core, m) {
            "simulate --sweep BODY.KEY=START:STOP:N ... on this world's config, on `jobs` threads (0: every "
            "core): {column: numpy array}, sweep.csv's columns");
 
-  m.def("body_types", &rigid_body_sim::describeBodyTypes,
-        "{type: [its keys: name, unit, meaning, change, default, allowed, ...]}, from the core's key tables");
+  m.def("body_types", &rigid_body_sim::bodyTypes,
+        "the body types' description, the document of body_types.json as json.load reads it: {\"types\": "
+        "{type: {\"keys\": [...], \"state_fields\": [...], ...}}, \"world\": [...], \"max_bodies\": n}");
 }

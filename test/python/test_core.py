@@ -6,9 +6,15 @@
 - a refused config is a ValueError whose message is the line simulate --check prints after "simulate: "
   (every row of test/bad_input/configs.yaml), a refused change one with the node's line, the world unchanged;
 - a sweep equals simulate --sweep's sweep.csv, and another Python thread runs while it does (the GIL released);
-- the keys' descriptions are the core's (the README's key tables check them against the docs).
+- a run with a bag writes the bag simulate --bag writes, byte for byte, and it reads back into the run's arrays;
+  a run without one loads no ROS library;
+- core.body_types() is the exported description (body_types.json) as json reads it;
+- the typing stub core.pyi names what the module has (mypy's stubtest).
 Usage: test_core.py SIMULATE_EXE   (with the package's devel or install space sourced)"""
 import argparse
+import ast
+import json
+import math
 import os
 import pathlib
 import random
@@ -23,8 +29,8 @@ from typing import Any, Dict, List, Set, Tuple
 import numpy
 import yaml
 
-import rigid_body_sim.core as core  # a compiled module: mypy knows no more of it
-from rigid_body_sim import runs
+import rigid_body_sim.core as core  # a compiled module; mypy reads its stub, rigid_body_sim/core.pyi
+from rigid_body_sim import description, runs
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BAD_INPUT = os.path.join(HERE, "..", "bad_input", "configs.yaml")
@@ -34,35 +40,46 @@ Run = Dict[str, Dict[str, numpy.ndarray]]
 
 
 def draw_body(rng: random.Random, keys: List[Dict[str, Any]]) -> Dict[str, Any]:
-    """A body of a type with each key left out or drawn near its default (within its range), or among its
-    choices: most draws are valid, and World says which are not."""
+    """A body of a type with each key a config file writes left out or drawn near its default (within its
+    range), or among its choices: most draws are valid, and World says which are not."""
     body: Dict[str, Any] = {}
     for key in keys:
-        if rng.random() < 0.5 or key["default"] is None:
+        if rng.random() < 0.5 or not key["written"]:
             continue
-        if key.get("choices"):
-            body[key["name"]] = rng.choice(key["choices"])
-        elif "min" in key:
-            default = key["default"]
-            value = default * rng.uniform(0.5, 1.5) + rng.uniform(-1.0, 1.0)
-            body[key["name"]] = min(max(value, key["min"]), key["max"])
+        if key["kind"] == "text":
+            if key["choices"]:
+                body[key["name"]] = rng.choice(key["choices"])
+        else:
+            low, high = key["range"]["min"], key["range"]["max"]  # None: unbounded
+            value = key["default"] * rng.uniform(0.5, 1.5) + rng.uniform(-1.0, 1.0)
+            body[key["name"]] = min(max(value, -math.inf if low is None else low), math.inf if high is None else high)
     return body
 
 
 def draw_config(rng: random.Random) -> Tuple[Dict[str, Any], float]:
     """A valid config of one to three bodies of random types, and a sample rate that divides its rate."""
-    types = core.body_types()
+    types = core.body_types()["types"]
     while True:
         rate = rng.choice([500.0, 1000.0, 2000.0])
         config: Dict[str, Any] = {"rate": rate, "publish_rate": 50.0, "race": rng.random() < 0.2, "bodies": {}}
         for i in range(rng.randint(1, 3)):
             kind = rng.choice(sorted(types))
-            config["bodies"][f"b{i}"] = dict(type=kind, **draw_body(rng, types[kind]))
+            config["bodies"][f"b{i}"] = dict(type=kind, **draw_body(rng, types[kind]["keys"]))
         try:
             core.World(config)
         except ValueError:
             continue
         return config, rng.choice([rate, rate / 10, 50.0])
+
+
+def bag_messages(path: str) -> List[Tuple[str, int, str, str, bytes, Dict[str, str]]]:
+    """A bag's messages in their order, each as it is stored: topic, time (ns), type, md5sum, the serialised
+    message and its connection's header."""
+    import rosbag  # only here: the other tests need no ROS
+
+    with rosbag.Bag(path) as bag:
+        return [(topic, stamp.to_nsec(), raw[0], raw[2], bytes(raw[1]), dict(header))
+                for topic, raw, stamp, header in bag.read_messages(raw=True, return_connection_header=True)]
 
 
 def bits(array: numpy.ndarray) -> Any:
@@ -109,7 +126,7 @@ class CoreCase(unittest.TestCase):
             world = core.World(config)
             self.assert_same_run(world.run(duration, sample_rate=sample_rate), runs.read_run(folder), what)
             self.assertEqual(world.t, duration, what)
-        self.assertEqual(kinds, set(core.body_types()), "every body type drawn")
+        self.assertEqual(kinds, set(core.body_types()["types"]), "every body type drawn")
 
     def test_text_rod_and_demo_for_ten_seconds(self) -> None:
         for name in ["rod.yaml", "demo.yaml"]:
@@ -269,20 +286,91 @@ class CoreCase(unittest.TestCase):
         with self.assertRaises(ValueError):
             core.World(config).sweep(["rod.stiffness=1:2:3"])
 
-    def test_key_descriptions_are_the_cores(self) -> None:
+    def test_key_descriptions_are_the_exported_ones(self) -> None:
         types = core.body_types()
-        rod = {key["name"]: key for key in types["rod"]}
+        # The one description: the document describe_body_types wrote beside the module, as json reads it.
+        with open(os.path.join(os.path.dirname(core.__file__), "body_types.json"), encoding="utf-8") as f:
+            self.assertEqual(types, json.load(f))
+        self.assertEqual(types, description.load())
+        rod = {key["name"]: key for key in types["types"]["rod"]["keys"]}
         self.assertEqual(rod["k"]["unit"], "N/m")
         self.assertEqual(rod["k"]["default"], 1000.0)
         self.assertEqual(rod["theta0"]["state_field"], "theta")
-        self.assertEqual(rod["x0"]["change"], "restart")
+        self.assertTrue(rod["x0"]["restarts"])
         self.assertEqual(rod["integrator"]["choices"], ["euler_cromer", "velocity_verlet", "rk4"])
-        # Every default is what a body of that type without keys runs with.
-        for kind, keys in types.items():
-            saved = yaml.safe_load(core.World({"bodies": {"b": {"type": kind}}}).config())["bodies"]["b"]
-            for key in keys:
-                if key["default"] is not None:
+        # Every default is what a body of that type without keys runs with, and its state fields a run's.
+        for kind, described in types["types"].items():
+            world = core.World({"bodies": {"b": {"type": kind}}})
+            saved = yaml.safe_load(world.config())["bodies"]["b"]
+            for key in described["keys"]:
+                if key["written"]:
                     self.assertEqual(saved[key["name"]], key["default"], f"{kind}.{key['name']}")
+            self.assertEqual([field["name"] for field in described["state_fields"]], list(world.state("b")))
+
+    def test_a_bag_from_python_is_simulates(self) -> None:
+        for name, duration, sample_rate in [("demo.yaml", "3", None), ("rod.yaml", "2.5", 100.0)]:
+            path = os.path.join(CONFIG_DIR, name)
+            with open(path) as f:
+                config = yaml.safe_load(f)
+            theirs = os.path.join(self.tmp.name, name + ".simulate.bag")
+            args = ["--duration", duration, "--bag", theirs]
+            if sample_rate:
+                args += ["--sample-rate", repr(sample_rate)]
+            done, folder = self.simulate_run(config, *args)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            mine = os.path.join(self.tmp.name, name + ".core.bag")
+            run = core.World(pathlib.Path(path)).run(float(duration), sample_rate=sample_rate,
+                                                     bag=pathlib.Path(mine))
+            self.assertEqual(bag_messages(mine), bag_messages(theirs), name)
+            with open(mine, "rb") as a, open(theirs, "rb") as b:
+                self.assertTrue(a.read() == b.read(), f"{name}: the two bag files, byte for byte")
+            self.assert_same_run(run, runs.read_bag(mine), f"{name}'s bag read back")
+            self.assert_same_run(run, runs.read_run(folder), f"{name}'s CSV")
+        # Only a World as loaded: a bag begins with its config at t = 0.
+        world = core.World({"bodies": {"rod": {"type": "rod"}}})
+        world.step(3)
+        with self.assertRaises(ValueError) as refused:
+            world.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
+        self.assertEqual(str(refused.exception), "a bag is the run of a World as loaded (t = 0, nothing "
+                         "changed), as simulate --bag writes it; this one is at t = 0.003 after 0 change(s)")
+        self.assertEqual(world.steps, 3)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "late.bag.active")))
+        changed = core.World({"bodies": {"rod": {"type": "rod"}}})
+        changed.set("rod", k=2000)
+        with self.assertRaises(ValueError):
+            changed.run(1.0, bag=os.path.join(self.tmp.name, "late.bag"))
+
+    def test_a_world_without_a_bag_loads_no_ros_library(self) -> None:
+        program = ("import sys\nfrom rigid_body_sim import core\n"
+                   "core.World({'bodies': {'rod': {'type': 'rod'}}}).run(1.0)\n"
+                   "with open('/proc/self/maps') as f: maps = f.read()\n"
+                   "core.World({'bodies': {'rod': {'type': 'rod'}}}).run(1.0, bag=sys.argv[1])\n"
+                   "with open('/proc/self/maps') as f: print('libroscpp' in maps, 'librosbag' in maps, "
+                   "'librosbag' in f.read())\n")
+        done = subprocess.run([sys.executable, "-c", program, os.path.join(self.tmp.name, "rod.bag")],
+                              capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.split(), ["False", "False", "True"], "roscpp, rosbag before; rosbag after")
+        with self.assertRaises(RuntimeError) as failed:
+            core.World({"bodies": {"rod": {"type": "rod"}}}).run(1.0, bag=os.path.join(self.tmp.name, "no", "x.bag"))
+        self.assertIn(os.path.join(self.tmp.name, "no", "x.bag.active"), str(failed.exception))
+
+    def test_the_stub_is_the_modules(self) -> None:
+        stub = os.path.join(os.path.dirname(core.__file__), "core.pyi")
+        with open(stub) as f:
+            tree = ast.parse(f.read())
+        public = {node.name: node for node in tree.body
+                  if isinstance(node, (ast.ClassDef, ast.FunctionDef)) and not node.name.startswith("_")}
+        self.assertEqual(set(public), {name for name in dir(core) if not name.startswith("_")})
+        world = public["World"]
+        assert isinstance(world, ast.ClassDef)
+        members = {node.name for node in world.body if isinstance(node, ast.FunctionDef)}
+        self.assertEqual(members - {"__init__"}, {name for name in dir(core.World) if not name.startswith("_")})
+        # mypy's stubtest: every name, property and function of the stub against the module as it runs.
+        done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "--concise", "rigid_body_sim.core"],
+                              capture_output=True, text=True, timeout=100,
+                              env=dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(stub))))
+        self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
 
 
 def main() -> None:
