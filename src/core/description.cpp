@@ -1,5 +1,6 @@
 #include "rigid_body_sim/core/description.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -55,6 +56,31 @@ std::string rangeOf(const Range& range) {
                  {"max_open", range.max_open ? "true" : "false"}});
 }
 
+// What each choice of a text key sets besides itself, by choice: the number keys a choice gives the same
+// value whatever they held before (a roller's shape sets its inertia_factor; custom keeps the one given).
+template <class Config>
+std::string choiceSets(const BodyKey<Config>& key) {
+  if (!key.choices) return "{}";
+  Config moved;  // every number key away from its default
+  for (const auto& other : bodyType<Config>().keys) {
+    if (other.isNumber()) other.field(moved) = other.number(moved) + 1.0;
+  }
+  std::vector<std::pair<std::string, std::string>> sets;
+  for (const auto& choice : key.choices()) {
+    Config from_defaults, from_moved = moved;
+    setKeyText("description", key, choice, from_defaults);
+    setKeyText("description", key, choice, from_moved);
+    std::vector<std::pair<std::string, std::string>> values;
+    for (const auto& other : bodyType<Config>().keys) {
+      if (!other.isNumber() || other.number(from_defaults) != other.number(from_moved)) continue;
+      if (other.number(from_moved) != other.number(moved))
+        values.emplace_back(other.name, number(other.number(from_moved)));
+    }
+    sets.emplace_back(choice, object(values));
+  }
+  return object(sets);
+}
+
 template <class Config>
 std::string keyOf(const BodyKey<Config>& key) {
   const Config defaults;
@@ -79,6 +105,7 @@ std::string keyOf(const BodyKey<Config>& key) {
       for (const auto& choice : key.choices()) choices.push_back(quoted(choice));
     }
     members.emplace_back("choices", list(choices));
+    members.emplace_back("sets", choiceSets(key));
     members.emplace_back("counts", key.counts ? "true" : "false");
   }
   return object(members);
@@ -99,7 +126,9 @@ std::string typeOf() {
                  {"state_fields", list(fields)},
                  {"fixed_frame_suffix", quoted(Type::kFixedFrameSuffix)},
                  {"races", Type::kRaces ? "true" : "false"},
-                 {"sweep_column", quoted(Type::kSweepColumn.name)}});
+                 {"sweep_column", quoted(Type::kSweepColumn.name)},
+                 {"sweep_label", quoted(Type::kSweepColumn.label)},
+                 {"sweep_unit", quoted(Type::kSweepColumn.unit)}});
 }
 
 // A world key: its JSON description and its row in the docs' table.
@@ -211,7 +240,10 @@ std::string bodyTypesJson() {
   for (const auto& key : worldKeyDescriptions()) world_keys.push_back(key.json());
   return object({{"types", object(types)},
                  {"world", list(world_keys)},
-                 {"max_bodies", std::to_string(kMaxBodies)}}) +
+                 {"max_bodies", std::to_string(kMaxBodies)},
+                 {"energy_drift", object({{"name", quoted(kEnergyDriftColumn)},
+                                          {"label", quoted("energy drift")},
+                                          {"unit", quoted("J")}})}}) +
          "\n";
 }
 

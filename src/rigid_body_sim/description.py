@@ -1,7 +1,8 @@
-"""The body types as the core describes them: the one exported description (body_types.json, which the build
-writes beside this package's modules in the devel and the install space from the C++ key tables). Every key's
-name, kind, unit, range or choices, default, meaning, level and whether a lesson page may change it; each
-type's state fields; the world's keys. The .cfg files, the scripts and the web page read it here."""
+"""The body types as the core describes them: the one exported description (body_types.json, which the build writes
+beside this package's modules in the devel and the install space from the C++ key tables). Every key's name, kind,
+unit, range or choices (and what each choice sets: a roller's shape its inertia_factor), default, meaning, level and
+whether a lesson page may change it; each type's state fields and its sweep column (name, label, unit); the world's
+keys and the sweeps' energy_drift column. The .cfg files, the scripts and the web page read it here."""
 from __future__ import annotations
 
 import functools

@@ -29,13 +29,12 @@ DEFAULTS: Dict[str, Dict[str, Any]] = {name: description.defaults(name) for name
 KEY_UNITS: Dict[str, Dict[str, str]] = {name: description.units(name) for name in description.body_types()}
 # A sweep's row gives every body's final state and then what the run adds about it, starting with this
 # column (docs/sweeps.md).
-FIRST_SWEEP_RESULT = "energy_drift"
+FIRST_SWEEP_RESULT = description.load()["energy_drift"]["name"]
 # Words and units for the columns a sweep adds, for axis labels (a column not named here is shown by its
-# own name, without a unit).
-SWEEP_RESULT_LABELS: Dict[str, Tuple[str, str]] = {"energy_drift": ("energy drift", "J"),
-                                                   "bounces": ("bounces", ""),
-                                                   "slip_to_roll": ("slip-to-roll time", "s"),
-                                                   "stops_at": ("time it came to rest", "s")}
+# own name, without a unit): the description's.
+SWEEP_RESULT_LABELS: Dict[str, Tuple[str, str]] = {
+    FIRST_SWEEP_RESULT: (description.load()["energy_drift"]["label"], description.load()["energy_drift"]["unit"]),
+    **{t["sweep_column"]: (t["sweep_label"], t["sweep_unit"]) for t in description.body_types().values()}}
 
 
 # --- configs ------------------------------------------------------------------------------------------
@@ -100,10 +99,11 @@ class SlopeSpec(Body):
 @dataclass(frozen=True)
 class RollerSpec(SlopeSpec):
     TYPE: ClassVar[str] = "roller"
-    # c = I / (M R^2) of the named shapes: the description names the shapes (the choices of `shape`) but not
-    # their c (test_sim_tools holds these to simulate's).
-    INERTIA_FACTORS: ClassVar[Dict[str, float]] = {"sphere": 2.0 / 5.0, "cylinder": 1.0 / 2.0, "ring": 1.0,
-                                                   "spherical_shell": 2.0 / 3.0}
+    # c = I / (M R^2) of the named shapes: what each choice of `shape` sets, in the description.
+    INERTIA_FACTORS: ClassVar[Dict[str, float]] = {
+        shape: float(sets["inertia_factor"])
+        for shape, sets in (description.key("roller", "shape") or {"sets": {}})["sets"].items()
+        if "inertia_factor" in sets}
     shape: str  # a named shape, or "custom"
     c: float  # I / (M R^2)
     radius: float

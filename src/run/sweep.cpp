@@ -98,7 +98,7 @@ SweepColumn sweepColumnOf(const BodyConfig& body) {
 // roller's first slip-to-roll instant, a block's first stop), each prefixed with "<body>.".
 std::string bodyColumns(const BodyConfig& body) {
   std::vector<std::string> fields = stateFieldNames(body);
-  fields.push_back("energy_drift");
+  fields.push_back(kEnergyDriftColumn);
   fields.push_back(sweepColumnOf(body).name);
   std::string columns;
   for (const auto& field : fields) columns += "," + body.name + "." + field;

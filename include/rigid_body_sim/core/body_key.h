@@ -135,6 +135,11 @@ struct SweepColumn {
   enum class Of { Bounces, FirstGrip };
   const char* name;
   Of of;
+  const char* label;  // for a plot's axis: "slip-to-roll time"
+  const char* unit;   // "s", "" for a count
 };
+
+// The column a sweep writes for every body: its energy at the end less at the start.
+inline constexpr const char* kEnergyDriftColumn = "energy_drift";
 
 }  // namespace rigid_body_sim

@@ -1,8 +1,9 @@
-// The one exported description: every body type's keys (name, kind, unit, range or choices, default,
-// meaning, runtime level, whether a lesson page may change it), its state fields and frames, and the world's
-// keys, as one JSON document. The build writes it (describe_body_types) into the package's Python package,
-// where the .cfg files, the Python package and the web page read it; `make figures` writes the docs' key
-// tables from it (describe_body_types --docs).
+// The one exported description: every body type's keys (name, kind, unit, range or choices and what each
+// choice sets, default, meaning, runtime level, whether a lesson page may change it), its state fields,
+// frames and sweep column (name, label, unit), the world's keys and the sweeps' energy_drift column, as one
+// JSON document. The build writes it (describe_body_types) into the package's Python package, where the .cfg
+// files, the Python package and the web page read it; `make figures` writes the docs' key tables from it
+// (describe_body_types --docs).
 #pragma once
 
 #include <string>

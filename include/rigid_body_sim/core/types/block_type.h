@@ -29,7 +29,8 @@ struct BlockType {
   static constexpr const char* kLostGripText = "started sliding";
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"stops_at", SweepColumn::Of::FirstGrip};
+  static constexpr SweepColumn kSweepColumn{"stops_at", SweepColumn::Of::FirstGrip, "time it came to rest",
+                                            "s"};
   // friction and normal: the forces on the block along the slope's +x and +y.
   static constexpr std::array kStateFields{
       StateFieldDef<Block>{"x", "m", &BlockMotion::x},

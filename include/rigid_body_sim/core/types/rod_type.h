@@ -25,7 +25,7 @@ struct RodType {
   static constexpr const char* kFixedFrameSuffix = "_floor";
   static constexpr bool kRaces = false;
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces};
+  static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces, "bounces", ""};
   static constexpr std::array kStateFields{
       StateFieldDef<Rod>{"x", "m", &RodMotion::x},
       StateFieldDef<Rod>{"y", "m", &RodMotion::y},

@@ -29,7 +29,8 @@ struct RollerType {
   static constexpr const char* kLostGripText = "started slipping";
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"slip_to_roll", SweepColumn::Of::FirstGrip};
+  static constexpr SweepColumn kSweepColumn{"slip_to_roll", SweepColumn::Of::FirstGrip, "slip-to-roll time",
+                                            "s"};
   // friction and normal: the forces on the body along the slope's +x and +y.
   static constexpr std::array kStateFields{
       StateFieldDef<Roller>{"x", "m", &RollerMotion::x},
