@@ -29,7 +29,7 @@ def load_text_program() -> Any:
     assert spec is not None and isinstance(spec.loader, importlib.abc.Loader)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    return module.text_program
+    return getattr(module, "text_program")  # getattr: Debian 11's mypy knows no attribute of a module made here
 
 
 text_program = load_text_program()

@@ -30,7 +30,7 @@ import math
 import os
 import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Optional, Set, Tuple
+from typing import Any, Callable, Dict, List, Optional, Protocol, Set, Tuple
 
 import matplotlib
 import numpy as np
@@ -368,13 +368,23 @@ def nothing(*_: Any) -> None:
     pass
 
 
+# Callables as dataclass fields typed by protocols: Debian 11's mypy (0.812) takes a field typed Callable
+# for a method and calls it with the instance.
+class ShadeEnergy(Protocol):
+    def __call__(self, __ax: Any, __d: Any, __p: Any) -> Tuple[str, str]: ...
+
+
+class ZoomEnergy(Protocol):
+    def __call__(self, __ax: Any, __d: Any, __p: Any, __colour: str) -> None: ...
+
+
 @dataclass(frozen=True)
 class TypeLook:
     """How plot_run draws and sums up the bodies of one type."""
     # Shades the energy's axes (ax, columns, spec) and gives (the line's colour, what the shading shows).
-    shade_energy: Callable[..., Tuple[str, str]]
+    shade_energy: ShadeEnergy
     energy_height: int = 1  # the energy axes' share of the figure's height
-    zoom_energy: Callable[..., None] = nothing  # (ax, columns, spec, colour): an inset after the line
+    zoom_energy: ZoomEnergy = nothing  # (ax, columns, spec, colour): an inset after the line
     summary: Optional[Tuple[str, Callable[..., Dict[str, Any]]]] = None  # (its group, its numbers)
 
 
