@@ -482,7 +482,7 @@ class WebView:
         self.send_world()
 
     def on_markers(self, msg: MarkerArray) -> None:
-        """A race's results from the node's boards (a roller's, at its lane's lower end): each finished
+        """A race's results from the node's boards (a racer's, at its lane's lower end): each finished
         racer's place and times, None for one racing (its board is no finish)."""
         finishes: Dict[str, Optional[Dict[str, Any]]] = {}
         for marker in msg.markers:

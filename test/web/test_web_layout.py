@@ -7,7 +7,7 @@ finished), the teacher's page at a phone's 390x844, a laptop's 1366x768, a proje
 - every text, on the page or drawn on a canvas (rbs.texts), is at least MIN_TEXT px (20 from 1600x900 up,
   14 below), lies whole inside its element or canvas and the screen's width, and covers no other text and
   no body;
-- every roller is drawn at least 20 px across and inside its panel, its slope as the configs have it and
+- every body on a slope is drawn at least 20 px across and inside its panel, its slope as the configs have it and
   nearly flat and nearly upright (ANGLES, set from the teacher's page); the scene canvas fills the screen's
   height below the page's top lines (beside the plots on a wide screen);
 - a race's finishers at the same time share a place, "=1st" (part:=above: all three at 1.4325 s);
