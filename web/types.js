@@ -75,6 +75,17 @@ const BODY_TYPES = {
       const v = s.v + a * dt;
       return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, omega: -v / b.radius, mode: "rolling" };
     },
+    // Its state dt after s in s's mode (no event between): rolling, omega = -v / R; slipping, kinetic
+    // friction's torque turns it at -sign(u) mu_d g cos(phi) / (c R).
+    after(b, s, dt) {
+      const a = this.acceleration(b, s);
+      const v = s.v + a * dt;
+      const u = s.v + s.omega * b.radius;
+      const alpha = -Math.sign(u) * b.mu_d * gravity() * slopeCos(b) / (b.inertia_factor * b.radius);
+      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, mode: s.mode,
+               omega: s.mode === "rolling" ? -v / b.radius : s.omega + alpha * dt };
+    },
+    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
     plotValues(b, s, p) {
       p.v = s.v;
       p.minus_omega_r = -s.omega * b.radius;
@@ -133,6 +144,11 @@ const BODY_TYPES = {
       const dt = -s.v / a;
       return { t: s.t + dt, x: s.x + 0.5 * s.v * dt, v: 0, mode: "sticking" };
     },
+    after(b, s, dt) {
+      const a = this.acceleration(b, s);
+      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v: s.v + a * dt, mode: s.mode };
+    },
+    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
     plotValues(b, s, p) { p.v = s.v; },
     motion(series) {
       return { title: "v", unit: "m/s", lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") }],

@@ -19,7 +19,8 @@ const rbs = {
   shared: {}, arrivals: {}, description: null,
 };
 window.rbs = rbs;
-rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
+// The plotted states' t, a reset's earlier ones gone (not the points the page adds at a finish's instant).
+rbs.times = (body) => (points[body] || []).filter((p) => !p.instant).map((p) => p.t);
 rbs.marks = marks; // each body's grip instants (its entry's grip: where friction takes hold), {t, v}
 
 const latest = {}; // body -> its last state
@@ -66,7 +67,9 @@ function finishFrom(type, b, s) {
   const left = b.incline_length - from.x;
   const root = Math.sqrt(Math.max(0, from.v * from.v + 2 * a * left));
   const dt = from.v + root > 0 ? 2 * left / (from.v + root) : NaN; // x + v dt + a dt^2 / 2 = L, stably
-  return isFinite(dt) && dt >= 0 ? { t: from.t + dt, speed: from.v + a * dt } : null;
+  if (!(isFinite(dt) && dt >= 0)) return null;
+  const there = type.after(b, from, dt);
+  return { t: there.t, speed: there.v, state: there };
 }
 function ordinal(n) {
   const tens = n % 100;
@@ -154,10 +157,16 @@ function addState(body, s) {
     const gripped = type.grip ? type.grip(b, before) : null;
     if (gripped && gripped.t <= s.t + 1e-9 && s.mode === gripped.mode) {
       (marks[body] = marks[body] || []).push({ t: gripped.t, v: gripped.v });
+      addInstant(body, type, b, gripped.t, gripped);
     }
     if (s.mode === "finished" && described(b).races) {
       const end = finishFrom(type, b, before);
-      if (end && end.t <= s.t + 1e-9) rbs.arrivals[body] = end;
+      if (end && end.t <= s.t + 1e-9) {
+        rbs.arrivals[body] = { t: end.t, speed: end.speed };
+        // The plots at the line: the state it arrived in, then at once the one it waits in (this one's).
+        addInstant(body, type, b, end.t, end.state);
+        addInstant(body, type, b, end.t, s);
+      }
     }
   }
   if (s.mode !== "finished" && rbs.arrivals[body] && s.t > rbs.arrivals[body].t) delete rbs.arrivals[body]; // a new lap
@@ -166,6 +175,15 @@ function addState(body, s) {
   const list = (points[body] = points[body] || []);
   list.push(p);
   while (list.length && list[0].t < s.t - KEEP) list.shift();
+}
+
+// A plotted point at an instant between two states (a grip, a finish), of the state `at` then.
+function addInstant(body, type, b, t, at) {
+  const energy = at.energy !== undefined ? at.energy : type.kinetic(b, at) + type.potential(b, at);
+  const q = { t, instant: true, energy, kinetic: type.kinetic(b, at) };
+  q.potential = energy - q.kinetic;
+  type.plotValues(b, at, q);
+  (points[body] = points[body] || []).push(q);
 }
 
 function send(request) {
