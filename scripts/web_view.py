@@ -59,10 +59,10 @@ from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
 from rigid_body_sim import description
 from rigid_body_sim.msg import Command
-from rigid_body_sim.sim_tools import KEY_UNITS, WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
+from rigid_body_sim.sim_tools import WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
 from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,
-                                         finish_of_label, frame_message, parse_request, tied_places,
-                                         websocket_text_frame)
+                                         finish_of_label, frame_message, parse_request, part_of_config,
+                                         tied_places, websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
@@ -73,10 +73,13 @@ from visualization_msgs.msg import MarkerArray
 # The state messages' types ("rigid_body_sim/RodState") -> (the body type, the message).
 STATE_TYPES = {message._type: (name, message) for name, message in
                ((name, state_message(name)) for name in description.body_types())}
+# The core's description of the body types (body_types.json), for every page: each key's unit and whether a
+# lesson changes it, each type's state fields and whether it races. The page restates none of it.
+DESCRIPTION = description.load()
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
-WEB_FILES = ("index.html", "view.js", "view.css")
+WEB_FILES = ("index.html", "types.js", "view.js", "view.css")
 SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
 CONTROL_COOKIE = "rbs_control"
 MAX_URL = 8 * 1024  # bytes of a request's target: longer is answered 414
@@ -92,16 +95,15 @@ def state_dict(msg: Any) -> Dict[str, Any]:
 
 
 def lesson_parts(config_dir: str) -> Dict[str, Dict[str, Dict[str, Any]]]:
-    """lesson.launch's parts, {part: {body: its keys, defaults filled in}}, from their configs (race_below.yaml
-    is part below, rod.yaml part rod)."""
+    """lesson.launch's parts, {part: {body: its keys, defaults filled in}}, from their configs (part_config:
+    race_below.yaml is part below)."""
     parts = {}
     for name in sorted(os.listdir(config_dir)) if os.path.isdir(config_dir) else []:
-        found = re.fullmatch(r"race_(\w+)\.yaml|(rod)\.yaml", name)
-        if found:
+        part = part_of_config(name)
+        if part:
             with open(os.path.join(config_dir, name)) as text:
                 config = yaml.safe_load(text) or {}
-            parts[found.group(1) or found.group(2)] = {
-                body: with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
+            parts[part] = {body: with_defaults(keys or {}) for body, keys in (config.get("bodies") or {}).items()}
     return parts
 
 
@@ -124,7 +126,7 @@ class World:
         self.bodies = {name: with_defaults(body or {}) for name, body in (config.get("bodies") or {}).items()}
 
     def kinds(self) -> Dict[str, str]:
-        """{body: rod | roller}: the bodies with a state topic."""
+        """{body: its type}: the bodies with a state topic."""
         return dict(self.topics)
 
     def parts(self) -> List[str]:
@@ -199,7 +201,7 @@ class Page(tornado.websocket.WebSocketHandler):
         rospy.loginfo(f"web view: page {self.number} opened from {self.request.remote_ip}"
                       f"{' with control' if self.control else ''} ({len(self.view.pages)} open)")
         hello = {"type": "hello", "control": self.control, "node": self.view.node, "frame_rate": self.view.frame_rate,
-                 "lesson_keys": LESSON_KEYS, "key_units": KEY_UNITS, "view": self.view.shared}
+                 "description": DESCRIPTION, "view": self.view.shared}
         if self.control:  # where the class finds this page (a QR code of the first: /qr.svg)
             hello["addresses"] = self.view.watch_urls
         self.reply(hello)
@@ -480,7 +482,7 @@ class WebView:
         self.send_world()
 
     def on_markers(self, msg: MarkerArray) -> None:
-        """A race's results from the node's boards (a roller's, at its lane's lower end): each finished
+        """A race's results from the node's boards (a racer's, at its lane's lower end): each finished
         racer's place and times, None for one racing (its board is no finish)."""
         finishes: Dict[str, Optional[Dict[str, Any]]] = {}
         for marker in msg.markers:
@@ -604,7 +606,7 @@ class WebView:
         return tornado.web.Application(
             [(r"/ws", Page, {"view": self}),
              (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
-             (r"/(view\.js|view\.css)", File, {"path": root, "view": self}),
+             (r"/(types\.js|view\.js|view\.css)", File, {"path": root, "view": self}),
              (r"/qr\.svg", QrCode, {"view": self})],
             # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
             websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20,
@@ -668,7 +670,7 @@ def loopback_literal(host: str, port: int) -> bool:
 
 
 class File(tornado.web.StaticFileHandler):
-    """The page's three files, never cached (a rebuilt package serves its new page), with nothing but this
+    """The page's four files, never cached (a rebuilt package serves its new page), with nothing but this
     server allowed to the page (no script, style or connection from anywhere else)."""
 
     def initialize(self, path: str, default_filename: Optional[str] = None,

@@ -7,22 +7,21 @@
 const PLOT_WINDOW = 10; // s of simulated time in the plots, as the rviz panel's
 const KEEP = 12; // s of points kept per body
 const MIN_RADIUS = 10; // px: a body is drawn at least 20 px across (larger than to scale, its panel says so)
-const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spherical_shell: "#6bd06b",
-                  custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d", block: "#ff66cc" };
-// The plots' lines: white, yellow and teal, none a body's colour (the rod's marked end excepted: its own).
+// The plots' lines: white, yellow and teal, none a body's colour (a type's own plot lines excepted).
 const PLOT_COLOURS = { first: "#f2f2f2", second: "#ffe066", third: "#3fd0c0" };
 const TEXT_SCALES = [0.8, 1, 1.25, 1.5, 2];
 const LINE_SHOWN = 10000; // ms a reply's or a node's line stays on the page
 
-const marks = {}; // body -> [{t, v}] slip -> roll instants, at the closed form's
+const marks = {}; // body -> [{t, v}] its grip instants, at the closed form's
 const rbs = {
   frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
   drawn: {}, plotLast: {}, panels: {}, replies: [], sent: [], finishes: {}, texts: [], ended: false,
-  shared: {}, laps: {},
+  shared: {}, arrivals: {}, description: null,
 };
 window.rbs = rbs;
-rbs.times = (body) => (points[body] || []).map((p) => p.t); // the plotted states' t, a reset's earlier ones gone
-rbs.marks = marks; // each roller's slip -> roll instants, {t, v}
+// The plotted states' t, a reset's earlier ones gone (not the points the page adds at a finish's instant).
+rbs.times = (body) => (points[body] || []).filter((p) => !p.instant).map((p) => p.t);
+rbs.marks = marks; // each body's grip instants (its entry's grip: where friction takes hold), {t, v}
 
 const latest = {}; // body -> its last state
 const points = {}; // body -> [{t, ...the plotted values}]
@@ -31,64 +30,46 @@ let resetT = -Infinity; // the latest reset's t: no point at or before it is plo
 let socket = null;
 let nextId = 1;
 let drawPending = false;
-let lessonKeys = {};
-let keyUnits = {};
 let lineTimer = null;
 let ownChoice = false; // this page chose its plotted body itself (a student's: until the teacher chooses again)
 
 const $ = (id) => document.getElementById(id);
 
 // --- physics the labels and plots show (docs/rviz.md: the panel's) -----------------------------------------
-// The steepest slope static friction holds: a roller rolling, a block at rest.
-function criticalAngle(b) {
-  return Math.atan(b.type === "block" ? b.mu_s : b.mu_s * (1 + b.inertia_factor) / b.inertia_factor);
+// A body's entry in types.js, and what the server's description (body_types.json) says of its type.
+function typeOf(b) { return BODY_TYPES[b.type] || null; }
+function described(b) { return (rbs.description && rbs.description.types[b.type]) || { keys: [], races: false }; }
+// A key's value with its unit as the description gives it ("1 m", "2000 N/m", "0.3" for a pure number).
+function withUnit(b, key) {
+  const found = described(b).keys.find((k) => k.name === key);
+  return found && found.unit ? `${b[key]} ${found.unit}` : `${b[key]}`;
 }
-// How far a body on a slope reaches from its centre: a roller's radius, half a block's edge.
-function halfSize(b) { return b.type === "block" ? 0.5 * b.size : b.radius; }
+// A body's title: its name, with its kind (its entry's word, else its type) where the name is not that.
+function titleOf(name, b) {
+  const type = typeOf(b);
+  const kind = type && type.kind ? type.kind(b) : b.type;
+  return name === kind ? name : `${name} (${kind})`;
+}
+// The steepest slope static friction holds (its entry's tanCritical).
+function criticalAngle(b) { return Math.atan(typeOf(b).tanCritical(b)); }
 function deg(rad) { return (rad * 180 / Math.PI).toFixed(1) + "\u00b0"; }
 // Three decimals, without the "-0.000" of a tiny negative number.
 function fixed3(x) { return Math.abs(x) < 0.0005 ? "0.000" : x.toFixed(3); }
 function gravity() { return Number(rbs.world.settings.gravity); }
-function kinetic(b, s) {
-  if (b.type === "rod") {
-    return 0.5 * b.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (b.mass * b.length * b.length / 12) * s.omega * s.omega;
-  }
-  if (b.type === "block") return 0.5 * b.mass * s.v * s.v;
-  return 0.5 * b.mass * s.v * s.v + 0.5 * b.inertia_factor * b.mass * b.radius * b.radius * s.omega * s.omega;
-}
-function rodEnds(b, s) {
-  const h = 0.5 * b.length;
-  return { a: s.y + h * Math.sin(s.theta), b: s.y - h * Math.sin(s.theta) };
-}
-function modeOf(b, s) {
-  if (b.type !== "rod") return s.mode;
-  const e = rodEnds(b, s);
-  return e.a < 0 || e.b < 0 ? "on the floor" : "in the air";
-}
-// A slipping roller's accelerations are constant (section 16.3.2): from a slipping state, the closed form's
-// instant its slip u = v + omega R reaches 0, and v then.
-function slipEnds(b, s) {
-  const g = gravity();
-  const phi = b.incline_angle;
-  const c = b.inertia_factor;
-  const u = s.v + s.omega * b.radius;
-  const sign = u > 0 ? 1 : -1;
-  const rate = b.mu_d * g * Math.cos(phi) * (1 + 1 / c) - sign * g * Math.sin(phi); // -du/dt * sign
-  if (!(rate > 0)) return null; // slips for ever
-  const dt = Math.abs(u) / rate;
-  return { t: s.t + dt, v: s.v + (g * Math.sin(phi) - sign * b.mu_d * g * Math.cos(phi)) * dt };
-}
-// The start of a lap from a state of it: the time since its initial conditions at its mode's constant
-// acceleration, or null where the state's x does not agree (its mode changed since, or it is no lap's).
-function lapStart(b, s) {
-  const g = gravity();
-  const phi = b.incline_angle;
-  const u = s.v + s.omega * b.radius;
-  const a = s.mode === "rolling" ? g * Math.sin(phi) / (1 + b.inertia_factor)
-    : g * Math.sin(phi) - Math.sign(u) * b.mu_d * g * Math.cos(phi);
-  const since = Math.abs(a) > 1e-12 ? (s.v - b.v0) / a : Math.abs(b.v0) > 1e-12 ? (s.x - b.x0) / b.v0 : NaN;
-  const x = b.x0 + b.v0 * since + 0.5 * a * since * since;
-  return since >= 0 && Math.abs(x - s.x) <= 1e-6 * Math.max(1, Math.abs(s.x)) ? s.t - since : null;
+// A racer's finish from its last state before it (on its slope, at its mode's constant acceleration; through
+// its grip first where that comes first), as the core's step locates it: the instant its x reaches the
+// slope's length, and its speed then.
+function finishFrom(type, b, s) {
+  let from = s;
+  const gripped = type.grip ? type.grip(b, s) : null;
+  if (gripped && gripped.x < b.incline_length) from = gripped;
+  const a = type.acceleration(b, from);
+  const left = b.incline_length - from.x;
+  const root = Math.sqrt(Math.max(0, from.v * from.v + 2 * a * left));
+  const dt = from.v + root > 0 ? 2 * left / (from.v + root) : NaN; // x + v dt + a dt^2 / 2 = L, stably
+  if (!(isFinite(dt) && dt >= 0)) return null;
+  const there = type.after(b, from, dt);
+  return { t: there.t, speed: there.v, state: there };
 }
 function ordinal(n) {
   const tens = n % 100;
@@ -119,8 +100,7 @@ function receive(m) {
     for (const [body, states] of Object.entries(m.states)) for (const s of states) addState(body, s);
   } else if (m.type === "hello") {
     rbs.control = m.control;
-    lessonKeys = m.lesson_keys;
-    keyUnits = m.key_units;
+    rbs.description = m.description; // the core's body_types.json: every key's unit, whether a type races
     $("controls").hidden = !m.control;
     showAddresses(m.addresses || []);
     rbs.shared = m.view || {};
@@ -149,7 +129,7 @@ function receive(m) {
       points[body] = points[body].filter((p) => p.t > m.t);
       marks[body] = (marks[body] || []).filter((p) => p.t > m.t);
       delete lastState[body];
-      rbs.laps[body] = m.t; // every body starts from its initial conditions at the reset's t
+      delete rbs.arrivals[body];
     }
   } else if (m.type === "reply") {
     rbs.replies.push(m);
@@ -164,32 +144,46 @@ function receive(m) {
 function addState(body, s) {
   latest[body] = s;
   const b = rbs.world && rbs.world.bodies[body];
+  const type = b && typeOf(b);
   // The reset comes on its own topic, and may overtake states from before it: those are not plotted.
-  if (!b || s.t <= resetT) return;
-  const K = kinetic(b, s);
+  if (!type || s.t <= resetT) return;
+  const K = type.kinetic(b, s);
   const p = { t: s.t, energy: s.energy, kinetic: K, potential: s.energy - K };
+  type.plotValues(b, s, p);
   const before = lastState[body];
-  if (b.type === "rod") {
-    const e = rodEnds(b, s);
-    p.end_a = e.a;
-    p.end_b = e.b;
-  } else {
-    p.v = s.v;
-    if (b.type !== "block") p.minus_omega_r = -s.omega * b.radius;
-    if (!before || s.x < before.x - 1e-9) { // the first state seen, or a race's new lap
-      const start = lapStart(b, s);
-      if (start !== null) rbs.laps[body] = start;
+  // The instants between two states, at the closed forms from the one before (its mode's accelerations are
+  // constant until then): where friction took hold (its grip), and a racer's finish.
+  if (before && before.mode !== s.mode) {
+    const gripped = type.grip ? type.grip(b, before) : null;
+    if (gripped && gripped.t <= s.t + 1e-9 && s.mode === gripped.mode) {
+      (marks[body] = marks[body] || []).push({ t: gripped.t, v: gripped.v });
+      addInstant(body, type, b, gripped.t, gripped);
     }
-    if (before && before.mode === "slipping" && s.mode === "rolling") {
-      const end = slipEnds(b, before);
-      if (end) (marks[body] = marks[body] || []).push(end);
-      while (marks[body] && marks[body].length && marks[body][0].t < s.t - KEEP) marks[body].shift();
+    if (s.mode === "finished" && described(b).races) {
+      const end = finishFrom(type, b, before);
+      if (end && end.t <= s.t + 1e-9) {
+        rbs.arrivals[body] = { t: end.t, speed: end.speed };
+        // The plots at the line: the state it arrived in, then at once the one it waits in (this one's).
+        addInstant(body, type, b, end.t, end.state);
+        addInstant(body, type, b, end.t, s);
+      }
     }
   }
+  if (s.mode !== "finished" && rbs.arrivals[body] && s.t > rbs.arrivals[body].t) delete rbs.arrivals[body]; // a new lap
+  while (marks[body] && marks[body].length && marks[body][0].t < s.t - KEEP) marks[body].shift();
   lastState[body] = s;
   const list = (points[body] = points[body] || []);
   list.push(p);
   while (list.length && list[0].t < s.t - KEEP) list.shift();
+}
+
+// A plotted point at an instant between two states (a grip, a finish), of the state `at` then.
+function addInstant(body, type, b, t, at) {
+  const energy = at.energy !== undefined ? at.energy : type.kinetic(b, at) + type.potential(b, at);
+  const q = { t, instant: true, energy, kinetic: type.kinetic(b, at) };
+  q.potential = energy - q.kinetic;
+  type.plotValues(b, at, q);
+  (points[body] = points[body] || []).push(q);
 }
 
 function send(request) {
@@ -264,7 +258,7 @@ function fillKeys() {
   if (!b) return;
   const sel = $("set-key");
   const was = sel.value;
-  const keys = lessonKeys[b.type] || [];
+  const keys = described(b).keys.filter((k) => k.lesson).map((k) => k.name);
   sel.replaceChildren(...keys.map((k) => new Option(k, k)));
   if (keys.includes(was)) sel.value = was;
   showKeyValue();
@@ -276,7 +270,8 @@ function showKeyValue() {
   const key = $("set-key").value;
   if (!b || !key) return;
   if (document.activeElement !== $("set-value")) $("set-value").value = String(b[key]);
-  const unit = (keyUnits[b.type] || {})[key] || "";
+  const found = described(b).keys.find((k) => k.name === key);
+  const unit = found ? found.unit : "";
   $("set-unit").textContent = unit === "rad" ? `rad (${deg(Number(b[key]))})` : unit;
 }
 
@@ -410,7 +405,7 @@ function draw() {
 // --- the scene ---------------------------------------------------------------------------------------------
 function slopeBox(b) {
   const phi = b.incline_angle;
-  const R = halfSize(b);
+  const R = typeOf(b).halfSize(b);
   const L = b.incline_length;
   const pad = Math.max(2 * R, 0.05 * L);
   // Above the top: a body starting there; below the foot: one waiting at a steep slope's foot (R below it).
@@ -419,18 +414,27 @@ function slopeBox(b) {
            h: L * Math.sin(phi) + below + pad + 2 * R };
 }
 
-function rollerLines(ctx, name, b, max) {
+// A place as its label says it: "=1st" where racers share it (a tie).
+function placeWords(name, finish) {
+  const shared = Object.entries(rbs.finishes || {}).some(([n, f]) => n !== name && f && f.place === finish.place);
+  return `${shared ? "=" : ""}${ordinal(finish.place)}`;
+}
+
+function slopeLines(ctx, name, b, max) {
   const s = latest[name];
-  const kind = b.type === "block" ? "block" : b.shape;
-  const title = name === kind ? name : `${name} (${kind})`;
+  const type = typeOf(b);
+  const title = titleOf(name, b);
   const finish = rbs.finishes && rbs.finishes[name];
-  const head = finish ? [`${title}: ${ordinal(finish.place)},`, `${finish.time.toFixed(4)} s`]
+  const arrival = rbs.arrivals[name];
+  // A finisher: its place, its time (the node's) and the speed it arrived at (the page's, from its last state
+  // before the line: none on a page opened after it), then the closed form's time.
+  const head = finish ? [`${title}: ${placeWords(name, finish)},`,
+                         `${finish.time.toFixed(4)} s${arrival ? ` at ${arrival.speed.toFixed(2)} m/s` : ""}`]
     .concat(finish.closed_form === null ? [] : [`(closed form ${finish.closed_form.toFixed(4)} s)`])
     : [`${title}: ${s ? s.mode : "\u2013"}`];
-  const holds = Math.tan(b.incline_angle) <= Math.tan(criticalAngle(b));
-  const verdict = b.type === "block" ? (holds ? "can stick" : "slides") : holds ? "can roll" : "slips";
+  const holds = Math.tan(b.incline_angle) <= type.tanCritical(b);
   const info = [s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7", `\u03c6c = ${deg(criticalAngle(b))}`,
-                `(slope ${deg(b.incline_angle)}:`, `${verdict})`];
+                `(slope ${deg(b.incline_angle)}:`, `${type.verdicts[holds ? 0 : 1]})`];
   return { head: wrap(ctx, head, max, true), info: wrap(ctx, info, max, false) };
 }
 
@@ -438,41 +442,44 @@ function drawScene(names, room) {
   const canvas = $("scene-canvas");
   const W = canvas.clientWidth;
   const ctx = fitCanvas(canvas, room);
-  const rollers = names.filter((n) => rbs.world.bodies[n].type !== "rod");
-  const rods = names.filter((n) => rbs.world.bodies[n].type === "rod");
+  const scene = (n) => (typeOf(rbs.world.bodies[n]) || {}).scene;
+  const slopes = names.filter((n) => scene(n) === "slope");
+  const floors = names.filter((n) => scene(n) === "floor");
   const gap = 6;
   const lineH = 1.25 * textPx();
-  // The rods in one band at the bottom (a third of the height beside rollers, all of it alone), the rollers
+  // The floors in one band at the bottom (a third of the height beside slopes, all of it alone), the slopes
   // in the grid of columns that draws them largest.
-  const rodBand = rods.length ? (rollers.length ? room / 3 : room) : 0;
-  const rollerRoom = room - rodBand;
+  const floorBand = floors.length ? (slopes.length ? room / 3 : room) : 0;
+  const slopeRoom = room - floorBand;
   let best = null;
-  for (let cols = 1; cols <= Math.max(1, rollers.length); cols += 1) {
-    const rows = Math.ceil(rollers.length / cols);
+  for (let cols = 1; cols <= Math.max(1, slopes.length); cols += 1) {
+    const rows = Math.ceil(slopes.length / cols);
     const w = (W - (cols - 1) * gap) / cols;
-    const h = (rollerRoom - (rows - 1) * gap) / rows;
+    const h = (slopeRoom - (rows - 1) * gap) / rows;
     let scale = Infinity;
     let headLines = 0;
-    for (const name of rollers) {
-      const lines = rollerLines(ctx, name, rbs.world.bodies[name], w - 12);
+    for (const name of slopes) {
+      const lines = slopeLines(ctx, name, rbs.world.bodies[name], w - 12);
       headLines = Math.max(headLines, lines.head.length + lines.info.length);
     }
-    for (const name of rollers) {
+    for (const name of slopes) {
       const box = slopeBox(rbs.world.bodies[name]);
       scale = Math.min(scale, (w - 12) / box.w, (h - headLines * lineH - 10) / box.h);
     }
     if (!best || scale > best.scale) best = { cols, w, h, scale, headLines };
   }
   rbs.layout = best && { cols: best.cols, w: best.w, h: best.h, scale: best.scale };
-  rollers.forEach((name, i) => {
+  slopes.forEach((name, i) => {
     const rect = { x: (i % best.cols) * (best.w + gap), y: Math.floor(i / best.cols) * (best.h + gap),
                    w: best.w, h: best.h };
-    drawRoller(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
+    drawSlopePanel(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
   });
-  rods.forEach((name, i) => {
-    const h = (rodBand - (rollers.length ? gap : 0)) / rods.length;
-    const rect = { x: 0, y: room - rodBand + (rollers.length ? gap : 0) + i * h, w: W, h: h - (i < rods.length - 1 ? gap : 0) };
-    drawRod(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
+  floors.forEach((name, i) => {
+    const h = (floorBand - (slopes.length ? gap : 0)) / floors.length;
+    const rect = { x: 0, y: room - floorBand + (slopes.length ? gap : 0) + i * h, w: W,
+                   h: h - (i < floors.length - 1 ? gap : 0) };
+    const b = rbs.world.bodies[name];
+    typeOf(b).drawPanel(ctx, rect, name, b, latest[name], lineH, typeOf(b));
   });
 }
 
@@ -485,12 +492,12 @@ function panelFrame(ctx, rect, head, info, lineH) {
   return y + 4;
 }
 
-function drawRoller(ctx, rect, name, b, s, lineH) {
+function drawSlopePanel(ctx, rect, name, b, s, lineH) {
   const phi = b.incline_angle;
   const L = b.incline_length;
-  const R = halfSize(b);
+  const R = typeOf(b).halfSize(b);
   const box = slopeBox(b);
-  const lines = rollerLines(ctx, name, b, rect.w - 12);
+  const lines = slopeLines(ctx, name, b, rect.w - 12);
   const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w,
                           (rect.h - (lines.head.length + lines.info.length) * lineH - 10 - MIN_RADIUS) / box.h);
   // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so where that
@@ -531,37 +538,8 @@ function drawRoller(ctx, rect, name, b, s, lineH) {
   const rad = Math.max(R * scale, MIN_RADIUS);
   const cx = X(s.x * Math.cos(phi)) + rad * Math.sin(phi);
   const cy = Y(-s.x * Math.sin(phi)) - rad * Math.cos(phi);
-  if (b.type === "block") { // a square resting on the slope, turned with it
-    ctx.save();
-    ctx.translate(cx, cy);
-    ctx.rotate(phi);
-    ctx.fillStyle = COLOURS.block;
-    ctx.fillRect(-rad, -rad, 2 * rad, 2 * rad);
-    ctx.restore();
-    rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx: cx, sy: cy, r: rad });
-    return;
-  }
-  const a = s.theta - phi;
-  const sx = cx + rad * Math.cos(a);
-  const sy = cy - rad * Math.sin(a);
-  const colour = COLOURS[b.shape] || COLOURS.custom;
-  ctx.beginPath();
-  ctx.arc(cx, cy, rad, 0, 2 * Math.PI);
-  if (b.shape === "ring" || b.shape === "spherical_shell") {
-    ctx.strokeStyle = colour;
-    ctx.lineWidth = Math.max(stroke(), rad * (b.shape === "ring" ? 0.3 : 0.2));
-    ctx.stroke();
-  } else {
-    ctx.fillStyle = colour;
-    ctx.fill();
-  }
-  ctx.strokeStyle = "#ffffff";
-  ctx.lineWidth = Math.max(2, rad * 0.12);
-  ctx.beginPath();
-  ctx.moveTo(cx, cy);
-  ctx.lineTo(sx, sy);
-  ctx.stroke();
-  rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx, sy, r: rad });
+  const spoke = typeOf(b).drawBody(ctx, cx, cy, rad, phi, b, s);
+  rbs.drawn[name] = Object.assign({}, s, { cx, cy, sx: spoke.sx, sy: spoke.sy, r: rad });
 }
 
 // The slope's angle inside its triangle, left of its foot: under the slope's line, where no body ever is;
@@ -584,82 +562,6 @@ function angleLabel(ctx, phi, topX, topY, footX, footY) {
   text(ctx, words, x1, footY - h - pad, "#f2e0c8", false);
 }
 
-function drawRod(ctx, rect, name, b, s, lineH) {
-  const mode = s ? modeOf(b, s) : "\u2013";
-  const energy = s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
-  const head = wrap(ctx, [`${name === "rod" ? name : name + " (rod)"}: ${mode}`], rect.w - 12, true);
-  const info = wrap(ctx, [energy, `k = ${b.k} N/m \u00b7`, `L = ${b.length} m`], rect.w - 12, false);
-  const areaTop = panelFrame(ctx, rect, head, info, lineH);
-  const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
-  const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
-  const floorPx = 1.6 * textPx() + 10; // the floor's band, with the metre marks
-  const scale = Math.max(1e-6, Math.min((area.h - floorPx) / top, area.w / (2.5 * b.length)));
-  const floorDepth = floorPx / scale;
-  const span = area.w / scale;
-  const x = s ? s.x : b.x0;
-  const bounded = b.floor_length > 0;
-  let left = x - span / 2;
-  if (bounded && b.floor_length + 1 <= span) left = -0.5;
-  else if (bounded) left = Math.min(Math.max(left, -0.5), b.floor_length + 0.5 - span);
-  const ox = area.x - left * scale;
-  const oy = area.y + top * scale;
-  const X = (wx) => ox + wx * scale;
-  const Y = (wy) => oy - wy * scale;
-  ctx.save();
-  ctx.beginPath();
-  ctx.rect(area.x, area.y, area.w, area.h);
-  ctx.clip();
-  const floorFrom = bounded ? Math.max(0, left) : left;
-  const floorTo = bounded ? Math.min(b.floor_length, left + span) : left + span;
-  ctx.fillStyle = "#555b66";
-  ctx.fillRect(X(floorFrom), Y(0), (floorTo - floorFrom) * scale, floorDepth * scale);
-  ctx.restore();
-  // The metre marks, every metre or every few where they would crowd; a label only where it fits whole.
-  ctx.strokeStyle = "#c9ced6";
-  ctx.lineWidth = 0.7 * stroke();
-  const every = [1, 2, 5, 10, 20, 50].find((n) => n * scale >= width(ctx, "-88 m", false) + 12) || 100;
-  let lastRight = -Infinity;
-  for (let m = Math.ceil(floorFrom / every) * every; m <= floorTo; m += every) {
-    if (X(m) < area.x || X(m) > area.x + area.w) continue;
-    ctx.beginPath();
-    ctx.moveTo(X(m), Y(0));
-    ctx.lineTo(X(m), Y(0) + 0.4 * textPx());
-    ctx.stroke();
-    const words = `${m} m`;
-    const w = width(ctx, words, false);
-    const at = Math.min(X(m) + 3, area.x + area.w - w);
-    if (at >= area.x && at > lastRight + 6) {
-      text(ctx, words, at, Y(0) + 0.5 * textPx(), "#e8e8e8", false);
-      lastRight = at + w;
-    }
-  }
-  rbs.panels[name] = { scale, ox, oy, left, rect };
-  if (s) {
-    ctx.save();
-    ctx.beginPath();
-    ctx.rect(area.x, area.y, area.w, area.h);
-    ctx.clip();
-    const h = 0.5 * b.length;
-    const ax = X(s.x + h * Math.cos(s.theta));
-    const ay = Y(s.y + h * Math.sin(s.theta));
-    const bx = X(s.x - h * Math.cos(s.theta));
-    const by = Y(s.y - h * Math.sin(s.theta));
-    ctx.strokeStyle = COLOURS.rod;
-    ctx.lineWidth = Math.max(7, 0.35 * textPx());
-    ctx.lineCap = "round";
-    ctx.beginPath();
-    ctx.moveTo(bx, by);
-    ctx.lineTo(ax, ay);
-    ctx.stroke();
-    ctx.fillStyle = COLOURS.rod_end;
-    ctx.beginPath();
-    ctx.arc(ax, ay, Math.max(6, 0.3 * textPx()), 0, 2 * Math.PI);
-    ctx.fill();
-    ctx.restore();
-    rbs.drawn[name] = Object.assign({}, s, { cx: X(s.x), cy: Y(s.y), ax, ay, bx, by });
-  }
-}
-
 // --- plots -------------------------------------------------------------------------------------------------
 function drawPlots(name, height) {
   const b = rbs.world.bodies[name];
@@ -668,28 +570,15 @@ function drawPlots(name, height) {
   const t0 = last > PLOT_WINDOW ? last - PLOT_WINDOW : 0;
   const shown = list.filter((p) => p.t >= t0);
   const series = (key) => shown.map((p) => [p.t, p[key]]);
-  let motion;
+  const type = b && typeOf(b);
   const instants = [];
-  if (!b) {
-    motion = { title: "", unit: "", lines: [] };
-  } else if (b.type === "rod") {
-    motion = { title: "height of each end", unit: "m",
-               lines: [{ key: "end_a", name: "end A (orange)", colour: COLOURS.rod_end, pts: series("end_a") },
-                       { key: "end_b", name: "end B", colour: PLOT_COLOURS.first, pts: series("end_b") }] };
-  } else {
-    const slips = (marks[name] || []).filter((m) => m.t >= t0);
-    const finish = rbs.finishes && rbs.finishes[name];
-    const lap = rbs.laps[name];
-    if (finish && finish.closed_form !== null && lap !== undefined && lap + finish.closed_form >= t0) {
-      instants.push({ t: lap + finish.closed_form, name: "finish", dash: [3, 5] });
-    }
-    motion = { title: "v and \u2212\u03c9R", unit: "m/s",
-               lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") },
-                       { key: "minus_omega_r", name: "\u2212\u03c9R", colour: PLOT_COLOURS.second, dash: [10, 6],
-                         pts: series("minus_omega_r") }],
-               dots: slips.map((m) => [m.t, m.v]), dotName: "slip \u2192 roll (closed form)", instants };
-  }
-  const zero = b && b.type === "rod" ? "floor level" : "the slope's top";
+  const arrival = rbs.arrivals[name];
+  if (arrival && arrival.t >= t0) instants.push({ t: arrival.t, name: "finish", dash: [3, 5] });
+  const motion = type ? type.motion(series) : { title: "", unit: "", lines: [] };
+  const grips = (marks[name] || []).filter((m) => m.t >= t0);
+  if (grips.length) motion.dots = grips.map((m) => [m.t, m.v]);
+  motion.instants = instants;
+  const zero = type ? type.potentialZero : "";
   const energy = { title: `energy, potential 0 at ${zero}`, unit: "J",
                    lines: [{ key: "energy", name: "total", colour: PLOT_COLOURS.first, pts: series("energy") },
                            { key: "kinetic", name: "kinetic", colour: PLOT_COLOURS.second, pts: series("kinetic") },

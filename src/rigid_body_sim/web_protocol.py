@@ -32,8 +32,23 @@ MAX_STEPS = 10_000_000
 # The keys a lesson changes, by body type (the slope, friction, the floor's spring and the initial
 # conditions): the core's description marks them.
 LESSON_KEYS: Dict[str, Tuple[str, ...]] = {kind: tuple(keys) for kind, keys in description.lesson_keys().items()}
+# lesson.launch's parts that are no race: each one's config is config/<part>.yaml (its `config` argument says
+# the same); every other part's is config/race_<part>.yaml.
+SOLO_PARTS: Tuple[str, ...] = ("rod",)
 OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
                             "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"}}
+
+
+def part_config(part: str) -> str:
+    """The file name under config/ of a lesson part's config, as lesson.launch picks it."""
+    return f"{part}.yaml" if part in SOLO_PARTS else f"race_{part}.yaml"
+
+
+def part_of_config(file_name: str) -> Optional[str]:
+    """The lesson part whose config `file_name` (under config/) is, or None."""
+    found = re.fullmatch(r"race_(\w+)\.yaml|(\w+)\.yaml", file_name)
+    part = found and (found.group(1) or found.group(2))
+    return part if part and part_config(part) == file_name else None
 
 
 class Refusal(Exception):

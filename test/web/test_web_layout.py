@@ -1,16 +1,18 @@
 #!/usr/bin/env python3
 """The page a class reads, by its own geometry, in Debian's headless Chromium: every lesson part
-(lesson.launch part:=below, above, slip, rod) started paused and stepped to INSTANTS (all racing; some or all
+(lesson.launch part:=below, above, slip, block, rod) started paused and stepped to INSTANTS (all racing; some or all
 finished), the teacher's page at a phone's 390x844, a laptop's 1366x768, a projector's 1600x900 and 4K's
 3840x2160, and the class's page at widths from 360 to 3840 px. At each:
 
 - every text, on the page or drawn on a canvas (rbs.texts), is at least MIN_TEXT px (20 from 1600x900 up,
   14 below), lies whole inside its element or canvas and the screen's width, and covers no other text and
   no body;
-- every roller is drawn at least 20 px across and inside its panel, its slope as the configs have it and
+- every body on a slope is drawn at least 20 px across and inside its panel, its slope as the configs have it and
   nearly flat and nearly upright (ANGLES, set from the teacher's page); the scene canvas fills the screen's
   height below the page's top lines (beside the plots on a wide screen);
-- a race's finishers at the same time share a place (part:=above: all three at 1.4325 s);
+- a race's finishers at the same time share a place, "=1st" (part:=above: all three at 1.4325 s);
+- a finished racer stands still at the end of its slope, its label with its place, its time and its arrival
+  speed, the page's finish instant at the closed form's and, released from rest, its speed 2 L / t;
 - the plots mark the slip -> roll instants at the closed form's, and their axes carry units;
 - the teacher's choice of part:=above from part:=below's page sets every body's keys, and the page names it.
 
@@ -34,7 +36,9 @@ from typing import Any, Dict, List, Optional
 
 import rospy
 from rigid_body_sim.srv import Step
-from rigid_body_sim.sim_tools import INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for
+from rigid_body_sim.sim_tools import (INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for,
+                                      with_defaults)
+from rigid_body_sim.web_protocol import part_config
 
 from browser import Browser, end
 
@@ -48,7 +52,7 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 INSTANTS = (0.4, 2.2)
 SIZES = {"phone": (390, 844, 3, True), "laptop": (1366, 768, 1, False), "projector": (1600, 900, 1, False),
          "4k": (3840, 2160, 1, False)}
-PARTS = ("below", "above", "slip", "rod")  # lesson.launch's
+PARTS = ("below", "above", "slip", "block", "rod")  # lesson.launch's
 WIDTHS = (360, 768, 1280, 2560, 3840)
 ANGLES = (0.02, 1.55)  # rad: the sphere's slope set from the teacher's page, part:=below
 
@@ -200,7 +204,7 @@ class Layout(unittest.TestCase):
         rospy.init_node("web_layout_test", anonymous=True, disable_signals=True)
         for part in PARTS:
             url = links[part]
-            config = load_config(os.path.join(ROOT, "config", ("rod" if part == "rod" else f"race_{part}") + ".yaml"))
+            config = load_config(os.path.join(ROOT, "config", part_config(part)))
             bodies = sorted(config["bodies"])
             browser.resize(1600, 900, 1, False)
             browser.navigate(url)
@@ -229,7 +233,8 @@ class Layout(unittest.TestCase):
                     self.assertEqual(places, {body: 1 for body in bodies}, "a tie shares a place")
                     shown = [t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas"]
                     for body in bodies:
-                        self.assertTrue(any(t.startswith(f"{body}: 1st,") for t in shown), shown)
+                        self.assertTrue(any(t.startswith(f"{body}: =1st,") for t in shown), shown)
+                self.check_finishes(browser, config)
                 if part == "slip" and instant == INSTANTS[-1]:
                     self.check_slip_marks(browser, config)
             if part == "below":  # the slopes a lesson's key allows, from nearly flat to nearly upright
@@ -279,7 +284,7 @@ class Layout(unittest.TestCase):
         self.assertTrue(reply["ok"], reply)
         browser.wait(f"part {part} on the page", f"rbs.world.part === {part!r} && "
                      f"document.getElementById('part').textContent === 'part: {part}'", DEADLINE)
-        config = load_config(os.path.join(ROOT, "config", f"race_{part}.yaml"))
+        config = load_config(os.path.join(ROOT, "config", part_config(part)))
         world = browser.evaluate("rbs.world.bodies")
         for body, keys in config["bodies"].items():
             for key in ("incline_angle", "mu_s", "mu_d"):
@@ -289,6 +294,31 @@ class Layout(unittest.TestCase):
         browser.wait("the new race drawn", f"Object.values(rbs.drawn).every((d) => d.t === {t!r})", DEADLINE)
         self.check(browser, f"part:={part} from the teacher's page", 1600, 900)
         browser.screenshot(os.path.join(ARGS.out_dir, f"web_part_{part}_from_page.png"))
+
+    def check_finishes(self, browser: Browser, config: Dict[str, Any]) -> None:
+        """Every racer the node says finished (its board): drawn at rest at the end of its slope, the page's
+        finish instant at the node's closed form (the first lap starts at t = 0; the board gives it to 0.1 ms),
+        and its label with its arrival speed, 2 L / t for one released from rest (constant acceleration from
+        rest to L in t)."""
+        finishes = browser.evaluate("rbs.finishes")
+        arrivals = browser.evaluate("rbs.arrivals")
+        drawn = browser.evaluate("rbs.drawn")
+        shown = [t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas"]
+        for body, finish in finishes.items():
+            if not finish:
+                continue
+            b = with_defaults(config["bodies"][body])
+            self.assertEqual((drawn[body]["mode"], drawn[body]["v"], drawn[body]["x"]),
+                             ("finished", 0.0, b["incline_length"]), f"{body} stands at the line")
+            self.assertIn(body, arrivals, f"{body}: no finish instant")
+            arrival = arrivals[body]
+            if finish["closed_form"] is not None:  # the board's, to 0.1 ms
+                self.assertAlmostEqual(arrival["t"], finish["closed_form"], delta=0.5e-4 + 1e-12,
+                                       msg=f"{body}'s finish")
+            if float(b.get("v0", 0.0)) == 0.0 and float(b.get("omega0", 0.0)) == 0.0:
+                self.assertAlmostEqual(arrival["speed"], 2 * b["incline_length"] / arrival["t"], delta=1e-9,
+                                       msg=f"{body}'s arrival speed")
+            self.assertIn(f"at {arrival['speed']:.2f} m/s", " ".join(shown), f"{body}'s label")
 
     def check_slip_marks(self, browser: Browser, config: Dict[str, Any]) -> None:
         """Each racer's slip -> roll dot at the closed form's instant from its launch (config/race_slip.yaml:

@@ -116,6 +116,61 @@ def fields(msg: Any) -> Dict[str, Any]:
     return {f: getattr(msg, f) for f in msg.__slots__ if f != "header"}
 
 
+Checker = Any  # the test case: its assertions
+
+
+def _rod_place(t: Checker, b: Dict[str, Any], s: Dict[str, Any], d: Dict[str, Any], view: Dict[str, float]) -> None:
+    """Its centre and end A at their heights above the floor, x along it."""
+    scale, ox, oy = view["scale"], view["ox"], view["oy"]
+    t.assertAlmostEqual(d["cx"], ox + s["x"] * scale, delta=1e-6)
+    t.assertAlmostEqual(d["cy"], oy - s["y"] * scale, delta=1e-6)
+    half = 0.5 * b["length"]
+    t.assertAlmostEqual(d["ax"], ox + (s["x"] + half * math.cos(s["theta"])) * scale, delta=1e-6)
+    t.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
+
+
+def _slope_place(half: float, spoke: bool, t: Checker, b: Dict[str, Any], s: Dict[str, Any], d: Dict[str, Any],
+                 view: Dict[str, float]) -> None:
+    """Its centre `half` (to scale, or 10 px: the page's smallest, 20 px across, said on its panel) above its
+    slope at x along it; a spoke at its rotation theta about the slope's z."""
+    scale, ox, oy = view["scale"], view["ox"], view["oy"]
+    phi = b["incline_angle"]
+    r = max(half * scale, 10.0)
+    t.assertAlmostEqual(d["r"], r, delta=1e-9)
+    t.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
+    t.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
+    if spoke:
+        angle = math.atan2(-(d["sy"] - d["cy"]), d["sx"] - d["cx"])  # the spoke's angle on the screen
+        t.assertAlmostEqual(math.remainder(angle - (s["theta"] - phi), 2 * math.pi), 0.0, delta=1e-9)
+
+
+class TypeChecks(NamedTuple):
+    """What the page draws and plots of one body type (web/types.js's entry), as this test expects it."""
+    place: Any  # (test, body, state, drawn, view): where it is drawn
+    motion: Any  # (body, state) -> {the motion plot's key: its last value}
+    kinetic: Any  # (body, state) -> its kinetic energy (J)
+
+
+# The one place of these tests that names a body type.
+TYPE_CHECKS: Dict[str, TypeChecks] = {
+    "rod": TypeChecks(
+        _rod_place,
+        lambda b, s: {"end_a": s["y"] + 0.5 * b["length"] * math.sin(s["theta"]),
+                      "end_b": s["y"] - 0.5 * b["length"] * math.sin(s["theta"])},
+        lambda b, s: (0.5 * b["mass"] * (s["vx"] ** 2 + s["vy"] ** 2)
+                      + 0.5 * (b["mass"] * b["length"] ** 2 / 12) * s["omega"] ** 2)),
+    "roller": TypeChecks(
+        lambda t, b, s, d, view: _slope_place(b["radius"], True, t, b, s, d, view),
+        lambda b, s: {"v": s["v"], "minus_omega_r": -s["omega"] * b["radius"]},
+        lambda b, s: (0.5 * b["mass"] * s["v"] ** 2
+                      + 0.5 * b["inertia_factor"] * b["mass"] * b["radius"] ** 2 * s["omega"] ** 2)),
+    "block": TypeChecks(
+        lambda t, b, s, d, view: _slope_place(0.5 * b["size"], False, t, b, s, d, view),
+        lambda b, s: {"v": s["v"]},
+        lambda b, s: 0.5 * b["mass"] * s["v"] ** 2),
+}
+
+
 class WebView(unittest.TestCase):
     def setUp(self) -> None:
         self.tmp = tempfile.mkdtemp(prefix="rbs_web_")
@@ -271,7 +326,8 @@ class WebView(unittest.TestCase):
         asked = {e["params"]["request"]["url"] for e in browser.events if e["method"] == "Network.requestWillBeSent"}
         own = f"http://127.0.0.1:{self.web_port}/"
         self.assertEqual({u for u in asked if not u.startswith(own)}, set())
-        self.assertTrue({own + "view.js", own + "view.css"} <= {u.split("?")[0] for u in asked}, asked)
+        files = {own + name for name in ("types.js", "view.js", "view.css")}
+        self.assertTrue(files <= {u.split("?")[0] for u in asked}, asked)
 
     def test_replay(self) -> None:
         """playback.launch of a bag simulate wrote: the page finds the bodies from the played state topics,
@@ -429,23 +485,7 @@ class WebView(unittest.TestCase):
 
     def check_place(self, body: str, s: Dict[str, Any], d: Dict[str, Any], view: Dict[str, float]) -> None:
         """Where the page drew it: its view's metres to pixels (side view: downhill and up the screen)."""
-        b = self.bodies[body]
-        scale, ox, oy = view["scale"], view["ox"], view["oy"]
-        if self.kinds[body] == "rod":
-            self.assertAlmostEqual(d["cx"], ox + s["x"] * scale, delta=1e-6)
-            self.assertAlmostEqual(d["cy"], oy - s["y"] * scale, delta=1e-6)
-            half = 0.5 * b["length"]
-            self.assertAlmostEqual(d["ax"], ox + (s["x"] + half * math.cos(s["theta"])) * scale, delta=1e-6)
-            self.assertAlmostEqual(d["ay"], oy - (s["y"] + half * math.sin(s["theta"])) * scale, delta=1e-6)
-            return
-        phi = b["incline_angle"]
-        # to scale, or 10 px (the page's smallest, 20 px across, said on its panel)
-        r = max(b["radius"] * scale, 10.0)
-        self.assertAlmostEqual(d["r"], r, delta=1e-9)
-        self.assertAlmostEqual(d["cx"], ox + s["x"] * math.cos(phi) * scale + r * math.sin(phi), delta=1e-6)
-        self.assertAlmostEqual(d["cy"], oy + s["x"] * math.sin(phi) * scale - r * math.cos(phi), delta=1e-6)
-        spoke = math.atan2(-(d["sy"] - d["cy"]), d["sx"] - d["cx"])  # the spoke's angle on the screen
-        self.assertAlmostEqual(math.remainder(spoke - (s["theta"] - phi), 2 * math.pi), 0.0, delta=1e-9)
+        TYPE_CHECKS[self.kinds[body]].place(self, self.bodies[body], s, d, view)
 
     def check_plots(self, browser: Browser, node: Listener) -> None:
         for body in sorted(self.kinds):
@@ -454,19 +494,13 @@ class WebView(unittest.TestCase):
             points = browser.evaluate("rbs.plotLast.points")
             s = fields(node.last(body))
             b = self.bodies[body]
-            for key in set(points) - {"slip_to_roll"}:
+            for key in set(points) - {"slip_to_roll", "finish"}:
                 self.assertEqual(points[key][0], s["t"], f"{body}: {key}'s last point is at t = {points[key][0]}")
             self.assertEqual(points["energy"][1], s["energy"])
-            if self.kinds[body] == "rod":
-                M, L = b["mass"], b["length"]
-                kinetic = 0.5 * M * (s["vx"] ** 2 + s["vy"] ** 2) + 0.5 * (M * L * L / 12) * s["omega"] ** 2
-                self.assertEqual(points["end_a"][1], s["y"] + 0.5 * L * math.sin(s["theta"]))
-                self.assertEqual(points["end_b"][1], s["y"] - 0.5 * L * math.sin(s["theta"]))
-            else:
-                M, R, c = b["mass"], b["radius"], b["inertia_factor"]
-                kinetic = 0.5 * M * s["v"] ** 2 + 0.5 * c * M * R * R * s["omega"] ** 2
-                self.assertEqual(points["v"][1], s["v"])
-                self.assertEqual(points["minus_omega_r"][1], -s["omega"] * R)
+            checks = TYPE_CHECKS[self.kinds[body]]
+            for key, value in checks.motion(b, s).items():
+                self.assertEqual(points[key][1], value, f"{body}: {key}")
+            kinetic = checks.kinetic(b, s)
             self.assertAlmostEqual(points["kinetic"][1], kinetic, delta=1e-12 * max(1.0, abs(kinetic)))
             potential = s["energy"] - kinetic
             self.assertAlmostEqual(points["potential"][1], potential, delta=1e-12 * max(1.0, abs(s["energy"])))

@@ -2,9 +2,9 @@
 """Screenshots of the web view as a class sees it (the page without the token: no controls), for the docs:
 lesson.launch web:=true started paused, run for SECONDS of simulated time from t = 0 and paused again (so the
 picture does not depend on the machine's load), the plots of PLOT_BODY; at 1600x900 (OUT_DIR/web_lesson.png)
-and at a phone's 390x844 (OUT_DIR/web_lesson_phone.png).
+and at a phone's 390x844 (OUT_DIR/web_lesson_phone.png); --name another name than web_lesson.
 
-Usage: web_screenshot.py OUT_DIR [--part below] [--seconds 1.6] [--plot-body ring]
+Usage: web_screenshot.py OUT_DIR [--part below] [--seconds 1.6] [--plot-body ring] [--name web_lesson]
 (with the package's devel space sourced)"""
 import argparse
 import os
@@ -14,9 +14,9 @@ import subprocess
 import tempfile
 
 import rospy
-from rigid_body_sim.msg import RollerState, RodState
 from std_srvs.srv import Empty
-from rigid_body_sim.sim_tools import free_port, rospy_on_python39, wait_for
+from rigid_body_sim.sim_tools import free_port, load_config, rospy_on_python39, state_message, wait_for
+from rigid_body_sim.web_protocol import part_config
 
 from browser import Browser, end
 
@@ -30,6 +30,7 @@ def main() -> None:
     parser.add_argument("--part", default="below")
     parser.add_argument("--seconds", type=float, default=1.6)
     parser.add_argument("--plot-body", default="ring")
+    parser.add_argument("--name", default="web_lesson")
     args = parser.parse_args()
     home = tempfile.mkdtemp(prefix="rbs_web_shot_")
     port, web_port = free_port(), free_port()
@@ -45,7 +46,9 @@ def main() -> None:
         wait_for("the master", lambda: subprocess.run(["rostopic", "list"], env=env, capture_output=True)
                  .returncode == 0, DEADLINE, period=0.2)
         rospy.init_node("web_screenshot", anonymous=True, disable_signals=True)
-        kind = RodState if args.part == "rod" else RollerState
+        root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+        config = load_config(os.path.join(root, "config", part_config(args.part)))
+        kind = state_message(str(config["bodies"][args.plot_body]["type"]))
         last = [-1.0]
         rospy.Subscriber(f"/sim/{args.plot_body}/state", kind, lambda m: last.__setitem__(0, m.t))
         browser = Browser(1600, 900)
@@ -67,8 +70,8 @@ def main() -> None:
                  lambda: browser is not None and browser.evaluate(f"rbs.drawn[{args.plot_body!r}].t") == last[0],
                  DEADLINE)
         os.makedirs(args.out_dir, exist_ok=True)
-        for name, width, height, scale, mobile in (("web_lesson.png", 1600, 900, 1, False),
-                                                   ("web_lesson_phone.png", 390, 844, 2, True)):
+        for name, width, height, scale, mobile in ((f"{args.name}.png", 1600, 900, 1, False),
+                                                   (f"{args.name}_phone.png", 390, 844, 2, True)):
             browser.resize(width, height, scale, mobile)
             browser.wait(f"the page laid out at {width}x{height}",
                          "document.getElementById('scene-canvas').width === Math.round(document.getElementById("

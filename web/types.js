@@ -1,0 +1,248 @@
+// What the web page draws and plots of each body type: the one place of the page that names a type. Every
+// fact the core's description has (keys, units, defaults, whether a type races, its state fields) comes from
+// the server's hello (body_types.json), not from here; an entry holds what the description cannot say: how
+// the body is drawn, what its plots show, and its motion's closed forms (the core's, src/core/<type>.cpp).
+// view.js dispatches through BODY_TYPES[b.type]; a type missing here is drawn as its name alone.
+// Entries use view.js's drawing helpers (text, wrap, width, panelFrame, stroke, textPx, fixed3, gravity,
+// COLOURS, PLOT_COLOURS), which exist by the time anything is drawn.
+"use strict";
+
+// A body on a slope of its own (x along it, downhill from its top): its mode's constant acceleration between
+// events, and the instant its mode's acceleration brings it to grip (a roller's slip reaching 0, a block
+// coming to rest), as the core's step finds it.
+// The bodies' colours: a roller's by its shape, the rod's and its marked end A, the block's.
+const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spherical_shell: "#6bd06b",
+                  custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d", block: "#ff66cc" };
+
+function slopeSin(b) { return Math.sin(b.incline_angle); }
+function slopeCos(b) { return Math.cos(b.incline_angle); }
+
+const BODY_TYPES = {
+  rod: {
+    scene: "floor", // a band of its own across the scene's width, below the slopes
+    kinetic(b, s) {
+      return 0.5 * b.mass * (s.vx * s.vx + s.vy * s.vy) + 0.5 * (b.mass * b.length * b.length / 12) * s.omega * s.omega;
+    },
+    ends(b, s) {
+      const h = 0.5 * b.length;
+      return { a: s.y + h * Math.sin(s.theta), b: s.y - h * Math.sin(s.theta) };
+    },
+    mode(b, s) {
+      const e = this.ends(b, s);
+      return e.a < 0 || e.b < 0 ? "on the floor" : "in the air";
+    },
+    plotValues(b, s, p) {
+      const e = this.ends(b, s);
+      p.end_a = e.a;
+      p.end_b = e.b;
+    },
+    motion(series) {
+      return { title: "height of each end", unit: "m",
+               lines: [{ key: "end_a", name: "end A (orange)", colour: COLOURS.rod_end, pts: series("end_a") },
+                       { key: "end_b", name: "end B", colour: PLOT_COLOURS.first, pts: series("end_b") }] };
+    },
+    potentialZero: "floor level",
+    drawPanel(ctx, rect, name, b, s, lineH, type) { drawFloorPanel(ctx, rect, name, b, s, lineH, type); },
+  },
+
+  roller: {
+    scene: "slope",
+    kind: (b) => b.shape, // its title's word beside its name
+    halfSize: (b) => b.radius,
+    tanCritical: (b) => b.mu_s * (1 + b.inertia_factor) / b.inertia_factor, // rolls without slipping
+    verdicts: ["can roll", "slips"],
+    kinetic(b, s) {
+      return 0.5 * b.mass * s.v * s.v + 0.5 * b.inertia_factor * b.mass * b.radius * b.radius * s.omega * s.omega;
+    },
+    // Along the slope in the state's mode (section 16.3.2): rolling, g sin / (1 + c); slipping, gravity
+    // less kinetic friction against the slip u = v + omega R.
+    acceleration(b, s) {
+      const g = gravity();
+      if (s.mode === "rolling") return g * slopeSin(b) / (1 + b.inertia_factor);
+      return g * slopeSin(b) - Math.sign(s.v + s.omega * b.radius) * b.mu_d * g * slopeCos(b);
+    },
+    // From a slipping state, the instant its slip reaches 0 (the accelerations are constant until then) and
+    // its state then, rolling; null when it never does.
+    grip(b, s) {
+      if (s.mode !== "slipping") return null;
+      const g = gravity();
+      const u = s.v + s.omega * b.radius;
+      const sign = u > 0 ? 1 : -1;
+      const rate = b.mu_d * g * slopeCos(b) * (1 + 1 / b.inertia_factor) - sign * g * slopeSin(b); // -du/dt sign
+      if (!(rate > 0)) return null; // slips for ever
+      const dt = Math.abs(u) / rate;
+      const a = this.acceleration(b, s);
+      const v = s.v + a * dt;
+      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, omega: -v / b.radius, mode: "rolling" };
+    },
+    // Its state dt after s in s's mode (no event between): rolling, omega = -v / R; slipping, kinetic
+    // friction's torque turns it at -sign(u) mu_d g cos(phi) / (c R).
+    after(b, s, dt) {
+      const a = this.acceleration(b, s);
+      const v = s.v + a * dt;
+      const u = s.v + s.omega * b.radius;
+      const alpha = -Math.sign(u) * b.mu_d * gravity() * slopeCos(b) / (b.inertia_factor * b.radius);
+      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, mode: s.mode,
+               omega: s.mode === "rolling" ? -v / b.radius : s.omega + alpha * dt };
+    },
+    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
+    plotValues(b, s, p) {
+      p.v = s.v;
+      p.minus_omega_r = -s.omega * b.radius;
+    },
+    motion(series) {
+      return { title: "v and \u2212\u03c9R", unit: "m/s",
+               lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") },
+                       { key: "minus_omega_r", name: "\u2212\u03c9R", colour: PLOT_COLOURS.second, dash: [10, 6],
+                         pts: series("minus_omega_r") }],
+               dotName: "slip \u2192 roll (closed form)" };
+    },
+    potentialZero: "the slope's top",
+    // A disc with a spoke at its rotation theta about the slope's z; a ring or a shell as its rim.
+    drawBody(ctx, cx, cy, rad, phi, b, s) {
+      const a = s.theta - phi;
+      const sx = cx + rad * Math.cos(a);
+      const sy = cy - rad * Math.sin(a);
+      const colour = COLOURS[b.shape] || COLOURS.custom;
+      ctx.beginPath();
+      ctx.arc(cx, cy, rad, 0, 2 * Math.PI);
+      if (b.shape === "ring" || b.shape === "spherical_shell") {
+        ctx.strokeStyle = colour;
+        ctx.lineWidth = Math.max(stroke(), rad * (b.shape === "ring" ? 0.3 : 0.2));
+        ctx.stroke();
+      } else {
+        ctx.fillStyle = colour;
+        ctx.fill();
+      }
+      ctx.strokeStyle = "#ffffff";
+      ctx.lineWidth = Math.max(2, rad * 0.12);
+      ctx.beginPath();
+      ctx.moveTo(cx, cy);
+      ctx.lineTo(sx, sy);
+      ctx.stroke();
+      return { sx, sy };
+    },
+  },
+
+  block: {
+    scene: "slope",
+    kind: () => "block",
+    halfSize: (b) => 0.5 * b.size,
+    tanCritical: (b) => b.mu_s, // at rest, static friction holds it
+    verdicts: ["can stick", "slides"],
+    kinetic(b, s) { return 0.5 * b.mass * s.v * s.v; },
+    acceleration(b, s) {
+      if (s.mode !== "sliding") return 0;
+      const g = gravity();
+      return g * slopeSin(b) - Math.sign(s.v) * b.mu_d * g * slopeCos(b);
+    },
+    // From a sliding state that friction slows, the instant it comes to rest, where static friction holds
+    // it (src/core/block.cpp); null otherwise.
+    grip(b, s) {
+      const a = this.acceleration(b, s);
+      if (s.mode !== "sliding" || !(s.v * a < 0) || Math.tan(b.incline_angle) > b.mu_s) return null;
+      const dt = -s.v / a;
+      return { t: s.t + dt, x: s.x + 0.5 * s.v * dt, v: 0, mode: "sticking" };
+    },
+    after(b, s, dt) {
+      const a = this.acceleration(b, s);
+      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v: s.v + a * dt, mode: s.mode };
+    },
+    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
+    plotValues(b, s, p) { p.v = s.v; },
+    motion(series) {
+      return { title: "v", unit: "m/s", lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") }],
+               dotName: "comes to rest (closed form)" };
+    },
+    potentialZero: "the slope's top",
+    // A square resting on the slope, turned with it.
+    drawBody(ctx, cx, cy, rad, phi) {
+      ctx.save();
+      ctx.translate(cx, cy);
+      ctx.rotate(phi);
+      ctx.fillStyle = COLOURS.block;
+      ctx.fillRect(-rad, -rad, 2 * rad, 2 * rad);
+      ctx.restore();
+      return { sx: cx, sy: cy };
+    },
+  },
+};
+
+// The rod from the side (section 16.3.3): the floor's band with its metre marks, followed along x (a bounded
+// floor whole where it fits), the rod with its end A marked.
+function drawFloorPanel(ctx, rect, name, b, s, lineH, type) {
+  const mode = s ? type.mode(b, s) : "\u2013";
+  const energy = s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
+  const head = wrap(ctx, [`${titleOf(name, b)}: ${mode}`], rect.w - 12, true);
+  const info = wrap(ctx, [energy, `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`], rect.w - 12,
+                   false);
+  const areaTop = panelFrame(ctx, rect, head, info, lineH);
+  const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
+  const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
+  const floorPx = 1.6 * textPx() + 10; // the floor's band, with the metre marks
+  const scale = Math.max(1e-6, Math.min((area.h - floorPx) / top, area.w / (2.5 * b.length)));
+  const floorDepth = floorPx / scale;
+  const span = area.w / scale;
+  const x = s ? s.x : b.x0;
+  const bounded = b.floor_length > 0;
+  let left = x - span / 2;
+  if (bounded && b.floor_length + 1 <= span) left = -0.5;
+  else if (bounded) left = Math.min(Math.max(left, -0.5), b.floor_length + 0.5 - span);
+  const ox = area.x - left * scale;
+  const oy = area.y + top * scale;
+  const X = (wx) => ox + wx * scale;
+  const Y = (wy) => oy - wy * scale;
+  ctx.save();
+  ctx.beginPath();
+  ctx.rect(area.x, area.y, area.w, area.h);
+  ctx.clip();
+  const floorFrom = bounded ? Math.max(0, left) : left;
+  const floorTo = bounded ? Math.min(b.floor_length, left + span) : left + span;
+  ctx.fillStyle = "#555b66";
+  ctx.fillRect(X(floorFrom), Y(0), (floorTo - floorFrom) * scale, floorDepth * scale);
+  ctx.restore();
+  // The metre marks, every metre or every few where they would crowd; a label only where it fits whole.
+  ctx.strokeStyle = "#c9ced6";
+  ctx.lineWidth = 0.7 * stroke();
+  const every = [1, 2, 5, 10, 20, 50].find((n) => n * scale >= width(ctx, "-88 m", false) + 12) || 100;
+  let lastRight = -Infinity;
+  for (let m = Math.ceil(floorFrom / every) * every; m <= floorTo; m += every) {
+    if (X(m) < area.x || X(m) > area.x + area.w) continue;
+    ctx.beginPath();
+    ctx.moveTo(X(m), Y(0));
+    ctx.lineTo(X(m), Y(0) + 0.4 * textPx());
+    ctx.stroke();
+    const words = `${m} m`;
+    const w = width(ctx, words, false);
+    const at = Math.min(X(m) + 3, area.x + area.w - w);
+    if (at >= area.x && at > lastRight + 6) {
+      text(ctx, words, at, Y(0) + 0.5 * textPx(), "#e8e8e8", false);
+      lastRight = at + w;
+    }
+  }
+  rbs.panels[name] = { scale, ox, oy, left, rect };
+  if (s) {
+    ctx.save();
+    ctx.beginPath();
+    ctx.rect(area.x, area.y, area.w, area.h);
+    ctx.clip();
+    const h = 0.5 * b.length;
+    const ax = X(s.x + h * Math.cos(s.theta));
+    const ay = Y(s.y + h * Math.sin(s.theta));
+    const bx = X(s.x - h * Math.cos(s.theta));
+    const by = Y(s.y - h * Math.sin(s.theta));
+    ctx.strokeStyle = COLOURS.rod;
+    ctx.lineWidth = Math.max(7, 0.35 * textPx());
+    ctx.lineCap = "round";
+    ctx.beginPath();
+    ctx.moveTo(bx, by);
+    ctx.lineTo(ax, ay);
+    ctx.stroke();
+    ctx.fillStyle = COLOURS.rod_end;
+    ctx.beginPath();
+    ctx.arc(ax, ay, Math.max(6, 0.3 * textPx()), 0, 2 * Math.PI);
+    ctx.fill();
+    ctx.restore();
+    rbs.drawn[name] = Object.assign({}, s, { cx: X(s.x), cy: Y(s.y), ax, ay, bx, by });
+  }
+}
