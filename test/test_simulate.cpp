@@ -183,6 +183,26 @@ TEST_F(SimulateTest, ReplayOfItsBagIsTheSameRunForEveryKey) {
   }
 }
 
+// Without --duration a replay runs to the bag's last state, whatever the bodies' types: for every type, a
+// world of that type alone, recorded for 2 s, replays for 2 s, CSV for CSV.
+TEST_F(SimulateTest, ReplayRunsToTheLastStateOfEveryBodyType) {
+  for (const auto& type : bodyTypeNames()) {
+    SCOPED_TRACE(type);
+    const fs::path config_file = write(type + ".yaml", "bodies:\n  only: {type: " + type + "}\n");
+    const fs::path run = dir_ / (type + "_run"), replay = dir_ / (type + "_replay");
+    const fs::path bag = dir_ / (type + ".bag");
+    fs::create_directories(run);
+    fs::create_directories(replay);
+    const auto recorded =
+        simulate(config_file.string() + " --duration 2 --out-dir " + run.string() + " --bag " + bag.string());
+    ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
+    const auto replayed = simulate("--replay " + bag.string() + " --out-dir " + replay.string());
+    ASSERT_EQ(replayed.exit_code, 0) << replayed.err;
+    ASSERT_TRUE(fs::exists(replay / "only.csv"));
+    EXPECT_EQ(slurp(run / "only.csv"), slurp(replay / "only.csv"));
+  }
+}
+
 TEST_F(SimulateTest, BadInputExitsNonZeroWithOneLineAndNoOutput) {
   const fs::path bad = write("bad.yaml", "bodies: {rod: {type: rod, k: -1}}\n");
   const auto run = simulate(bad.string() + " --out-dir " + (dir_ / "out").string());

@@ -1,14 +1,14 @@
 #include "rigid_body_sim/ros/command_log.h"
 
+#include <optional>
 #include <set>
 
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/ros/bag_recorder.h"
+#include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {
 
@@ -33,9 +33,14 @@ std::string commandTopic(rosbag::Bag& bag, const std::string& path) {
                                    : "a bag with /sim/commands or a single topic of rigid_body_sim/Command");
 }
 
+// The simulated time of a state of any body type, or of a command; 0 for another message.
 double simulatedTimeOf(const rosbag::MessageInstance& message) {
-  if (const auto rod = message.instantiate<RodState>()) return rod->t;
-  if (const auto roller = message.instantiate<RollerState>()) return roller->t;
+  std::optional<double> t;
+  BodyTypes::forEach([&](auto type) {
+    if (const auto state = message.instantiate<typename RosBodyType<decltype(type)>::StateMsg>())
+      t = state->t;
+  });
+  if (t) return *t;
   if (const auto command = message.instantiate<rigid_body_sim::Command>()) return command->t;
   return 0.0;
 }
