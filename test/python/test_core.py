@@ -355,6 +355,26 @@ class CoreCase(unittest.TestCase):
             core.World({"bodies": {"rod": {"type": "rod"}}}).run(1.0, bag=os.path.join(self.tmp.name, "no", "x.bag"))
         self.assertIn(os.path.join(self.tmp.name, "no", "x.bag.active"), str(failed.exception))
 
+    def test_the_example_runs_as_a_student_runs_it(self) -> None:
+        """examples/python/text_vs_core.py as docs/python.md gives it: it ends well and draws its figure, the
+        text's rod and the World's agree over the first 3 s (before the bounces grow a last bit of numpy's
+        sin and cos), and the rollers follow the closed form to 1e-12 m (the docs: about 1e-13)."""
+        example = os.path.join(HERE, "..", "..", "examples", "python", "text_vs_core.py")
+        with tempfile.TemporaryDirectory() as folder:
+            figure = os.path.join(folder, "text_vs_core.png")
+            done = subprocess.run([sys.executable, example, "--figure", figure], capture_output=True, text=True,
+                                  timeout=60)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertGreater(os.path.getsize(figure), 10000, done.stdout)
+        first_3s = [float(line.split("over the first 3 s ")[1].split(",")[0])
+                    for line in done.stdout.splitlines() if "over the first 3 s" in line]
+        closed = [float(line.split("largest |core - closed form| ")[1].split(" m")[0])
+                  for line in done.stdout.splitlines() if "closed form|" in line]
+        self.assertEqual(len(first_3s), 3, done.stdout)  # x, y, theta
+        self.assertEqual(len(closed), 3, done.stdout)  # sphere, cylinder, ring
+        self.assertLessEqual(max(first_3s), 1e-9, done.stdout)
+        self.assertLessEqual(max(closed), 1e-12, done.stdout)
+
     def test_the_stub_is_the_modules(self) -> None:
         stub = os.path.join(os.path.dirname(core.__file__), "core.pyi")
         with open(stub) as f:
