@@ -386,10 +386,16 @@ class CoreCase(unittest.TestCase):
         assert isinstance(world, ast.ClassDef)
         members = {node.name for node in world.body if isinstance(node, ast.FunctionDef)}
         self.assertEqual(members - {"__init__"}, {name for name in dir(core.World) if not name.startswith("_")})
-        # mypy's stubtest: every name, property and function of the stub against the module as it runs.
-        done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "--concise", "rigid_body_sim.core"],
-                              capture_output=True, text=True, timeout=100,
-                              env=dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(stub))))
+        # mypy's stubtest: every name, property and function of the stub against the module as it runs. Its
+        # mypy build must not fail on what is not the stub's: Debian 11's numpy has no type hints, and its
+        # mypy (0.812) cannot type catkin's generated rigid_body_sim/__init__.py (its __path__).
+        with tempfile.NamedTemporaryFile("w", suffix=".ini") as config:
+            config.write("[mypy]\nignore_missing_imports = True\n[mypy-rigid_body_sim]\nignore_errors = True\n")
+            config.flush()
+            done = subprocess.run([sys.executable, "-m", "mypy.stubtest", "--concise", "--mypy-config-file",
+                                   config.name, "rigid_body_sim.core"],
+                                  capture_output=True, text=True, timeout=100,
+                                  env=dict(os.environ, MYPYPATH=os.path.dirname(os.path.dirname(stub))))
         self.assertEqual(done.returncode, 0, done.stdout + done.stderr)
 
 
