@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 
 #include "rigid_body_sim/core/node_interface.h"
@@ -10,6 +11,7 @@
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
+#include "rigid_body_sim/ros/subscriber_backlog.h"
 #include "rigid_body_sim/run/session.h"
 
 namespace rigid_body_sim {
@@ -18,9 +20,11 @@ namespace {
 
 constexpr double kMaxStepSeconds = 600.0;  // a ~step request may advance at most this much simulated time
 constexpr auto kPausedWait = std::chrono::milliseconds(50);  // paused: how often ros::ok() is looked at
-// After the last step of a `duration`: for subscribers (a recorder) to receive the last messages. roscpp
-// tells a publisher nothing of a subscriber's backlog (docs/performance.md: what a slow subscriber loses).
-constexpr auto kEndWait = std::chrono::milliseconds(500);
+// After the last step of a `duration`, subscribers (a recorder, a slow listener at real_time_factor 0) are
+// still handed what is queued for them: the node waits while any takes messages, until none has taken one
+// for kEndQuiet, or for kEndDeadline at most (docs/performance.md: what a subscriber that stalls loses).
+constexpr auto kEndQuiet = std::chrono::milliseconds(500);
+constexpr auto kEndDeadline = std::chrono::seconds(30);
 
 double wallNow() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -212,6 +216,17 @@ void SimNode::serveTasksFor(std::chrono::milliseconds wait) {
   stepper_tasks_.runPending();
 }
 
+void SimNode::serveTasksWhileSubscribersTake() {
+  const auto deadline = std::chrono::steady_clock::now() + kEndDeadline;
+  std::uint64_t before = 0;
+  std::uint64_t after = messagesHandedToSubscribers();
+  do {
+    before = after;
+    serveTasksFor(kEndQuiet);
+    after = messagesHandedToSubscribers();
+  } while (after != before && std::chrono::steady_clock::now() < deadline);
+}
+
 // The pace and the stamps start from now and the current step: stepping starts or resumes.
 void SimNode::anchor() {
   pacer_.restart(wallNow(), world().stepCount());
@@ -290,7 +305,7 @@ void SimNode::stepLoop() {
       session_.advance(1, after_step_);  // one at a time: the duration ends a run at its step
       if (duration_steps > 0 && world().stepCount() >= duration_steps) {
         ROS_INFO("simulated %.3f s: the requested duration; shutting down", world().time());
-        serveTasksFor(kEndWait);
+        serveTasksWhileSubscribersTake();
         if (options_.end_launch) endParentRoslaunch();  // its recorder and rviz with it
         ros::requestShutdown();
         return;

@@ -72,6 +72,7 @@ class SimNode {
     return stepper_tasks_.call(std::move(work));
   }
   void serveTasksFor(std::chrono::milliseconds wait);  // on the stepping thread: runs what comes meanwhile
+  void serveTasksWhileSubscribersTake();  // the end of a duration: until subscribers take nothing more
 
   // --- The stepping thread
   void stepLoop();
