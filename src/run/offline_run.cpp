@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "rigid_body_sim/core/rod_dynamics.h"
+#include "rigid_body_sim/core/body_types.h"
 #include "rigid_body_sim/io/csv_writer.h"
 #include "rigid_body_sim/run/progress.h"
 
@@ -56,8 +56,8 @@ class EnergyTracker {
 
  private:
   static bool isRolling(const Body& body) {
-    const auto* roller = std::get_if<Roller>(&body.model);
-    return roller && roller->mode() == RollMode::Rolling;
+    return std::visit([](const auto& model) { return TypeOfModel<decltype(model)>::conservesEnergy(model); },
+                      body.model);
   }
   std::vector<EnergyRecord> records_;
   std::vector<double> rolling_start_;
@@ -95,12 +95,8 @@ class BounceCounter {
 
  private:
   static bool touchesFloor(const Body& body) {
-    const auto* rod = std::get_if<Rod>(&body.model);
-    if (!rod || inFlight(rod->params(), rod->state())) return false;
-    // Rod::endHeightA / endHeightB's expressions, with one sine for both ends.
-    const double y = rod->state().y;
-    const double half = (0.5 * rod->params().length) * std::sin(rod->state().theta);
-    return y + half < 0.0 || y - half < 0.0;
+    return std::visit([](const auto& model) { return TypeOfModel<decltype(model)>::touchesFloor(model); },
+                      body.model);
   }
   std::vector<char> touching_;
   std::vector<int> bounces_;

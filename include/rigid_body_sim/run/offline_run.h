@@ -27,7 +27,8 @@ struct EnergyRecord {
   double final = 0.0;
   double min = 0.0;
   double max = 0.0;
-  // Largest |E - E_start| within a stretch of uninterrupted rolling (rollers only; 0 for rods).
+  // Largest |E - E_start| within a stretch of states that conserve it exactly (the type's conservesEnergy:
+  // a rolling roller; 0 for the other types).
   double rolling_drift = 0.0;
 };
 
@@ -39,7 +40,7 @@ struct OfflineSummary {
   std::vector<std::string> final_states;  // one CSV row per body, at end_time
   std::vector<std::string> final_rows;    // the same rows without their header (csvRow)
   std::vector<EnergyRecord> energy;       // per body
-  std::vector<int> bounces;               // per body: contacts with the floor begun (rods; 0 for rollers)
+  std::vector<int> bounces;               // per body: contacts with a floor begun (rods; 0 for the others)
   std::vector<WorldEvent> events;
 };
 

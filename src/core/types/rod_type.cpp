@@ -7,6 +7,7 @@
 
 #include "key_builders.h"
 #include "rigid_body_sim/core/parameters.h"
+#include "rigid_body_sim/core/rod_dynamics.h"
 
 namespace rigid_body_sim {
 
@@ -174,6 +175,14 @@ void validateSubsteps(const std::string& body, const RodConfig& config, double r
 }
 
 std::vector<std::string> RodType::extraFrames(const std::string& name) { return {name + "_ground"}; }
+
+bool RodType::touchesFloor(const Rod& rod) {
+  if (inFlight(rod.params(), rod.state())) return false;
+  // Rod::endHeightA / endHeightB's expressions, with one sine for both ends.
+  const double y = rod.state().y;
+  const double half = (0.5 * rod.params().length) * std::sin(rod.state().theta);
+  return y + half < 0.0 || y - half < 0.0;
+}
 
 void RodType::checkState(const std::string& body, const Config& config, const RodMotion& state) {
   const double floor = config.params.floor_length;

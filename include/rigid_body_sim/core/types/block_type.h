@@ -45,6 +45,10 @@ struct BlockType {
   static void checkState(const std::string& body, const Config& config, const BlockMotion& state);
   // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
   static std::optional<double> closedFormFinish(const Config& config);
+  // The run summary's tallies (simulate): whether energy is conserved exactly in this state (a stretch of
+  // such states is followed for drift), and whether the body touches a floor (a contact begun: a bounce).
+  static bool conservesEnergy(const Block&) { return false; }  // sliding, friction takes it
+  static bool touchesFloor(const Block&) { return false; }
 };
 
 // Throws ConfigError on the first refused value: ranges, then relations between keys (mu_d <= mu_s, x0 on

@@ -39,6 +39,10 @@ struct RodType {
   static std::vector<std::string> extraFrames(const std::string& name);
   // A state that leaves the body where it may be (set_state): x on a bounded floor. Throws ConfigError.
   static void checkState(const std::string& body, const Config& config, const RodMotion& state);
+  // The run summary's tallies (simulate): whether energy is conserved exactly in this state (a stretch of
+  // such states is followed for drift), and whether the body touches a floor (a contact begun: a bounce).
+  static bool conservesEnergy(const Rod&) { return false; }  // the springs' scheme only nearly does
+  static bool touchesFloor(const Rod& rod);                  // an end below it
 };
 
 // The theta0 drawn for a rod from `seed` when theta0 is not given: 2 pi u, u uniform in [0, 1) from

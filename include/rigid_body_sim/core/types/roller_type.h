@@ -47,6 +47,10 @@ struct RollerType {
   static void checkState(const std::string& body, const Config& config, const RollerMotion& state);
   // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
   static std::optional<double> closedFormFinish(const Config& config);
+  // The run summary's tallies (simulate): whether energy is conserved exactly in this state (a stretch of
+  // such states is followed for drift), and whether the body touches a floor (a contact begun: a bounce).
+  static bool conservesEnergy(const Roller& roller) { return roller.mode() == RollMode::Rolling; }
+  static bool touchesFloor(const Roller&) { return false; }
 };
 
 // Throws ConfigError on the first refused value: ranges, then relations between keys (mu_d <= mu_s, x0 on
