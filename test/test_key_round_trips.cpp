@@ -12,10 +12,12 @@
 #include <filesystem>
 #include <map>
 #include <random>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "rigid_body_sim/core/description.h"
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/io/config_loader.h"
@@ -213,6 +215,31 @@ TEST(BodyTypes, EveryKeyIsReadableAndEveryStateFieldHasItsKey) {
     SCOPED_TRACE(decltype(type)::kName);
     expectWellDescribed<decltype(type)>();
   });
+}
+
+// The panel's spawn list: every registered type, each entry a body the loader reads as a body of it (an
+// entry named for a choice: that choice of one of its text keys), no name twice; the rollers by the text's
+// four shapes.
+TEST(BodyTypes, EverySpawnChoiceIsABodyOfItsType) {
+  std::set<std::string> labels, types;
+  for (const SpawnChoice& choice : spawnChoices()) {
+    SCOPED_TRACE(choice.body);
+    EXPECT_TRUE(labels.insert(choice.label).second) << choice.label << " twice";
+    const BodyConfig body = parseBodyText("spawned", choice.body);
+    types.insert(typeName(body));
+    if (choice.label == typeName(body)) continue;
+    std::visit(
+        [&](const auto& config) {
+          bool named = false;
+          for (const auto& key : bodyType<std::decay_t<decltype(config)>>().keys)
+            named = named || (!key.isNumber() && key.text(config) == choice.label);
+          EXPECT_TRUE(named) << choice.label << " is none of its text keys' values";
+        },
+        body.config);
+  }
+  EXPECT_EQ(types, std::set<std::string>(bodyTypeNames().begin(), bodyTypeNames().end()));
+  for (const char* shape : {"sphere", "cylinder", "ring", "spherical_shell"})
+    EXPECT_EQ(labels.count(shape), 1u);
 }
 
 // config text -> load -> writer (what ~get_config returns, the command log's config) -> load.

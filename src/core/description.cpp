@@ -56,26 +56,34 @@ std::string rangeOf(const Range& range) {
                  {"max_open", range.max_open ? "true" : "false"}});
 }
 
-// What each choice of a text key sets besides itself, by choice: the number keys a choice gives the same
-// value whatever they held before (a roller's shape sets its inertia_factor; custom keeps the one given).
+// The number keys a choice of a text key gives the same value whatever they held before, and that value (a
+// roller's shape sets its inertia_factor; custom keeps the one given).
 template <class Config>
-std::string choiceSets(const BodyKey<Config>& key) {
-  if (!key.choices) return "{}";
+std::vector<std::pair<std::string, double>> setsOf(const BodyKey<Config>& key, const std::string& choice) {
   Config moved;  // every number key away from its default
   for (const auto& other : bodyType<Config>().keys) {
     if (other.isNumber()) other.field(moved) = other.number(moved) + 1.0;
   }
+  Config from_defaults, from_moved = moved;
+  setKeyText("description", key, choice, from_defaults);
+  setKeyText("description", key, choice, from_moved);
+  std::vector<std::pair<std::string, double>> values;
+  for (const auto& other : bodyType<Config>().keys) {
+    if (!other.isNumber() || other.number(from_defaults) != other.number(from_moved)) continue;
+    if (other.number(from_moved) != other.number(moved))
+      values.emplace_back(other.name, other.number(from_moved));
+  }
+  return values;
+}
+
+// What each choice of a text key sets besides itself, by choice.
+template <class Config>
+std::string choiceSets(const BodyKey<Config>& key) {
+  if (!key.choices) return "{}";
   std::vector<std::pair<std::string, std::string>> sets;
   for (const auto& choice : key.choices()) {
-    Config from_defaults, from_moved = moved;
-    setKeyText("description", key, choice, from_defaults);
-    setKeyText("description", key, choice, from_moved);
     std::vector<std::pair<std::string, std::string>> values;
-    for (const auto& other : bodyType<Config>().keys) {
-      if (!other.isNumber() || other.number(from_defaults) != other.number(from_moved)) continue;
-      if (other.number(from_moved) != other.number(moved))
-        values.emplace_back(other.name, number(other.number(from_moved)));
-    }
+    for (const auto& [name, value] : setsOf(key, choice)) values.emplace_back(name, number(value));
     sets.emplace_back(choice, object(values));
   }
   return object(sets);
@@ -231,6 +239,24 @@ std::string withKeyTables(const std::string& doc) {
     from = end;
   }
   return out + doc.substr(from);
+}
+
+std::vector<SpawnChoice> spawnChoices() {
+  std::vector<SpawnChoice> found;
+  BodyTypes::forEach([&](auto type) {
+    using Type = decltype(type);
+    const std::string name = Type::kName;
+    const std::size_t before = found.size();
+    for (const auto& key : Type::description().keys) {
+      if (!key.choices) continue;
+      for (const auto& choice : key.choices()) {
+        if (!setsOf(key, choice).empty())
+          found.push_back({choice, "{type: " + name + ", " + key.name + ": " + choice + "}"});
+      }
+    }
+    if (found.size() == before) found.push_back({name, "{type: " + name + "}"});
+  });
+  return found;
 }
 
 std::string bodyTypesJson() {

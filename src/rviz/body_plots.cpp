@@ -58,13 +58,6 @@ constexpr double kJumpSlack = 0.1;
 const QColor kColours[] = {QColor(31, 119, 180), QColor(255, 127, 14), QColor(214, 39, 40)};
 const char* const kPngVariable = "RBS_PLOTS_PNG";
 
-double parameter(const dynamic_reconfigure::Config& config, const std::string& name) {
-  for (const auto& p : config.doubles) {
-    if (p.name == name) return p.value;
-  }
-  return 0;
-}
-
 QFont pixels(QFont font, int px) {
   font.setPixelSize(px);
   return font;
@@ -180,65 +173,35 @@ void BodyPlots::select(const std::string& body) {
   const std::string type = found == bodies_.end() ? std::string() : found->second;
   if (body == body_ && !charts_.empty() == !type.empty()) return;
   body_ = body;
-  state_.shutdown();
+  state_.shutdown();  // before its type goes
   parameters_.shutdown();
-  parameters_known_ = false;
-  build(type);
-  if (type.empty()) return;
+  type_ = rvizBodyTypeOf(type);
+  build();
+  if (!type_) return;
   ros::NodeHandle nh;
   const std::string server = ns_ + "/" + body;
   parameters_ = nh.subscribe<dynamic_reconfigure::Config>(
       server + "/parameter_updates", 1,
-      [this](const dynamic_reconfigure::Config::ConstPtr& c) { setParameters(*c); });
-  // A queue long enough for every state between two of rviz's spins: no point, no mode change missed.
-  if (type == "rigid_body_sim/RodState") {
-    state_ =
-        nh.subscribe<RodState>(server + "/state", 100, [this](const RodState::ConstPtr& s) { onRod(*s); });
-  } else if (type == "rigid_body_sim/RollerState") {
-    state_ = nh.subscribe<RollerState>(server + "/state", 100,
-                                       [this](const RollerState::ConstPtr& s) { onRoller(*s); });
-  } else if (type == "rigid_body_sim/BlockState") {
-    state_ = nh.subscribe<BlockState>(server + "/state", 100,
-                                      [this](const BlockState::ConstPtr& s) { onBlock(*s); });
-  }
+      [this](const dynamic_reconfigure::Config::ConstPtr& c) { type_->setParameters(*c); });
+  state_ = type_->plot(
+      nh, server + "/state", [this](double t) { return take(t); }, *this);
 }
 
-// A roller's speeds (with the slip-to-roll marker) and friction, or a rod's ends; then the energy.
-void BodyPlots::build(const std::string& type) {
+// The charts of the chosen body's type, then its energy.
+void BodyPlots::build() {
   for (auto& chart : charts_) delete chart.view;
   charts_.clear();
-  note_item_ = nullptr;  // the speeds chart's, gone with it
   clear();
   heading_->setText(QString::fromStdString(body_));
   window_->setWindowTitle(QString("rigid_body_sim: %1").arg(QString::fromStdString(body_)));
-  if (type.empty()) return;  // no body
-  if (type == "rigid_body_sim/RollerState") {
-    charts_.push_back(makeChart("speeds (equal while rolling)", "speed (m/s)"));
-    addTrack(charts_.back(), "v", "v", new QLineSeries());
-    addTrack(charts_.back(), "minus_omega_r", "\u2212\u03c9R", new QLineSeries());
-    addTrack(charts_.back(), "slip_to_roll", "slip \u2192 roll", new QScatterSeries());
-    note_item_ = new QGraphicsSimpleTextItem(charts_.back().view->chart());
-    note_item_->hide();
-    const auto follow = [this] { placeNote(); };
-    connect(charts_.back().view->chart(), &QChart::plotAreaChanged, this, follow);
-    charts_.push_back(makeChart("friction on the body, along the slope", "F (N)"));
-    addTrack(charts_.back(), "friction", "friction", new QLineSeries());
-  } else if (type == "rigid_body_sim/BlockState") {
-    charts_.push_back(makeChart("speed along the slope", "speed (m/s)"));
-    addTrack(charts_.back(), "v", "v", new QLineSeries());
-    charts_.push_back(makeChart("friction on the block, along the slope", "F (N)"));
-    addTrack(charts_.back(), "friction", "friction", new QLineSeries());
-  } else {
-    charts_.push_back(makeChart("height of each end", "y (m)"));
-    addTrack(charts_.back(), "y_end_plus", "y + (L/2) sin \u03b8", new QLineSeries());
-    addTrack(charts_.back(), "y_end_minus", "y \u2212 (L/2) sin \u03b8", new QLineSeries());
+  if (!type_) return;  // no body
+  for (const ChartSpec& spec : type_->charts()) {
+    charts_.push_back(makeChart(spec.title, spec.y_title));
+    for (const TrackSpec& track : spec.tracks) addTrack(charts_.back(), track);
   }
-  const bool on_slope = type != "rigid_body_sim/RodState";
-  charts_.push_back(makeChart(
-      on_slope ? "energy (potential 0 at the slope's top)" : "energy (potential 0 at floor level)", "E (J)"));
-  addTrack(charts_.back(), "energy", "total", new QLineSeries());
-  addTrack(charts_.back(), "kinetic", "kinetic", new QLineSeries());
-  addTrack(charts_.back(), "potential", "potential", new QLineSeries());
+  charts_.push_back(makeChart(QString("energy (potential 0 %1)").arg(type_->potentialZero()), "E (J)"));
+  for (const char* track : {"energy", "kinetic", "potential"})
+    addTrack(charts_.back(), {track, track == std::string("energy") ? "total" : track});
   place();
 }
 
@@ -261,8 +224,9 @@ BodyPlots::Chart BodyPlots::makeChart(const QString& title, const QString& y_tit
   return made;
 }
 
-void BodyPlots::addTrack(Chart& chart, const std::string& key, const QString& name, QXYSeries* series) {
-  series->setName(name);
+void BodyPlots::addTrack(Chart& chart, const TrackSpec& spec) {
+  QXYSeries* series = spec.marks ? static_cast<QXYSeries*>(new QScatterSeries()) : new QLineSeries();
+  series->setName(spec.name);
   QPen pen(kColours[chart.tracks.size() % 3]);
   if (chart.tracks.size() == 1) pen.setStyle(Qt::DashLine);  // the second line shows where they coincide
   series->setPen(pen);
@@ -270,7 +234,12 @@ void BodyPlots::addTrack(Chart& chart, const std::string& key, const QString& na
   chart.view->chart()->addSeries(series);
   series->attachAxis(chart.x);
   series->attachAxis(chart.y);
-  chart.tracks.push_back({key, {series}, {}});
+  chart.tracks.push_back({spec.key, {series}, {}, {}, nullptr});
+  if (!spec.marks) return;
+  auto* note = new QGraphicsSimpleTextItem(chart.view->chart());  // beside the last mark
+  note->hide();
+  chart.tracks.back().note_item = note;
+  connect(chart.view->chart(), &QChart::plotAreaChanged, this, [this] { placeNotes(); });
 }
 
 // Fonts, pens and sizes for where the chart is: the panel's tab or the projector window.
@@ -291,8 +260,9 @@ void BodyPlots::style(Chart& chart, const Style& style) {
     }
   }
   chart.view->setMinimumSize(style.minimum);
-  if (note_item_ && &chart == &charts_.front())
-    note_item_->setFont(pixels(note_item_->font(), style.tick_px));
+  for (auto& track : chart.tracks) {
+    if (track.note_item) track.note_item->setFont(pixels(track.note_item->font(), style.tick_px));
+  }
 }
 
 // In the window's grid (two columns; an odd last chart spans both) while it is open, else one under another
@@ -356,27 +326,22 @@ void BodyPlots::savePng() {
                       : QString("could not write %1").arg(path));
 }
 
-void BodyPlots::setParameters(const dynamic_reconfigure::Config& config) {
-  rod_.mass = roller_.mass = block_.mass = parameter(config, "mass");
-  rod_.length = parameter(config, "length");
-  roller_.radius = parameter(config, "radius");
-  roller_.inertia_factor = parameter(config, "inertia_factor");  // the shape's c, or a custom one
-  roller_.incline_angle = parameter(config, "incline_angle");
-  roller_.incline_length = parameter(config, "incline_length");
-  roller_.mu_s = parameter(config, "mu_s");
-  roller_.mu_d = parameter(config, "mu_d");
-  parameters_known_ = true;
-}
-
 // The total as the state has it; the kinetic the core's; the potential what remains of the total.
-void BodyPlots::appendEnergies(Chart& chart, double t, double total, double kinetic) {
+void BodyPlots::energies(double t, double total, std::optional<double> kinetic) {
+  const std::size_t chart = charts_.size() - 1;
   append(chart, 0, t, total);
-  if (!parameters_known_) return;
-  append(chart, 1, t, kinetic);
-  append(chart, 2, t, total - kinetic);
+  if (!kinetic) return;
+  append(chart, 1, t, *kinetic);
+  append(chart, 2, t, total - *kinetic);
 }
 
 bool BodyPlots::recording() const { return isVisible() || window_->isVisible(); }
+
+bool BodyPlots::take(double t) {
+  if (!recording() || charts_.empty() || t <= origin_) return false;
+  trim(t);
+  return true;
+}
 
 // Whether the body moved farther since its last state than its speed could take it: a restart (a lap).
 bool BodyPlots::restarted(double t, double x, double v) {
@@ -388,63 +353,6 @@ bool BodyPlots::restarted(double t, double x, double v) {
   last_v_ = v;
   if (jumped) ++line_;
   return jumped;
-}
-
-void BodyPlots::onRod(const RodState& state) {
-  if (!recording() || charts_.size() != 2 || state.t <= origin_) return;
-  trim(state.t);
-  restarted(state.t, state.x, state.vx);
-  if (parameters_known_) {
-    append(charts_[0], 0, state.t, state.y + 0.5 * rod_.length * std::sin(state.theta));
-    append(charts_[0], 1, state.t, state.y - 0.5 * rod_.length * std::sin(state.theta));
-  }
-  const Rod rod(rod_, RodMotion{state.x, state.y, state.theta, state.vx, state.vy, state.omega});
-  appendEnergies(charts_[1], state.t, state.energy, rod.kineticEnergy());
-}
-
-// rolling means v = -omega R (RollerState.msg): v and -omega R coincide then.
-void BodyPlots::onRoller(const RollerState& state) {
-  if (!recording() || charts_.size() != 3 || state.t <= origin_) return;
-  trim(state.t);
-  const bool restart = restarted(state.t, state.x, state.v);
-  append(charts_[0], 0, state.t, state.v);
-  if (parameters_known_) append(charts_[0], 1, state.t, -state.omega * roller_.radius);
-  slipToRoll(state, restart);
-  append(charts_[1], 0, state.t, state.friction);
-  const Roller roller(roller_, RollerInitial{state.x, state.v, state.theta, state.omega});
-  appendEnergies(charts_[2], state.t, state.energy, roller.kineticEnergy());
-}
-
-void BodyPlots::onBlock(const BlockState& state) {
-  if (!recording() || charts_.size() != 3 || state.t <= origin_) return;
-  trim(state.t);
-  restarted(state.t, state.x, state.v);
-  append(charts_[0], 0, state.t, state.v);
-  append(charts_[1], 0, state.t, state.friction);
-  const Block block(block_, BlockInitial{state.x, state.v});
-  appendEnergies(charts_[2], state.t, state.energy, block.kineticEnergy());
-}
-
-// A slipping phase that begins (the first state, a restart, a rolling body that starts slipping) takes the
-// closed form's instant of its end from that state; the first rolling state after it is marked, the two
-// times beside the mark, since the reset as the t axis counts.
-void BodyPlots::slipToRoll(const RollerState& state, bool restart) {
-  const bool slipping = state.mode == RollerState::MODE_SLIPPING;
-  if (slipping && (restart || last_mode_ != RollerState::MODE_SLIPPING)) {
-    closed_roll_.reset();
-    if (parameters_known_ && gravity_ > 0) {
-      RollerParams params = roller_;
-      params.gravity = gravity_;
-      const RollerRun run = closedFormRun(params, RollerInitial{state.x, state.v, state.theta, state.omega});
-      if (run.slip_to_roll) closed_roll_ = state.t + *run.slip_to_roll;
-    }
-  }
-  if (!restart && last_mode_ == RollerState::MODE_SLIPPING && state.mode == RollerState::MODE_ROLLING) {
-    append(charts_[0], 2, state.t, state.v);
-    note_ = QString("slip \u2192 roll at %1 s").arg(fixed(state.t - origin_, 3));
-    if (closed_roll_) note_ += QString(" (closed form %1 s)").arg(fixed(*closed_roll_ - origin_, 3));
-  }
-  last_mode_ = state.mode;
 }
 
 // A reset or a new config (anyone's) puts the bodies back at their start: what came up to it goes (a paused
@@ -462,16 +370,17 @@ void BodyPlots::onCommand(const Command& command) {
       while (!track.points.empty() && track.points.front().t <= command.t) track.points.pop_front();
     }
   }
-  last_mode_.clear();
-  have_last_ = false;
-  closed_roll_.reset();
-  note_.clear();
+  forget();
+}
+
+void BodyPlots::append(std::size_t chart, std::size_t track, double t, double value) {
+  charts_.at(chart).tracks.at(track).points.push_back({t, value, line_});
   dirty_ = true;
 }
 
-void BodyPlots::append(Chart& chart, std::size_t track, double t, double value) {
-  chart.tracks[track].points.push_back({t, value, line_});
-  dirty_ = true;
+void BodyPlots::mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) {
+  append(chart, track, t, value);
+  charts_[chart].tracks[track].note = note;
 }
 
 // Only the last kPlotWindow seconds are kept.
@@ -479,19 +388,25 @@ void BodyPlots::trim(double t) {
   for (auto& chart : charts_) {
     for (auto& track : chart.tracks) {
       while (!track.points.empty() && track.points.front().t < t - kPlotWindow) track.points.pop_front();
+      if (track.points.empty()) track.note.clear();  // its mark went out of the window
     }
   }
-  if (!charts_.empty() && charts_[0].tracks.size() == 3 && charts_[0].tracks[2].points.empty()) note_.clear();
 }
 
 void BodyPlots::clear() {
   for (auto& chart : charts_) {
     for (auto& track : chart.tracks) track.points.clear();
   }
-  last_mode_.clear();
+  forget();
+}
+
+// No line under way, no note, no phase of the body's motion.
+void BodyPlots::forget() {
+  for (auto& chart : charts_) {
+    for (auto& track : chart.tracks) track.note.clear();
+  }
   have_last_ = false;
-  closed_roll_.reset();
-  note_.clear();
+  if (type_) type_->forget();
   dirty_ = true;
 }
 
@@ -556,25 +471,28 @@ void BodyPlots::redraw() {
     }
     chart.y->setRange(ticks.low, ticks.high);
   }
-  placeNote();
+  placeNotes();
 }
 
-// The slip-to-roll note beside its mark (to its left when the mark is in the right half of the chart).
-void BodyPlots::placeNote() {
-  if (!note_item_ || charts_.empty()) return;
-  const Track& marks = charts_[0].tracks[2];
-  if (note_.isEmpty() || marks.points.empty()) {
-    note_item_->hide();
-    return;
+// Each note beside its last mark (to its left when the mark is in the right half of the chart).
+void BodyPlots::placeNotes() {
+  for (const Chart& chart : charts_) {
+    for (const Track& marks : chart.tracks) {
+      if (!marks.note_item) continue;
+      if (marks.note.isEmpty() || marks.points.empty()) {
+        marks.note_item->hide();
+        continue;
+      }
+      QChart* drawn = chart.view->chart();
+      const Point& mark = marks.points.back();
+      const QPointF at = drawn->mapToPosition(QPointF(mark.t - origin_, mark.value), marks.series.front());
+      marks.note_item->setText(marks.note);
+      const QRectF box = marks.note_item->boundingRect();
+      const bool right_half = at.x() > drawn->plotArea().center().x();
+      marks.note_item->setPos(right_half ? at.x() - box.width() - 14 : at.x() + 14, at.y() + 10);
+      marks.note_item->show();
+    }
   }
-  QChart* chart = charts_[0].view->chart();
-  const Point& mark = marks.points.back();
-  const QPointF at = chart->mapToPosition(QPointF(mark.t - origin_, mark.value), marks.series.front());
-  note_item_->setText(note_);
-  const QRectF box = note_item_->boundingRect();
-  const bool right_half = at.x() > chart->plotArea().center().x();
-  note_item_->setPos(right_half ? at.x() - box.width() - 14 : at.x() + 14, at.y() + 10);
-  note_item_->show();
 }
 
 std::string BodyPlots::layoutLines() const {
@@ -597,9 +515,10 @@ std::string BodyPlots::layoutLines() const {
       const auto drawn = [](const QXYSeries* s) { return s->count() > 0; };
       out << "plot." << track.key << ".lines 0 0 0 0 1 "
           << std::count_if(track.series.begin(), track.series.end(), drawn) << '\n';
+      if (track.note_item)
+        out << "plot." << track.key << ".note 0 0 0 0 1 " << track.note.toStdString() << '\n';
     }
   }
-  out << "plot.slip_to_roll.note 0 0 0 0 1 " << note_.toStdString() << '\n';
   return out.str();
 }
 

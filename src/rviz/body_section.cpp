@@ -20,7 +20,6 @@
 
 #include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/parameters.h"
-#include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/rviz/call_queue.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
 #include "rigid_body_sim/rviz/focus_wheel.h"
@@ -72,14 +71,6 @@ std::vector<std::pair<std::string, std::string>> enumConstants(const std::string
   return constants;
 }
 
-// The unit a key's .cfg description names, written "(unit)": letters, and '/' between them (N/m, rad/s).
-// Empty for a pure number (mu_s; "(M R^2)" is a formula, not a unit).
-QString unitOf(const std::string& description) {
-  static const std::regex unit(R"(\(([A-Za-z]+(?:/[A-Za-z]+)*)\))");
-  std::smatch found;
-  return std::regex_search(description, found, unit) ? QString::fromStdString(found[1]) : QString();
-}
-
 // A change accepted while the node is paused: no state comes to show it until the next Step or Run.
 QString pausedNote(const std::string& key, const QString& value) {
   return QString("paused: %1 = %2 is set; the mode and energy above follow it at the next Step or Run")
@@ -96,12 +87,6 @@ QString valueText(const dynamic_reconfigure::Config& config, const std::string& 
 
 }  // namespace
 
-QString numberText(double value) { return QString::fromStdString(formatNumber(value)); }
-
-QString degreesText(double radians, int decimals) {
-  return QString("%1").arg(fixed(radians * 180.0 / kPi, decimals)) + QChar(0x00B0);
-}
-
 BodySection::BodySection(const std::string& name, const std::string& server, const std::string& state_type,
                          CallQueue& calls, std::function<void(double)> on_time,
                          std::function<void()> on_delete, const QString& read_only, QWidget* parent)
@@ -109,6 +94,7 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
       name_(name),
       server_(server),
       state_type_(state_type),
+      type_(rvizBodyTypeOf(state_type)),
       calls_(calls),
       on_time_(std::move(on_time)),
       read_only_(read_only) {
@@ -128,7 +114,6 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
   layout->addLayout(top);
   critical_ = new QLabel(this);
   critical_->setObjectName(QString::fromStdString(name + ".critical"));
-  critical_->setToolTip("rolling holds while tan(slope) <= mu_s (1 + c) / c, with c = I / (M R^2)");
   critical_->setWordWrap(true);
   critical_->hide();
   layout->addWidget(critical_);
@@ -150,16 +135,9 @@ BodySection::BodySection(const std::string& name, const std::string& server, con
         values_ = *c;
         showValues(values_);
       }));
-  const std::string state_topic = server_ + "/state";
-  if (state_type_ == "rigid_body_sim/RodState") {
-    subscribers_.push_back(
-        nh.subscribe<RodState>(state_topic, 1, [this](const RodState::ConstPtr& s) { onRodState(*s); }));
-  } else if (state_type_ == "rigid_body_sim/RollerState") {
-    subscribers_.push_back(nh.subscribe<RollerState>(
-        state_topic, 1, [this](const RollerState::ConstPtr& s) { onSlopeState(s->t, s->mode, s->energy); }));
-  } else if (state_type_ == "rigid_body_sim/BlockState") {
-    subscribers_.push_back(nh.subscribe<BlockState>(
-        state_topic, 1, [this](const BlockState::ConstPtr& s) { onSlopeState(s->t, s->mode, s->energy); }));
+  if (type_) {
+    subscribers_.push_back(type_->describe(nh, server_ + "/state",
+                                           [this](double t, const QString& motion) { onState(t, motion); }));
   }
 }
 
@@ -291,7 +269,7 @@ QWidget* BodySection::numberField(const dynamic_reconfigure::ParamDescription& p
       slider->setValue(static_cast<int>(std::lround((p->value - min) / (max - min) * kSliderTicks)));
     }
   };
-  addUnit(row, object, unitOf(param.description), key, field);
+  addUnit(row, object, type_ ? type_->unit(key) : QString(), key, field);
   connect(box, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, key](double value) {
     dynamic_reconfigure::Config asked;
     asked.doubles.resize(1);
@@ -382,29 +360,19 @@ void BodySection::holdIfReadOnly(QWidget* widget) {
 
 void BodySection::showValues(const dynamic_reconfigure::Config& values) {
   for (auto& [key, field] : fields_) field.show(values);
-  showCritical(values);
+  if (type_) type_->setParameters(values);
+  showCritical();
 }
 
 void BodySection::setPaused(bool paused) { paused_ = paused; }
 
 // A roller's critical angle for its mu_s and c (the core's), and whether its slope lets it roll.
-void BodySection::showCritical(const dynamic_reconfigure::Config& values) {
-  const auto* mu_s = parameterNamed(values.doubles, "mu_s");
-  const auto* c = parameterNamed(values.doubles, "inertia_factor");
-  const auto* slope = parameterNamed(values.doubles, "incline_angle");
-  critical_->setVisible(mu_s && c && slope);
-  if (!mu_s || !c || !slope) return;
-  RollerParams params;
-  params.mu_s = mu_s->value;
-  params.inertia_factor = c->value;
-  params.incline_angle = slope->value;
-  const QString head = QString("critical angle %1 for %2s %3: ")
-                           .arg(degreesText(criticalAngle(params.mu_s, params.inertia_factor), 1))
-                           .arg(QChar(0x03BC))
-                           .arg(numberText(params.mu_s));
-  const QString at = degreesText(params.incline_angle, 1);
-  critical_->setText(head + (Roller::canRoll(params) ? "can roll without slipping (slope " + at + ")"
-                                                     : "slips (slope " + at + " above it)"));
+void BodySection::showCritical() {
+  const auto verdict = type_ ? type_->critical() : std::nullopt;
+  critical_->setVisible(verdict.has_value());
+  if (!verdict) return;
+  critical_->setText(verdict->text);
+  critical_->setToolTip(verdict->why);
 }
 
 // Sends one key to the server. Its answer is what runs: shown at once, so that a refused value snaps back;
@@ -448,22 +416,6 @@ void BodySection::request(dynamic_reconfigure::Config asked, const std::string& 
       });
 }
 
-void BodySection::onRodState(const RodState& state) {
-  // An end below the floor is pushed by the floor's spring (the rod's half length from the server's values;
-  // a replay has no server: the energy alone).
-  const QString energy =
-      QString("E = %1 J (potential 0 with its centre at floor level)").arg(fixed(state.energy, 3));
-  const auto* length = parameterNamed(values_.doubles, "length");
-  if (length) {
-    const double lowest_end = state.y - 0.5 * length->value * std::abs(std::sin(state.theta));
-    motion_->setText(QString(lowest_end < 0 ? "on the floor" : "in the air") + " · " + energy);
-  } else {
-    motion_->setText(energy);
-  }
-  clearPendingNote();
-  on_time_(state.t);
-}
-
 // A state after a change made while paused: the mode and energy now show it.
 void BodySection::clearPendingNote() {
   if (!pending_note_) return;
@@ -471,10 +423,9 @@ void BodySection::clearPendingNote() {
   showMessage("", false);
 }
 
-void BodySection::onSlopeState(double t, const std::string& mode, double energy) {
-  motion_->setText(QString("%1 · E = %2 J (potential 0 with its centre at the slope's top)")
-                       .arg(QString::fromStdString(mode))
-                       .arg(fixed(energy, 3)));
+// Its mode (as its type tells it) and energy, from its newest state.
+void BodySection::onState(double t, const QString& motion) {
+  motion_->setText(motion);
   clearPendingNote();
   on_time_(t);
 }

@@ -22,7 +22,7 @@
 #include "rigid_body_sim/Delete.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
-#include "rigid_body_sim/core/roller.h"
+#include "rigid_body_sim/core/description.h"
 #include "rigid_body_sim/rviz/body_plots.h"
 #include "rigid_body_sim/rviz/body_section.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
@@ -141,10 +141,10 @@ QHBoxLayout* SimPanel::spawnRow() {
   spawn_name_->setToolTip("the name of the body Spawn adds: its TF frame and topics");
   spawn_kind_ = new FocusWheel<QComboBox>(this);
   spawn_kind_->setObjectName("spawn_kind");
-  spawn_kind_->addItem("rod");
-  for (const Shape shape : namedShapes()) spawn_kind_->addItem(QString::fromStdString(toString(shape)));
-  spawn_kind_->addItem("block");
-  spawn_kind_->setToolTip("a rod, a roller of this shape or a block; its other keys take their defaults");
+  for (const SpawnChoice& choice : spawnChoices())
+    spawn_kind_->addItem(QString::fromStdString(choice.label), QString::fromStdString(choice.body));
+  spawn_kind_->setToolTip(
+      "a body of this type (a roller: of this shape); its other keys take their defaults");
   auto* spawn_button = button("Spawn", "spawn", "~spawn: a new body, starting now", this);
   row->addWidget(spawn_name_, 1);
   row->addWidget(spawn_kind_);
@@ -393,14 +393,13 @@ void SimPanel::step() {
       [this](const std::string& text) { showStatus(QString::fromStdString(text)); });
 }
 
-// A rod, a roller of the chosen shape or a block: the node gives every other key its documented default.
+// A body of the chosen kind: the node gives every other key its documented default.
 void SimPanel::spawn() {
   const std::string name = spawn_name_->text().trimmed().toStdString();
   const std::string kind = spawn_kind_->currentText().toStdString();
   Spawn srv;
   srv.request.name = name;
-  const bool roller = shapeFromString(kind).has_value();
-  srv.request.body = roller ? "{type: roller, shape: " + kind + "}" : "{type: " + kind + "}";
+  srv.request.body = spawn_kind_->currentData().toString().toStdString();
   callChange(ns_ + "/spawn", srv, "spawned '" + name + "' (" + kind + ")");
 }
 

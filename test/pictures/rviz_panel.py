@@ -16,7 +16,8 @@ rviz/sim.rviz on config/demo.yaml, under Xvfb (test/pictures/rviz_screenshot.sh 
   nothing: the field, the node's world and its servers keep the value;
 - Spawn with a typed name and a chosen shape adds that body to the node's world (~get_config) and its
   section to the panel; a spawn under a taken name is refused and adds nothing; the new body's Delete
-  takes it out of the world and its section out of the panel.
+  takes it out of the world and its section out of the panel; a block spawned from the same list shows its
+  motion and its critical angle atan(mu_s) with its verdict.
 Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every check passes, 1 otherwise;
 writes OUT (a screenshot at the end) and OUT's stem + ".txt" (the findings)."""
 import argparse
@@ -107,12 +108,14 @@ class Panel:
         xdotool("key", "Return")
 
     def scroll_to(self, name: str, timeout: float) -> None:
-        """Turns the mouse wheel over the sections' left margin (no field there) until `name` is in sight."""
+        """Turns the mouse wheel over the sections' left margin (no field there) until `name` is in sight:
+        up while it is above them, else down."""
         x, y, _, h, _ = self.fresh()["sections"]
         end = time.monotonic() + timeout
         while not self.in_sight(name):
             before = self.text("sections")  # the scroll position
-            xdotool("mousemove", str(x + 3), str(y + h // 2), "click", "5")
+            above = self.widgets()[name][1] < y  # as laid out after the last turn
+            xdotool("mousemove", str(x + 3), str(y + h // 2), "click", "4" if above else "5")
             try:
                 wait_for("the sections to move", lambda: self.text("sections") != before,
                          max(0.1, end - time.monotonic()))
@@ -360,18 +363,23 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check(f"  the node's world keeps {name}.{key} = {in_world:g}; no reconfigure ({updates == sent})",
                    in_world == float(was) and updates == sent)
 
+    def spawn(typed: str, kind: str, name: str) -> Dict[str, Any]:
+        """Spawn of `kind`, chosen by typing into the list (its keyboard search), named `name`: the body in
+        the node's world afterwards."""
+        panel.click("spawn_kind")
+        xdotool("type", "--delay", "40", typed)
+        xdotool("key", "Return")
+        wait(f"{kind} chosen", lambda: panel.text("spawn_kind") == kind)
+        panel.type_into("spawn_name", name)
+        panel.click("spawn")
+        wait(f"the panel to report the spawn of {name}", lambda: f"spawned '{name}'" in panel.text("status"))
+        return dict(world_bodies().get(name, {}))
+
     # --- Run; Spawn a spherical shell named wheel (last in name order: its section comes at the bottom), a refused
     # spawn, then the wheel's Delete
     panel.click("run")
     wait("Run done", lambda: panel.text("status") == "running")
-    panel.click("spawn_kind")
-    xdotool("type", "--delay", "40", "spherical")  # the list's keyboard search: sphere, then spherical_shell
-    xdotool("key", "Return")
-    wait("the shape spherical_shell chosen", lambda: panel.text("spawn_kind") == "spherical_shell")
-    panel.type_into("spawn_name", "wheel")
-    panel.click("spawn")
-    wait("the panel to report the spawn", lambda: "spawned 'wheel'" in panel.text("status"))
-    wheel = world_bodies().get("wheel", {})
+    wheel = spawn("spherical", "spherical_shell", "wheel")  # the list's search: sphere, then spherical_shell
     findings.check(f"Spawn: the node's world has a spherical_shell roller named wheel ({wheel})",
                    wheel.get("type") == "roller" and wheel.get("shape") == "spherical_shell")
     wait("the wheel's section", lambda: "wheel.motion" in panel.widgets())
@@ -394,6 +402,16 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     findings.check("Delete: wheel is out of the node's world", "wheel" not in world_bodies())
     wait("the wheel's section to go", lambda: not any(name.startswith("wheel.") for name in panel.widgets()))
     findings.check("  and its section out of the panel", True)
+    # A block, the third type, from the same list: its section with its motion and its critical angle.
+    crate = spawn("block", "block", "crate")
+    findings.check(f"Spawn: the node's world has a block named crate ({crate})", crate.get("type") == "block")
+    wait("the crate's state in its section", lambda: "E = " in panel.text("crate.motion"))
+    findings.check(f"  its section shows it: {panel.text('crate.motion')[:60]}", True)
+    wait("the crate's critical angle", lambda: panel.text("crate.critical") != "")
+    check_critical(panel.text("crate.critical"), "crate", crate, findings)
+    panel.scroll_to("crate.delete", 20.0)
+    panel.click("crate.delete")
+    wait("the panel to report the crate's delete", lambda: panel.text("status") == "deleted 'crate'")
 
     # --- the Plots tab: the rod's ends after a Step, then the bowler from a Reset to past its slip-to-roll
     check_plots(Plots(panel, wait, paused, probe, rods, bowlers), config, world_bodies()["bowler"], findings)
@@ -528,14 +546,19 @@ def check_units(widgets: Dict[str, Widget], config: Dict[str, Any], findings: Fi
 
 
 def check_critical(shown: str, name: str, body: Dict[str, Any], findings: Findings) -> None:
-    """A roller's critical angle and verdict against the closed form tan(phi_c) = mu_s (1 + c) / c."""
-    mu_s, slope, c = float(body["mu_s"]), float(body["incline_angle"]), SHAPE_C[body["shape"]]
-    tan_c = mu_s * (1 + c) / c
+    """A roller's critical angle and verdict against the closed form tan(phi_c) = mu_s (1 + c) / c; a
+    block's against tan(phi_c) = mu_s."""
+    mu_s, slope = float(body["mu_s"]), float(body["incline_angle"])
     at = f"{math.degrees(slope):.1f}\u00b0"
+    if body["type"] == "block":
+        tan_c, holds, slides = mu_s, f"stays put at rest (slope {at})", f"slides from rest (slope {at} above it)"
+    else:
+        c = SHAPE_C[body["shape"]]
+        tan_c = mu_s * (1 + c) / c
+        holds, slides = f"can roll without slipping (slope {at})", f"slips (slope {at} above it)"
     want = (f"critical angle {math.degrees(math.atan(tan_c)):.1f}\u00b0 for \u03bcs {mu_s:g}: "
-            + (f"can roll without slipping (slope {at})" if math.tan(slope) <= tan_c
-               else f"slips (slope {at} above it)"))
-    findings.check(f"{name} ({body['shape']}): {shown}", shown == want)
+            + (holds if math.tan(slope) <= tan_c else slides))
+    findings.check(f"{name} ({body.get('shape', body['type'])}): {shown}", shown == want)
     if shown != want:
         findings.check(f"  the closed form says: {want}", False)
 

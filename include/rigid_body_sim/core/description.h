@@ -7,10 +7,20 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace rigid_body_sim {
 
 std::string bodyTypesJson();
+
+// What a body may be spawned as: by a name for people, the body to ask for. A type's name
+// ({type: block}); for a type with a text key whose choices set other keys, each such choice's name
+// (a roller's shape: sphere is {type: roller, shape: sphere}). In the registration's order.
+struct SpawnChoice {
+  std::string label;
+  std::string body;
+};
+std::vector<SpawnChoice> spawnChoices();
 
 // The docs' table of a body type's keys, or of the world's ("world"), in Markdown: key, default, allowed
 // (a number's interval and unit), what. std::invalid_argument for another name.

@@ -1,11 +1,9 @@
 // The SimPanel's Plots tab: live charts (QtCharts) of ONE body, chosen in a combo box, over the last
-// kPlotWindow simulated seconds, from the body's state topic. Every body: its energy, the total (the state's
-// `energy`), the kinetic (the core's, from the state and the body's parameters) and the potential (their
-// difference). A roller: v and -omega R on one chart (equal while it rolls), each slip-to-roll instant marked
-// (the first rolling state after a slipping one) with its time beside the closed form's (closedFormRun from
-// the state that began the slipping phase), and the friction force. A rod: the height of each end,
-// y +- (L/2) sin(theta). The parameters (L, R, M, c, the slope) come from the body's reconfigure server, g
-// from the node's ~gravity parameter or a newer config command.
+// kPlotWindow simulated seconds, from the body's state topic: the charts of its type (rviz/body_type_rviz.h;
+// a roller's speeds with each slip-to-roll instant marked beside the closed form's, a rod's ends, a block's
+// speed) and, for every body, its energy: the total (the state's `energy`), the kinetic (the core's, from
+// the state and the body's parameters) and the potential (their difference). The parameters come from the
+// body's reconfigure server, g from the node's ~gravity parameter or a newer config command.
 // Time: the t axis is simulated time since the last reset or config (the node's ~commands), whose points go:
 // the node's t goes on through a reset, a user's charts start afresh at 0. A body restarted within a run (a
 // lap: the end of its slope or floor, a race's new lap) jumps back: a new line starts there, never a segment
@@ -18,6 +16,7 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,13 +38,8 @@
 #include <dynamic_reconfigure/Config.h>
 #include <ros/ros.h>
 
-#include "rigid_body_sim/BlockState.h"
 #include "rigid_body_sim/Command.h"
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerState.h"
-#include "rigid_body_sim/core/block.h"
-#include "rigid_body_sim/core/rod.h"
-#include "rigid_body_sim/core/roller.h"
+#include "rigid_body_sim/rviz/body_type_rviz.h"
 #include "rigid_body_sim/rviz/call_queue.h"
 
 namespace rigid_body_sim {
@@ -63,7 +57,7 @@ using QtCharts::QXYSeries;
 
 inline constexpr double kPlotWindow = 10.0;  // simulated seconds shown
 
-class BodyPlots : public QWidget {
+class BodyPlots : public QWidget, private PlotSink {
   Q_OBJECT
  public:
   struct Style;  // fonts, pens and sizes: the tab's or the projector window's (body_plots.cpp)
@@ -81,7 +75,7 @@ class BodyPlots : public QWidget {
   // For the GUI test (RBS_PANEL_LAYOUT): one line per series, "plot.<series> 0 0 0 0 1 count t value" (its
   // last point; count 0: no t and value) and "plot.<series>.lines 0 0 0 0 1 lines" (the lines drawn); one
   // per chart, "plot.chart<i> x y width height 1 title_px axis_title_px x_tick_px y_tick_px x_min x_max
-  // y_ticks" (y_ticks comma-separated); "plot.slip_to_roll.note 0 0 0 0 1 text".
+  // y_ticks" (y_ticks comma-separated); per track of marks, "plot.<series>.note 0 0 0 0 1 text".
   std::string layoutLines() const;
 
  protected:
@@ -98,6 +92,8 @@ class BodyPlots : public QWidget {
     std::string key;                 // plot.<key> in the layout lines
     std::vector<QXYSeries*> series;  // a line series per line drawn, the first with the legend entry
     std::deque<Point> points;
+    QString note;  // marks': the last one's, beside it
+    QGraphicsSimpleTextItem* note_item = nullptr;
   };
   struct Chart {
     QChartView* view;
@@ -106,23 +102,26 @@ class BodyPlots : public QWidget {
     std::vector<Track> tracks;
   };
   void select(const std::string& body);
-  void build(const std::string& type);  // the charts of a body of that state type; none if empty
+  void build();  // the charts of the chosen body's type; none without one
   Chart makeChart(const QString& title, const QString& y_title);
-  void addTrack(Chart& chart, const std::string& key, const QString& name, QXYSeries* series);
+  void addTrack(Chart& chart, const TrackSpec& spec);
   void place();  // the charts in the projector window while it is open, else in the tab
   void style(Chart& chart, const Style& style);
-  void onRod(const RodState& state);
-  void onRoller(const RollerState& state);
-  void onBlock(const BlockState& state);
   void onCommand(const Command& command);
   bool recording() const;
-  bool restarted(double t, double x, double v);
-  void slipToRoll(const RollerState& state, bool restart);
-  void append(Chart& chart, std::size_t track, double t, double value);
+  void forget();
+  bool take(double t);  // whether a state at t is drawn; drops what is older than the window
+  // PlotSink: what the body's type draws of each state.
+  bool restarted(double t, double x, double v) override;
+  void append(std::size_t chart, std::size_t track, double t, double value) override;
+  void mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) override;
+  void energies(double t, double total, std::optional<double> kinetic) override;
+  double origin() const override { return origin_; }
+  double gravity() const override { return gravity_; }
   void trim(double t);
   void redraw();
   void drawTrack(Chart& chart, Track& track);
-  void placeNote();
+  void placeNotes();
   void savePng();
 
   CallQueue& calls_;
@@ -135,25 +134,14 @@ class BodyPlots : public QWidget {
   QLabel* heading_;  // its body's name
   QWidget* grid_;    // its charts
   QPushButton* save_;
-  QLabel* saved_;              // where the PNG went
-  std::vector<Chart> charts_;  // energy, then a roller's speeds and friction or a rod's ends
-  void setParameters(const dynamic_reconfigure::Config& config);
-  void appendEnergies(Chart& chart, double t, double total, double kinetic);
-
-  // From the body's server; not known in a replay (no server): then no ends, -omega R or kinetic energy.
-  bool parameters_known_ = false;
-  RodParams rod_;
-  RollerParams roller_;
-  BlockParams block_;
-  double gravity_ = 0;  // the world's; 0 until known (no closed form then)
-  std::string last_mode_;
-  double origin_ = 0;  // t of the last reset or config: the t axis starts there
+  QLabel* saved_;                       // where the PNG went
+  std::unique_ptr<RvizBodyType> type_;  // the chosen body's
+  std::vector<Chart> charts_;           // its type's, then the energy
+  double gravity_ = 0;                  // the world's; 0 until known (no closed form then)
+  double origin_ = 0;                   // t of the last reset or config: the t axis starts there
   int line_ = 0;
   bool have_last_ = false;  // the body's last state (t, x, v), to see a restart
   double last_t_ = 0, last_x_ = 0, last_v_ = 0;
-  std::optional<double> closed_roll_;  // the closed form's slip-to-roll t of the slipping phase under way
-  QString note_;                       // the last slip-to-roll mark's time and the closed form's
-  QGraphicsSimpleTextItem* note_item_ = nullptr;
   bool dirty_ = false;
   QTimer redraw_timer_;
   ros::Subscriber state_, parameters_, commands_;

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,9 +19,7 @@
 #include <dynamic_reconfigure/ConfigDescription.h>
 #include <ros/ros.h>
 
-#include "rigid_body_sim/BlockState.h"
-#include "rigid_body_sim/RodState.h"
-#include "rigid_body_sim/RollerState.h"
+#include "rigid_body_sim/rviz/body_type_rviz.h"
 
 class QFormLayout;
 
@@ -64,21 +63,21 @@ class BodySection : public QGroupBox {
   QWidget* intField(const std::string& key, double min, double max, Field& field);
   QWidget* boolField(const std::string& key, Field& field);
   QWidget* textField(const std::string& key, Field& field);
-  void showCritical(const dynamic_reconfigure::Config& values);
+  void showCritical();
   void clearPendingNote();
   void showValues(const dynamic_reconfigure::Config& values);
   void request(dynamic_reconfigure::Config asked, const std::string& key, const QString& asked_text);
-  void onRodState(const RodState& state);
-  void onSlopeState(double t, const std::string& mode, double energy);  // a roller's or a block's
-  void holdIfReadOnly(QWidget* widget);                                 // disabled, its tool tip the reason
+  void onState(double t, const QString& motion);
+  void holdIfReadOnly(QWidget* widget);  // disabled, its tool tip the reason
 
   std::string name_, server_, state_type_;
+  std::unique_ptr<RvizBodyType> type_;  // null for a state type the panel does not know
   CallQueue& calls_;
   std::function<void(double)> on_time_;
   QString read_only_;
   QFormLayout* form_;
   QLabel* motion_;    // mode and energy
-  QLabel* critical_;  // a roller's critical angle
+  QLabel* critical_;  // its critical angle, for a type that has one
   QLabel* message_;   // the last refusal (or acceptance) of a request
   std::map<std::string, Field> fields_;
   std::vector<std::string> order_;  // the keys in the .cfg's order
@@ -93,10 +92,5 @@ class BodySection : public QGroupBox {
 // How the panel shows a refusal: a colour apart from rviz's own warning and error colours (the screenshot
 // test looks for those in the display tree) and from the text's.
 inline constexpr const char* kRefusalStyle = "color: rgb(230, 90, 60);";
-
-// Text of a value as the panel shows it: the shortest form that reads back the same number.
-QString numberText(double value);
-// An angle in degrees with `decimals` decimals and the degree sign.
-QString degreesText(double radians, int decimals);
 
 }  // namespace rigid_body_sim

@@ -1,0 +1,122 @@
+// What each body type shows in the rviz panel, as its own file (src/rviz/types/<type>_rviz.cpp) defines it:
+// its charts on the Plots tab beside the energy chart every body has, what each of its states adds to them,
+// and the line its section shows. BodyPlots and BodySection show every body from these alone.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <QString>
+
+#include <dynamic_reconfigure/Config.h>
+#include <ros/ros.h>
+
+#include "rigid_body_sim/ros/body_types_ros.h"
+
+namespace rigid_body_sim {
+
+// A line on a chart (plot.<key> in the panel's layout lines), or marks at instants with a note beside the
+// last one (plot.<key>.note).
+struct TrackSpec {
+  std::string key;
+  QString name;  // the legend's
+  bool marks = false;
+};
+
+struct ChartSpec {
+  QString title;
+  QString y_title;  // with its unit
+  std::vector<TrackSpec> tracks;
+};
+
+// Where a body type's states go on the Plots tab: the charts its type lists (by their index and their
+// tracks'), then the energy chart every body has.
+class PlotSink {
+ public:
+  virtual ~PlotSink() = default;
+  // Whether the body moved farther since its last state than its speed could take it: a restart (a lap),
+  // where a new line begins.
+  virtual bool restarted(double t, double x, double v) = 0;
+  virtual void append(std::size_t chart, std::size_t track, double t, double value) = 0;
+  virtual void mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) = 0;
+  // The energy chart: the total (the state's), the kinetic (none while the body's parameters are not
+  // known, as in a replay) and the potential, what remains of the total.
+  virtual void energies(double t, double total, std::optional<double> kinetic) = 0;
+  virtual double origin() const = 0;   // t of the last reset or config: the charts' t axis starts there
+  virtual double gravity() const = 0;  // the world's g; 0 while not known
+};
+
+// One body's face in the panel, by its type.
+class RvizBodyType {
+ public:
+  // A body's critical angle and whether its slope is above it (text), and what holds it (why).
+  struct Verdict {
+    QString text;
+    QString why;
+  };
+
+  virtual ~RvizBodyType() = default;
+  virtual QString unit(const std::string& key) const = 0;  // as the description gives it; "" for none
+  virtual std::vector<ChartSpec> charts() const = 0;       // its own, above the energy chart
+  virtual QString potentialZero() const = 0;  // where its potential energy is 0 ("at floor level")
+  // Its parameters, from its reconfigure server's updates. A replay has no server: what needs them is not
+  // drawn then.
+  virtual void setParameters(const dynamic_reconfigure::Config& config) = 0;
+  // Its critical angle from its parameters, if it has one.
+  virtual std::optional<Verdict> critical() const { return std::nullopt; }
+  // The charts start afresh (a reset, another body): no phase of its motion is under way.
+  virtual void forget() {}
+  // Its states on `topic`: those `take` lets through to `sink` (a queue for every state between two of
+  // rviz's spins), or the newest one's t and the line its section shows.
+  virtual ros::Subscriber plot(ros::NodeHandle& nh, const std::string& topic,
+                               std::function<bool(double)> take, PlotSink& sink) = 0;
+  virtual ros::Subscriber describe(ros::NodeHandle& nh, const std::string& topic,
+                                   std::function<void(double, const QString&)> show) = 0;
+};
+
+// The subscriptions of a type with state message StateMsg; the type's own file defines the rest.
+template <class Type>
+class RvizBodyTypeOf : public RvizBodyType {
+ public:
+  using StateMsg = typename RosMessages<Type>::StateMsg;
+
+  QString unit(const std::string& key) const override {
+    const auto* found = findKey(Type::description().keys, key);
+    return found ? QString::fromUtf8(found->unit) : QString();
+  }
+
+  ros::Subscriber plot(ros::NodeHandle& nh, const std::string& topic, std::function<bool(double)> take,
+                       PlotSink& sink) override {
+    return nh.subscribe<StateMsg>(topic, 100, [this, take, &sink](const typename StateMsg::ConstPtr& state) {
+      if (take(state->t)) plotState(*state, sink);
+    });
+  }
+  ros::Subscriber describe(ros::NodeHandle& nh, const std::string& topic,
+                           std::function<void(double, const QString&)> show) override {
+    return nh.subscribe<StateMsg>(
+        topic, 1, [this, show](const typename StateMsg::ConstPtr& state) { show(state->t, motion(*state)); });
+  }
+
+ protected:
+  virtual void plotState(const StateMsg& state, PlotSink& sink) = 0;
+  virtual QString motion(const StateMsg& state) const = 0;  // "rolling · E = 1.234 J (...)"
+};
+
+// Each type's, defined in its src/rviz/types/<type>_rviz.cpp: a type without one does not link.
+template <class Type>
+std::unique_ptr<RvizBodyType> makeRvizBodyType();
+
+// The body type whose state message is `state_type` ("rigid_body_sim/RodState"); null for none.
+std::unique_ptr<RvizBodyType> rvizBodyTypeOf(const std::string& state_type);
+
+// The value of the number `name` in a reconfigure config, if it has one.
+std::optional<double> parameterOf(const dynamic_reconfigure::Config& config, const std::string& name);
+
+// "E = 1.234 J (potential 0 with its centre <zero>)": every section's energy.
+QString energyText(double energy, const QString& zero);
+
+}  // namespace rigid_body_sim

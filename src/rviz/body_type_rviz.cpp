@@ -1,0 +1,30 @@
+#include "rigid_body_sim/rviz/body_type_rviz.h"
+
+#include <ros/message_traits.h>
+
+#include "rigid_body_sim/rviz/fixed_text.h"
+
+namespace rigid_body_sim {
+
+std::unique_ptr<RvizBodyType> rvizBodyTypeOf(const std::string& state_type) {
+  std::unique_ptr<RvizBodyType> found;
+  BodyTypes::forEach([&](auto type) {
+    using Type = decltype(type);
+    if (ros::message_traits::datatype<typename RosMessages<Type>::StateMsg>() == state_type)
+      found = makeRvizBodyType<Type>();
+  });
+  return found;
+}
+
+std::optional<double> parameterOf(const dynamic_reconfigure::Config& config, const std::string& name) {
+  for (const auto& p : config.doubles) {
+    if (p.name == name) return p.value;
+  }
+  return std::nullopt;
+}
+
+QString energyText(double energy, const QString& zero) {
+  return QString("E = %1 J (potential 0 with its centre %2)").arg(fixed(energy, 3), zero);
+}
+
+}  // namespace rigid_body_sim
