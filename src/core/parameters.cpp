@@ -8,6 +8,8 @@
 #include <set>
 #include <utility>
 
+#include "rigid_body_sim/core/names.h"
+
 namespace rigid_body_sim {
 
 namespace {
@@ -24,15 +26,6 @@ Range rateRange() { return {1.0, 1e6, false, false}; }
 Range publishRateRange() { return {0.0, 1e6, true, false}; }
 Range gravityRange() { return {0.0, 1e3, false, false}; }
 
-bool isValidName(const std::string& name) {
-  if (name.empty() || name.size() > kMaxNameLength || !std::isalpha(static_cast<unsigned char>(name[0])))
-    return false;
-  for (const char ch : name) {
-    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') return false;
-  }
-  return true;
-}
-
 bool dividesRate(double rate, double divisor) {
   if (!(divisor > 0) || !std::isfinite(rate) || !std::isfinite(divisor)) return false;
   const double ratio = rate / divisor;
@@ -44,12 +37,6 @@ std::string typeName(const BodyConfig& body) {
                     body.config);
 }
 
-std::string fixedFrameOf(const BodyConfig& body) {
-  return std::visit(
-      [&](const auto& config) { return fixedFrameOf<TypeOfConfig<decltype(config)>>(body.name); },
-      body.config);
-}
-
 const std::vector<std::string>& bodyTypeNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all;
@@ -58,8 +45,6 @@ const std::vector<std::string>& bodyTypeNames() {
   }();
   return names;
 }
-
-std::string groundFrameOf(const std::string& name) { return name + "_ground"; }
 
 const std::vector<std::string>& worldKeys() {
   static const std::vector<std::string> keys = {"rate",        "publish_rate", "gravity",

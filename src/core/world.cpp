@@ -2,6 +2,7 @@
 
 #include <type_traits>
 
+#include "rigid_body_sim/core/names.h"
 #include "rigid_body_sim/core/state_fields.h"
 
 namespace rigid_body_sim {

@@ -10,6 +10,7 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/Marker.h>
 
+#include "rigid_body_sim/core/names.h"
 #include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/core/names.h"
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/ros/messages.h"
 

@@ -65,28 +65,11 @@ Range rateRange();
 Range publishRateRange();
 Range gravityRange();
 
-// The longest name of a body or of world_frame: it names topics, services and frames, and lines of text.
-inline constexpr std::size_t kMaxNameLength = 64;
-
-// True for a name usable as a ROS graph name component and as a TF frame: [A-Za-z][A-Za-z0-9_]*, at most
-// kMaxNameLength characters.
-bool isValidName(const std::string& name);
-
-// The fixed frame in which a body's coordinates are measured: <name> and its type's suffix (a rod's
-// <name>_floor, a body on an incline's <name>_slope).
-template <class Type>
-std::string fixedFrameOf(const std::string& name) {
-  return name + Type::kFixedFrameSuffix;
-}
-std::string fixedFrameOf(const BodyConfig& body);
-// A rod's frame under it on an unbounded floor: <name>_ground.
-std::string groundFrameOf(const std::string& name);
-
-// Checks the world keys, every body, name validity, that every TF frame (world_frame, each body and its
-// fixed frame) is distinct, that there are 1 to kMaxBodies bodies, and that publish_rate divides rate. A body
-// cannot be named like a world key nor like one of `reserved_names`: the names of the node's private
-// namespace, which the bodies share (its options, topics and services; a body named `rate` would shadow the
-// world's rate).
+// Checks the world keys, every body, name validity (core/names.h), that every TF frame (world_frame, each
+// body and its fixed frame) is distinct, that there are 1 to kMaxBodies bodies, and that publish_rate divides
+// rate. A body cannot be named like a world key nor like one of `reserved_names`: the names of the node's
+// private namespace, which the bodies share (its options, topics and services; a body named `rate` would
+// shadow the world's rate).
 void validate(const WorldConfig& config, const std::vector<std::string>& reserved_names = {});
 
 // Sub-steps per simulated second above which a valid config is reported as slow.

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "key_builders.h"
+#include "rigid_body_sim/core/names.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/core/rod_dynamics.h"
 
@@ -174,7 +175,7 @@ void validateSubsteps(const std::string& body, const RodConfig& config, double r
                         ", dt = 1 / rate = " + formatNumber(1.0 / rate) + " s");
 }
 
-std::vector<std::string> RodType::extraFrames(const std::string& name) { return {name + "_ground"}; }
+std::vector<std::string> RodType::extraFrames(const std::string& name) { return {groundFrameOf(name)}; }
 
 bool RodType::touchesFloor(const Rod& rod) {
   if (inFlight(rod.params(), rod.state())) return false;
