@@ -183,8 +183,8 @@ void BodyPlots::select(const std::string& body) {
   parameters_ = nh.subscribe<dynamic_reconfigure::Config>(
       server + "/parameter_updates", 1,
       [this](const dynamic_reconfigure::Config::ConstPtr& c) { type_->setParameters(*c); });
-  state_ = type_->plot(
-      nh, server + "/state", [this](double t) { return take(t); }, *this);
+  const auto taken = [this](double t) { return take(t); };
+  state_ = type_->plot(nh, server + "/state", taken, *this);
 }
 
 // The charts of the chosen body's type, then its energy.
