@@ -51,14 +51,6 @@ class NumberBox : public FocusWheel<QDoubleSpinBox> {
   }
 };
 
-template <class Parameter>
-const Parameter* parameterNamed(const std::vector<Parameter>& parameters, const std::string& name) {
-  for (const auto& p : parameters) {
-    if (p.name == name) return &p;
-  }
-  return nullptr;
-}
-
 // The constants of an enum from a description's edit_method (a Python dict literal): (name, value text).
 std::vector<std::pair<std::string, std::string>> enumConstants(const std::string& edit_method) {
   std::vector<std::pair<std::string, std::string>> constants;
@@ -366,7 +358,7 @@ void BodySection::showValues(const dynamic_reconfigure::Config& values) {
 
 void BodySection::setPaused(bool paused) { paused_ = paused; }
 
-// A roller's critical angle for its mu_s and c (the core's), and whether its slope lets it roll.
+// Its type's critical angle from the values shown, and whether its slope is above it.
 void BodySection::showCritical() {
   const auto verdict = type_ ? type_->critical() : std::nullopt;
   critical_->setVisible(verdict.has_value());

@@ -16,13 +16,6 @@ std::unique_ptr<RvizBodyType> rvizBodyTypeOf(const std::string& state_type) {
   return found;
 }
 
-std::optional<double> parameterOf(const dynamic_reconfigure::Config& config, const std::string& name) {
-  for (const auto& p : config.doubles) {
-    if (p.name == name) return p.value;
-  }
-  return std::nullopt;
-}
-
 QString energyText(double energy, const QString& zero) {
   return QString("E = %1 J (potential 0 with its centre %2)").arg(fixed(energy, 3), zero);
 }

@@ -113,8 +113,20 @@ std::unique_ptr<RvizBodyType> makeRvizBodyType();
 // The body type whose state message is `state_type` ("rigid_body_sim/RodState"); null for none.
 std::unique_ptr<RvizBodyType> rvizBodyTypeOf(const std::string& state_type);
 
+// The parameter `name` of a reconfigure config's doubles, ints, bools or strs; null if it has none.
+template <class Parameter>
+const Parameter* parameterNamed(const std::vector<Parameter>& parameters, const std::string& name) {
+  for (const auto& p : parameters) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
 // The value of the number `name` in a reconfigure config, if it has one.
-std::optional<double> parameterOf(const dynamic_reconfigure::Config& config, const std::string& name);
+inline std::optional<double> parameterOf(const dynamic_reconfigure::Config& config, const std::string& name) {
+  const auto* p = parameterNamed(config.doubles, name);
+  return p ? std::optional(p->value) : std::nullopt;
+}
 
 // "E = 1.234 J (potential 0 with its centre <zero>)": every section's energy.
 QString energyText(double energy, const QString& zero);
