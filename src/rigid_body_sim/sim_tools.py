@@ -221,6 +221,34 @@ def subscribe_to_the_rest(bag_path: str, taken: Iterable[str], played_as: Option
     return [rospy.Subscriber(topic, rospy.AnyMsg, lambda _: None) for topic in sorted(rest)]
 
 
+def play_until(bag_path: str, what: str, done: Callable[[], bool], timeout: float, env: Dict[str, str],
+               launch_args: Iterable[str] = ()) -> str:
+    """playback.launch of a bag without rviz until done() holds, then the launch ended as by Ctrl-C; its output.
+    The player stays past the bag's end (keep_alive:=true): one that exits drops what roscpp still queues for
+    a subscriber behind it. TimeoutError naming `what`, with roslaunch's output, after `timeout` seconds."""
+    import signal
+    import subprocess
+    import tempfile
+
+    with tempfile.TemporaryFile("w+") as output:  # a file, not a pipe: rosbag play's progress line never blocks
+        play = subprocess.Popen(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={bag_path}", "rviz:=false",
+                                 "keep_alive:=true", *launch_args], env=env, stdout=output, stderr=subprocess.STDOUT)
+        failure: Optional[TimeoutError] = None
+        try:
+            wait_for(what, done, timeout)
+        except TimeoutError as error:
+            failure = error
+        play.send_signal(signal.SIGINT)
+        play.wait(timeout=60)
+        output.seek(0)
+        said = output.read()[-3000:]
+    if failure:
+        raise TimeoutError(f"{failure}; roslaunch said:\n{said}")
+    if play.returncode != 0:
+        raise RuntimeError(f"playback.launch ended with exit status {play.returncode}:\n{said}")
+    return said
+
+
 def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
     """An end of the rod below the floor (the floor's spring pushes it)."""
     half = 0.5 * length * math.sin(theta)

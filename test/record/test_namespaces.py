@@ -27,8 +27,8 @@ import rosgraph
 import rospy
 import tf2_ros
 from tf2_msgs.msg import TFMessage
-from rigid_body_sim.sim_tools import (Config, body_of_state_topic, free_port, load_config, rospy_on_python39,
-                                      subscribe_to_the_rest, wait_for, world_value)
+from rigid_body_sim.sim_tools import (Config, body_of_state_topic, free_port, load_config, play_until,
+                                      rospy_on_python39, subscribe_to_the_rest, wait_for, world_value)
 
 rospy_on_python39()
 
@@ -149,15 +149,12 @@ class TwoInstances(unittest.TestCase):
                    for topic in received]
         # The player starts once every topic has a subscriber: the transforms here, the rest dropped.
         collect += subscribe_to_the_rest(self.bag("a"), received, {"/a/tf": "/tf", "/a/tf_static": "/tf_static"})
+        with rosbag.Bag(self.bag("a")) as bag:
+            recorded = {"/tf": bag.get_message_count("/a/tf"), "/tf_static": bag.get_message_count("/a/tf_static")}
         try:
-            play = subprocess.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={self.bag('a')}", "ns:=a",
-                                   "rviz:=false", "rate:=4"], env=self.env, stdout=subprocess.PIPE,
-                                  stderr=subprocess.STDOUT, text=True, timeout=120)
-            self.assertEqual(play.returncode, 0, play.stdout[-3000:])
-            with rosbag.Bag(self.bag("a")) as bag:
-                recorded = {"/tf": bag.get_message_count("/a/tf"), "/tf_static": bag.get_message_count("/a/tf_static")}
-            # The player has ended; its last messages may still be on their way here.
-            wait_for(f"every transform message of the bag ({recorded})", lambda: received == recorded, 30.0)
+            # The player stays past the bag's end until every message has come (keep_alive:=true).
+            play_until(self.bag("a"), f"every transform message of the bag ({recorded})", lambda: received == recorded,
+                       120.0, self.env, ["ns:=a", "rate:=4"])
         finally:
             for subscriber in collect:
                 subscriber.unregister()

@@ -31,8 +31,8 @@ import rospy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
 from rigid_body_sim.testing import STATE_TYPES
-from rigid_body_sim.sim_tools import (Config, free_port, load_config, state_fields, subscribe_to_the_rest, wait_for,
-                                      world_value)
+from rigid_body_sim.sim_tools import (Config, free_port, load_config, play_until, state_fields, subscribe_to_the_rest,
+                                      wait_for, world_value)
 
 States = Dict[str, List[Any]]
 
@@ -92,11 +92,14 @@ class Listener:
         wait_for("a publisher of the state topics", lambda: all(sub.get_num_connections() for sub in self.subs),
                  timeout)
 
+    def has_every_state_at(self, last_t: float) -> bool:
+        """Every body's state at last_t has come: each topic delivers in order, and a full queue drops its
+        oldest message, never the newest, so all that was published before has come too."""
+        return all(msgs and msgs[-1].t == last_t for msgs in self.states.values())
+
     def close(self, last_t: float, timeout: float = 30) -> None:
-        """After every body's state at last_t has come: each topic delivers in order, and a full queue
-        drops its oldest message, never the newest, so all that was published before has come too."""
-        wait_for(f"every body's state at t = {last_t:g}",
-                 lambda: all(msgs and msgs[-1].t == last_t for msgs in self.states.values()), timeout)
+        """After every body's state at last_t has come."""
+        wait_for(f"every body's state at t = {last_t:g}", lambda: self.has_every_state_at(last_t), timeout)
         for sub in self.subs:
             sub.unregister()
 
@@ -228,18 +231,16 @@ class NodeOutput(unittest.TestCase):
 
         listener = Listener(self.config)
         # The player starts once every topic has a subscriber: the listener's states, and the rest here. It
-        # exits at the bag's last message, and what roscpp still queues for a subscriber then is lost (rosbag
-        # play does not wait for its subscribers, docs/rviz.md): at twice the recorded pace a listener on a
-        # busy machine keeps up (five times, under ctest -j2 on 2 cores, it lost the last states once).
+        # stays past the bag's end until the listener has the last states (keep_alive:=true).
         rest = subscribe_to_the_rest(bag_path, [sub.name for sub in listener.subs])
-        play = self.master.run(["roslaunch", "rigid_body_sim", "playback.launch", f"bag:={bag_path}",
-                                "rviz:=false", "rate:=2"])
+        said = play_until(bag_path, f"every body's state at t = {duration:g}",
+                          lambda: listener.has_every_state_at(duration), 120.0, self.master.env, ["rate:=5"])
         listener.close(duration)
         for sub in rest:
             sub.unregister()
         for name in self.config["bodies"]:
             self.assertEqual([as_row(m) for m in listener.states[name]], [as_row(m) for m in states[name]],
-                             f"{name} played back; rosbag play said:\n" + play.stdout[-2000:])
+                             f"{name} played back; roslaunch said:\n" + said)
 
 
 def main() -> None:

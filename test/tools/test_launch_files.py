@@ -5,11 +5,12 @@ part choosing the config (config/race_<part>.yaml, or rod.yaml) and the view, it
 rviz and critical_angles on by default;
 and every argument of sim.launch and playback.launch has a doc (roslaunch --ros-args shows it). playback.launch's
 player is required (the launch ends with the bag) without rviz or with close_at_end, and only then; start_paused
-passes --pause.
+passes --pause, keep_alive --keep-alive.
 
 Usage: test_launch_files.py LAUNCH_DIR
 """
 import argparse
+import itertools
 import os
 import re
 import sys
@@ -43,15 +44,15 @@ def playback_failures(launch_dir: str) -> List[str]:
     failures = [f"playback.launch: {name} has no doc" for name, (_, doc) in args.items() if not doc]
     failures += [f"playback.launch: {name} has no default" for name, (default, _) in args.items()
                  if not default and name != "bag"]
-    for rviz in ("true", "false"):
-        for close_at_end in ("true", "false"):
-            for start_paused in ("true", "false"):
-                argv = [f"rviz:={rviz}", f"close_at_end:={close_at_end}", f"start_paused:={start_paused}"]
-                required, words = player(launch_dir, argv)
-                if required != (rviz == "false" or close_at_end == "true"):
-                    failures.append(f"playback.launch {' '.join(argv)}: player required is {required}")
-                if ("--pause" in words.split()) != (start_paused == "true"):
-                    failures.append(f"playback.launch {' '.join(argv)}: player's arguments {words}")
+    for rviz, close_at_end, start_paused, keep_alive in itertools.product(("true", "false"), repeat=4):
+        argv = [f"rviz:={rviz}", f"close_at_end:={close_at_end}", f"start_paused:={start_paused}",
+                f"keep_alive:={keep_alive}"]
+        required, words = player(launch_dir, argv)
+        if required != (rviz == "false" or close_at_end == "true"):
+            failures.append(f"playback.launch {' '.join(argv)}: player required is {required}")
+        flags = words.split()
+        if ("--pause" in flags) != (start_paused == "true") or ("--keep-alive" in flags) != (keep_alive == "true"):
+            failures.append(f"playback.launch {' '.join(argv)}: player's arguments {words}")
     if player(launch_dir, [])[0]:
         failures.append("playback.launch: the player is required by default (rviz would close at the end)")
     return failures
