@@ -10,6 +10,7 @@ simulate."""
 from __future__ import annotations
 
 import math
+import random
 import socket
 import threading
 import time
@@ -307,12 +308,30 @@ def wait_for(what: str, predicate: Callable[[], bool], timeout: float, period: f
         time.sleep(max(period, min(slowest, period + waited / 30)))
 
 
+# free_port's ports: from here up to the kernel's ephemeral range, above ROS's 11311 and the web view's 8080.
+FREE_PORTS_FROM = 20000
+
+
 def free_port() -> int:
-    """A TCP port that is free now on the loopback (for a master of one's own)."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        port: int = s.getsockname()[1]
-        return port
+    """A TCP port on the loopback that is free now (for a master or a server of one's own), below the kernel's
+    ephemeral range (net.ipv4.ip_local_port_range). The kernel hands out ports of that range to every socket
+    bound to port 0 (each node's XML-RPC and TCPROS servers) and to every connection's local end: a port of it
+    taken between this answer and the caller's bind (roslaunch -p starts its master a second or two later)
+    left `roslaunch -p` talking to another node's server as its master (a node answers getPid too), the
+    launch hanging. Below that range only another caller of this function competes; each draws at random."""
+    with open("/proc/sys/net/ipv4/ip_local_port_range") as f:
+        ephemeral_from = int(f.read().split()[0])
+    candidates = list(range(FREE_PORTS_FROM, ephemeral_from))
+    random.SystemRandom().shuffle(candidates)
+    for port in candidates + [0]:  # 0: the kernel's choice, should every port below its range be taken
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            chosen: int = s.getsockname()[1]
+            return chosen
+    raise OSError("no free TCP port on the loopback")
 
 
 def node_pid(node: str, caller: str) -> int:

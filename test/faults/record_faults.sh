@@ -12,7 +12,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 set +u; source "$devel/setup.bash"; set -u
 export PATH=/usr/bin:$PATH ROS_HOME=$(mktemp -d) ROS_IP=127.0.0.1
 unset ROS_HOSTNAME
-port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+port=$(python3 -c 'from rigid_body_sim.sim_tools import free_port; print(free_port())')
 export ROS_MASTER_URI=http://127.0.0.1:$port
 work=$(mktemp -d)
 bag=$work/run.bag

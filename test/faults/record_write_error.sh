@@ -45,7 +45,7 @@ grep -q "^simulate: writing '$work/simulate.bag.active' failed (.*rosbag reindex
 recovered "$work/simulate.bag"
 
 # sim_node with ~bag, as fast as it can: exit 4, one ERROR line, the process not aborted.
-port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+port=$(python3 -c 'from rigid_body_sim.sim_tools import free_port; print(free_port())')
 export ROS_MASTER_URI=http://127.0.0.1:$port
 roscore -p "$port" >"$work/roscore.txt" 2>&1 &
 core=$!

@@ -50,7 +50,7 @@ done
 
 [ "$(catkin_find --libexec rigid_body_sim sim_node)" = "$install/lib/rigid_body_sim/sim_node" ] \
   || fail "sim_node: $(catkin_find --libexec rigid_body_sim sim_node), not the installed one"
-port=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+port=$(python3 -c 'from rigid_body_sim.sim_tools import free_port; print(free_port())')
 export ROS_MASTER_URI=http://127.0.0.1:$port
 launch() {  # sim.launch duration:=3 record:=true ARGS...
   timeout 120 roslaunch -p "$port" rigid_body_sim sim.launch duration:=3 record:=true "$@" \
@@ -58,7 +58,7 @@ launch() {  # sim.launch duration:=3 record:=true ARGS...
 }
 launch  # the default bag: in ROS_HOME
 [ -s "$ROS_HOME/rigid_body_sim.bag" ] || fail "no bag in ROS_HOME ($ROS_HOME)"
-web=$(python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+web=$(python3 -c 'from rigid_body_sim.sim_tools import free_port; print(free_port())')
 cd "$work" && launch bag:=run.bag web:=true web_port:="$web"  # a relative bag: from the folder roslaunch was started in
 [ -s "$work/run.bag" ] || fail "bag:=run.bag did not write $work/run.bag"
 # the web view found its page in the install space (it refuses to start without it)

@@ -36,6 +36,7 @@ import yaml
 from rigid_body_sim.sim_tools import KEY_UNITS, body_type, free_port, load_config, state_fields, wait_for
 
 import rviz_screenshot as shot
+from rviz_log import output_tails
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
@@ -167,7 +168,8 @@ def run_launched(launch_args: List[str], out: str, run_it: Callable[[Any, Findin
         try:
             run_it(launch, findings)
         except (TimeoutError, RuntimeError) as error:
-            findings.check(f"no time-out: {error}", False)
+            log.flush()
+            findings.check(f"no time-out: {error}\n{output_tails(log.name)}", False)
         finally:
             if os.environ.get("DISPLAY"):
                 subprocess.run(["import", "-window", "root", out], check=False)

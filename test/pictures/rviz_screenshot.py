@@ -30,7 +30,7 @@ from rigid_body_sim.sim_tools import (Config, RodSpec, RollerSpec, body_spec, fr
 import picture_check as pc
 import view_rules as rules
 from picture_check import Finding, Pixel
-from rviz_log import rviz_error_lines
+from rviz_log import output_tails, rviz_error_lines
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
@@ -500,6 +500,10 @@ def main() -> int:
                               stdout=log, stderr=subprocess.STDOUT)
     try:
         return run(args, start, stem, launch)
+    except (TimeoutError, RuntimeError):
+        log.flush()
+        print(output_tails(log.name), file=sys.stderr)
+        raise
     finally:
         launch.send_signal(2)  # SIGINT: roslaunch stops its nodes
         try:
