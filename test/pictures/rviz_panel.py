@@ -449,7 +449,8 @@ class Plots:
 
 def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], findings: Findings) -> None:
     """The last point of each series is the test's own state at that t, with the same values; the
-    slip-to-roll mark is the bowler's mode change in its states after a Reset, at the closed form's time."""
+    slip-to-roll marks are the bowler's mode changes in its states after a Reset, the first at the closed
+    form's time."""
     panel = plots.panel
     panel.click("tab.Plots")
     plots.wait("the Plots tab", lambda: panel.in_sight("plot_body"))
@@ -488,10 +489,13 @@ def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], fi
     mark = plots.last("slip_to_roll")
     closed = closed_form_slip_to_roll(bowler, float(config["gravity"]))
     period = 1 / float(config["publish_rate"]) + 1 / float(config["rate"])
-    findings.check(f"  the slip-to-roll mark at t = {mark[1]:.3f} s is the states' mode change {rolls}",
-                   mark[0] == 1 and rolls == [mark[1]] and mark[2] == next(m.v for m in states if m.t == mark[1]))
-    findings.check(f"  {mark[1] - t_reset:.3f} s after the Reset: the closed form's {closed:.4f} s, to the next "
-                   f"state ({period:.3f} s)", closed <= mark[1] - t_reset <= closed + period)
+    # The bowler grips again every 1.75 s: a pause that comes late (a loaded machine) finds more than one mark.
+    findings.check(f"  the slip-to-roll marks ({mark[0]}, the last at t = {mark[1]:.3f} s) are the states' mode "
+                   f"changes {rolls}", rolls != [] and mark[0] == len(rolls) and mark[1] == rolls[-1]
+                   and mark[2] == next(m.v for m in states if m.t == mark[1]))
+    first = rolls[0] if rolls else math.nan
+    findings.check(f"  the first {first - t_reset:.3f} s after the Reset: the closed form's {closed:.4f} s, to the "
+                   f"next state ({period:.3f} s)", closed <= first - t_reset <= closed + period)
 
 
 def same(series: str, plotted: float, want: float) -> bool:
