@@ -6,7 +6,8 @@
 #                     energy drift over θ0 in [0, 2π], 1001 rods of 10 s); the numbers behind them are printed;
 #                     and examples/python/text_vs_core.py's figure (docs/python.md)
 #   make figures      the figures docs/physics.md and docs/sweeps.md state about those runs, written into them,
-#                     and the key tables of docs/configuration.md, from the description
+#                     the key tables of docs/configuration.md and the event tables of docs/events.md, from the
+#                     description
 PICTURES_OUT = $(BUILD)/pictures
 SIMULATE = $(DEVEL)/lib/rigid_body_sim/simulate
 # θ0 = i 2π/1000 (0 and 2π both included): θ0 + π (the same rod, its ends swapped) is on the grid too
@@ -47,3 +48,4 @@ pictures: screenshot
 figures: build
 	source $(DEVEL)/setup.bash && python3 scripts/doc_figures.py $(SIMULATE) --write
 	$(DEVEL)/lib/rigid_body_sim/describe_body_types --docs docs/configuration.md
+	$(DEVEL)/lib/rigid_body_sim/describe_body_types --docs docs/events.md

@@ -80,7 +80,7 @@ TEST(Race, ShapesWaitAtTheBottomThenStartTogether) {
   while (order.size() < 3) {
     world.step();
     for (const auto& event : world.takeEvents()) {
-      if (event.kind == WorldEvent::Kind::Finished) order.push_back(event.body);
+      if (event.kind == "finished") order.push_back(event.body);
     }
     ASSERT_LT(world.time(), 10.0) << "not all finished";
     for (const auto& body : world.bodies()) {
@@ -118,7 +118,7 @@ TEST(Race, TimesAreTheClosedFormsLapAfterLap) {
       if (world.bodies()[i].finish) results[i] = *world.bodies()[i].finish;
     }
     for (const auto& event : world.takeEvents()) {
-      if (event.kind != WorldEvent::Kind::Restarted || event.body != "ring") continue;
+      if (event.kind != "lap_restarted" || event.body != "ring") continue;
       ++laps;
       for (std::size_t i = 0; i < 3; ++i) {
         SCOPED_TRACE(world.bodies()[i].name + " lap " + std::to_string(laps));
@@ -152,7 +152,7 @@ TEST(Race, RandomLaunchesFinishAtTheClosedFormTimes) {
     while (world.time() < 30.0 && world.bodies()[0].finish == std::nullopt) {
       world.step();
       for (const auto& event : world.takeEvents()) {
-        if (event.kind == WorldEvent::Kind::Gripped && !rolled) rolled = event.t;
+        if (event.kind == "slip_to_roll" && !rolled) rolled = event.t;
       }
       if (world.bodies()[0].finish) break;
     }
@@ -242,14 +242,13 @@ TEST(Race, TheSlipLessonRollsAtTheSlipPhaseClosedForm) {
       SCOPED_TRACE(event.body + " at t = " + std::to_string(event.t));
       const Body& body = world.bodies()[event.body == "sphere" ? 0 : event.body == "cylinder" ? 1 : 2];
       ASSERT_EQ(body.name, event.body);
-      if (event.kind == WorldEvent::Kind::Restarted) lap_start[event.body] = event.t;
-      if (event.kind == WorldEvent::Kind::Gripped) {
+      if (event.kind == "lap_restarted") lap_start[event.body] = event.t;
+      if (event.kind == "slip_to_roll") {
         EXPECT_NEAR(event.t - lap_start[event.body], rolls_at.at(event.body), kTimeTolerance);
         ++rolled[event.body];
       }
-      if (event.kind == WorldEvent::Kind::LostGrip) ADD_FAILURE() << "slips again after rolling";
-      if (event.kind == WorldEvent::Kind::Finished)
-        EXPECT_NEAR(body.finish->time, *body.finish->closed_form, kTimeTolerance);
+      if (event.kind == "roll_to_slip") ADD_FAILURE() << "slips again after rolling";
+      if (event.kind == "finished") EXPECT_NEAR(body.finish->time, *body.finish->closed_form, kTimeTolerance);
     }
   }
   EXPECT_EQ(lapsRolled(), 3);

@@ -52,7 +52,11 @@ class Recorder : public SampleSink {
   void applied(const WorldCommand& command, std::size_t index, const World& world) override {
     lines.push_back(appliedLine(command, index, world));
   }
+  void happened(const std::vector<BodyEvent>& happened, const World&) override {
+    events.insert(events.end(), happened.begin(), happened.end());
+  }
   std::vector<std::string> lines;
+  std::vector<BodyEvent> events;
 };
 
 WorldCommand commandOf(WorldCommand::Kind kind, const std::string& body = "") {

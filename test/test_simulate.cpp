@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -80,8 +81,8 @@ TEST_F(SimulateTest, PrintsASummaryWithTheSlipToRollTime) {
                               g * std::sin(p.incline_angle));
   const std::size_t section = run.out.find("bowler:");
   ASSERT_NE(section, std::string::npos) << run.out;
-  const std::size_t at = run.out.find("t = ", section);
-  const std::size_t end = run.out.find(" s: started rolling", section);
+  const std::size_t at = run.out.find("slip_to_roll: t = ", section) + std::string("slip_to_roll: ").size();
+  const std::size_t end = run.out.find(" s\n", at);
   ASSERT_TRUE(at != std::string::npos && end != std::string::npos && at < end) << run.out.substr(section);
   EXPECT_NEAR(std::stod(run.out.substr(at + 4, end - at - 4)), t_roll, 5e-6 * t_roll)
       << run.out.substr(section);
@@ -151,10 +152,27 @@ TEST_F(SimulateTest, WritesABag) {
   std::map<std::string, int> counts;
   for (const auto& topic : YAML::Load(info.out))
     counts[topic["topic"].as<std::string>()] = topic["messages"].as<int>();
-  const std::map<std::string, int> expected = {{"/sim/rod/state", 51}, {"/tf", 51},
-                                               {"/sim/markers", 11},   {"/tf_static", 1},
-                                               {"/sim/scene", 1},      {"/sim/commands", 1}};
+  // And every event of the core's run of that second (its contacts with the floor), in the bag and in
+  // events.csv.
+  World world(loadWorldConfigFile(config("rod.yaml")));
+  std::size_t events = 0;
+  while (world.stepCount() < 1000) {
+    world.step();
+    events += world.takeEvents().size();
+  }
+  ASSERT_GT(events, 0u);
+  const std::map<std::string, int> expected = {{"/sim/rod/state", 51},
+                                               {"/tf", 51},
+                                               {"/sim/markers", 11},
+                                               {"/tf_static", 1},
+                                               {"/sim/scene", 1},
+                                               {"/sim/commands", 1},
+                                               {"/sim/events", static_cast<int>(events)}};
   EXPECT_EQ(counts, expected);
+  std::ifstream events_csv(dir_ / "events.csv");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(events_csv, line);) ++rows;
+  EXPECT_EQ(rows, events + 1) << "a header and a row an event";
 }
 
 // The text's own scheme (substeps: 1) at a stiff k, and a fixed count: the config on /sim/commands carries

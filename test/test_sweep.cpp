@@ -197,8 +197,7 @@ TEST_F(SweepTest, ARowEqualsASingleRunOfThatVariant) {
     for (int s = 0; s < 3000 && first_roll.empty(); ++s) {
       world.step();
       for (const auto& event : world.takeEvents()) {
-        if (event.body == "bowler" && event.kind == WorldEvent::Kind::Gripped)
-          first_roll = formatNumber(event.t);
+        if (event.body == "bowler" && event.kind == "slip_to_roll") first_roll = formatNumber(event.t);
       }
     }
     ASSERT_FALSE(first_roll.empty());

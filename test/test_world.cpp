@@ -49,14 +49,15 @@ TEST(World, ReportsTheSlipToRollInstantInsideTheStep) {
       p.gravity * (std::sin(p.incline_angle) - p.mu_d * std::cos(p.incline_angle) * (1 + c) / c);
   const double expected = -3.0 / du_dt;  // u0 = v0 = 3 m/s, omega0 = 0
   World world(config);
-  std::vector<WorldEvent> events;
+  std::vector<BodyEvent> events;
   while (world.time() < 5.0) {
     world.step();
-    for (const auto& event : world.takeEvents()) events.push_back(event);
+    for (const auto& event : world.takeEvents()) {
+      if (event.body == "ball") events.push_back(event);
+    }
   }
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].body, "ball");
-  EXPECT_EQ(events[0].kind, WorldEvent::Kind::Gripped);
+  EXPECT_EQ(events[0].kind, "slip_to_roll");
   EXPECT_NEAR(events[0].t, expected, 1e-12 * expected);
   EXPECT_TRUE(world.takeEvents().empty());
 }
@@ -68,14 +69,16 @@ TEST(World, ReportsARodRestartAtTheEndOfItsStep) {
   config.bodies.push_back({"rod", rod});
   World world(config);
   Rod unbounded(RodParams{}, rod.initial);
-  std::vector<WorldEvent> events;
+  std::vector<BodyEvent> events;
   while (events.empty() && world.time() < 10.0) {
     world.step();
     unbounded.step(world.dt());
-    events = world.takeEvents();
+    for (const auto& event : world.takeEvents()) {
+      if (event.kind == "restarted") events.push_back(event);
+    }
   }
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].kind, WorldEvent::Kind::Restarted);
+  EXPECT_EQ(findValue(events[0].values, "cause")->text, "lap");
   EXPECT_EQ(events[0].body, "rod");
   EXPECT_DOUBLE_EQ(events[0].t, world.time());
   EXPECT_GT(unbounded.state().x, 3.0);  // the step that took the centre off the floor

@@ -111,9 +111,10 @@ void Block::advance(double h, double a) {
   state_.v += a * h;
 }
 
-InclineStepEvents Block::step(double dt) {
-  InclineStepEvents events;
+Block::StepEvents Block::step(double dt) {
+  StepEvents events;
   events.started_slipping = std::exchange(pending_started_slipping_, false);
+  if (events.started_slipping) events.at_start = progress();
   if (!(dt > 0.0) || mode_ != BlockMode::Sliding) return events;  // a sticking or finished block stays
   double elapsed = 0.0;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
@@ -123,13 +124,18 @@ InclineStepEvents Block::step(double dt) {
     const double to_stop = state_.v * a < 0.0 ? -state_.v / a : kNever;
     const double h = to_stop <= remaining ? to_stop : remaining;
     const double x_after = state_.x + state_.v * h + 0.5 * a * h * h;  // as advance(h) computes it
-    if (x_after > params_.incline_length || x_after < 0.0) {
+    // Only the first crossing: past the end it is off its slope, restarting at the step's end.
+    if (!events.left_at && (x_after > params_.incline_length || x_after < 0.0)) {
       const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
       events.left_at = elapsed + s;
-      if (hold_at_end_) {  // a racer stops at the line, the instant it passes it, and waits there at rest
-        advance(s, a);
-        state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
-        events.arrival_speed = state_.v;
+      // On the line, at the instant it passes it: a racer stops there and waits at rest.
+      Block on_line = *this;
+      on_line.advance(s, a);
+      on_line.state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
+      events.arrival_speed = on_line.state_.v;
+      events.at_left = on_line.progress();
+      if (hold_at_end_) {
+        state_ = on_line.state_;
         state_.v = 0.0;
         mode_ = BlockMode::Finished;
         return events;
@@ -145,6 +151,7 @@ InclineStepEvents Block::step(double dt) {
     if (canStick(params_)) {
       mode_ = BlockMode::Sticking;
       events.stuck_at = elapsed;
+      events.at_stuck = progress();
       break;
     }
     // Stopped on its way uphill on a slope too steep to hold it: it slides back down.

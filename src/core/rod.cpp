@@ -43,7 +43,9 @@ std::optional<int> substepsFromString(const std::string& text) {
 Rod::Rod(const RodParams& params, const RodMotion& initial)
     : params_(params), initial_(initial), state_(initial) {}
 
-bool Rod::step(double dt) {
+RodStepEvents Rod::step(double dt) {
+  RodStepEvents events;
+  events.contacts_before = contacts();
   const int n = substepsFor(dt);
   const double h = dt / n;  // n == 1 leaves dt bit-exact, so the text's run is unchanged
   for (int i = 0; i < n; ++i) {
@@ -53,9 +55,17 @@ bool Rod::step(double dt) {
       case Integrator::Rk4: state_ = rk4Step(params_, state_, h); break;
     }
   }
-  if (onFloor()) return false;
-  state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
-  return true;
+  if (!onFloor()) {
+    state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
+    events.restarted = true;
+  }
+  events.contacts_after = contacts();
+  return events;
+}
+
+unsigned Rod::contacts() const {
+  if (inFlight(params_, state_)) return 0;  // both ends above the floor, no sine needed
+  return (endHeightA() < 0.0 ? 1u : 0u) | (endHeightB() < 0.0 ? 2u : 0u);
 }
 
 bool Rod::onFloor() const {

@@ -188,9 +188,10 @@ constexpr double kNever = std::numeric_limits<double>::infinity();
 constexpr int kMaxPasses = 3;
 }  // namespace
 
-RollerStepEvents Roller::step(double dt) {
-  RollerStepEvents events;
+Roller::StepEvents Roller::step(double dt) {
+  StepEvents events;
   events.started_slipping = std::exchange(pending_started_slipping_, false);
+  if (events.started_slipping) events.at_start = progress();
   if (!(dt > 0.0) || finished()) return events;  // time only runs forward; a finished racer waits
   double elapsed = 0.0;
   // Each pass either ends the step or handles one u = 0 instant. After such an instant the body rolls
@@ -209,13 +210,18 @@ RollerStepEvents Roller::step(double dt) {
     }
     const double h = to_zero <= remaining ? to_zero : remaining;
     const double x_after = state_.x + state_.v * h + 0.5 * a * h * h;  // as advance(h) computes it
-    if (x_after > params_.incline_length || x_after < 0.0) {
+    // Only the first crossing: past the end it is off its slope, restarting at the step's end.
+    if (!events.left_at && (x_after > params_.incline_length || x_after < 0.0)) {
       const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
       events.left_at = elapsed + s;
-      if (hold_at_end_) {  // a racer stops at the line, the instant it passes it, and waits there at rest
-        advance(s, a, alpha);
-        state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
-        events.arrival_speed = state_.v;
+      // On the line, at the instant it passes it: a racer stops there and waits at rest.
+      Roller on_line = *this;
+      on_line.advance(s, a, alpha);
+      on_line.state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
+      events.arrival_speed = on_line.state_.v;
+      events.at_left = on_line.progress();
+      if (hold_at_end_) {
+        state_ = on_line.state_;
         state_.v = 0.0;
         state_.omega = 0.0;
         mode_ = RollMode::Finished;
@@ -232,6 +238,7 @@ RollerStepEvents Roller::step(double dt) {
     if (canRoll(params_)) {
       mode_ = RollMode::Rolling;
       events.stuck_at = elapsed;
+      events.at_stuck = progress();
     } else {
       // Only a topspin body on a too-steep slope gets here; gravity then drags the contact downhill,
       // and du/dt > 0 because tan(phi) > mu_s (1+c)/c >= mu_d (1+c)/c.

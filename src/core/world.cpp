@@ -1,5 +1,6 @@
 #include "rigid_body_sim/core/world.h"
 
+#include <algorithm>
 #include <type_traits>
 
 #include "rigid_body_sim/core/names.h"
@@ -91,16 +92,6 @@ std::string refusalLine(const std::string& kind, const std::string& body, const 
   return "refused " + kind + (body.empty() ? "" : " of '" + body + "'") + ", simulation unchanged: " + why;
 }
 
-std::string toString(WorldEvent::Kind kind) {
-  switch (kind) {
-    case WorldEvent::Kind::Gripped: return "gripped (started rolling, or came to rest)";
-    case WorldEvent::Kind::LostGrip: return "lost its grip (started slipping or sliding)";
-    case WorldEvent::Kind::Restarted: return "restarted (the end of its slope or floor, or a race's new lap)";
-    case WorldEvent::Kind::Finished: return "finished the race's lap";
-  }
-  return "?";
-}
-
 World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
     : config_(config),
       reserved_names_(std::move(reserved_names)),
@@ -110,7 +101,7 @@ World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
   bodies_.reserve(config.bodies.size());
   for (auto& body : config_.bodies) {
     body = withGravity(body, config.gravity);
-    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race), std::nullopt});
+    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race)});
   }
 }
 
@@ -131,6 +122,7 @@ void World::apply(const WorldCommand& command) {
       bodies_ = std::move(fresh.bodies_);
       lap_start_step_ = steps_;
       race_over_step_.reset();
+      for (std::size_t i = 0; i < bodies_.size(); ++i) restarted(i, "config");
       return;
     }
     case WorldCommand::Kind::Reconfigure: {
@@ -143,6 +135,7 @@ void World::apply(const WorldCommand& command) {
       WorldConfig would_be = config_;
       would_be.bodies[index] = wanted;
       validateWouldBe(would_be);
+      bool restarts = false;
       std::visit(
           [&](auto& model) {
             using Config = typename TypeOfModel<decltype(model)>::Config;
@@ -151,11 +144,18 @@ void World::apply(const WorldCommand& command) {
             if (initialChanged(next, std::get<Config>(config_.bodies[index].config))) {
               model.setInitial(next.initial);
               bodies_[index].finish.reset();
-              if (races(model)) restartRace();  // a racer that restarts restarts all
+              restarts = true;
+              if (races(model) && restartRace("reconfigure")) restarts = false;  // a racer restarts all
             }
           },
           bodies_[index].model);
       config_.bodies[index] = wanted;
+      if (restarts) {
+        restarted(index, "reconfigure");
+      } else if (!bodies_[index].finish && bodies_[index].lap_start != time()) {
+        bodies_[index].lap_as_configured =
+            false;  // changed in mid-lap: the lap's closed form no longer holds
+      }
       return;
     }
     case WorldCommand::Kind::Spawn: {
@@ -163,10 +163,11 @@ void World::apply(const WorldCommand& command) {
       WorldConfig would_be = config_;
       would_be.bodies.push_back(wanted);
       validateWouldBe(would_be);
-      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race), std::nullopt});
+      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race)});
       config_.bodies.push_back(wanted);
       // A racer that joins starts with the others.
-      if (std::visit([](const auto& model) { return races(model); }, bodies_.back().model)) restartRace();
+      const bool racer = std::visit([](const auto& model) { return races(model); }, bodies_.back().model);
+      if (!racer || !restartRace("spawn")) restarted(bodies_.size() - 1, "spawn");
       return;
     }
     case WorldCommand::Kind::Delete: {
@@ -228,6 +229,7 @@ void World::setState(std::size_t index, const std::vector<StateValue>& state) {
         Type::checkState(name, config, motion);  // where it may be: on its floor or slope
         model.setState(motion);                  // only once every value passed: a refusal changes nothing
         bodies_[index].finish.reset();           // a racer moved on leaves the lap's results
+        bodies_[index].lap_as_configured = false;
       },
       bodies_[index].model);
 }
@@ -236,6 +238,7 @@ double World::time() const { return static_cast<double>(steps_) / rate_; }
 
 void World::step() {
   const double t0 = time();
+  const std::size_t first_event = events_.size();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     std::visit(
         [&](auto& model) {
@@ -245,34 +248,78 @@ void World::step() {
         bodies_[i].model);
   }
   ++steps_;
+  if (events_.size() != first_event) {
+    // In time order: bodies stepped one after another may have their events in either order within a step.
+    std::stable_sort(events_.begin() + static_cast<std::ptrdiff_t>(first_event), events_.end(),
+                     [](const BodyEvent& a, const BodyEvent& b) { return a.t < b.t; });
+    if (config_.race) placeFinishers(first_event);
+  }
   if (!config_.race || !raceOver()) return;
   if (!race_over_step_) race_over_step_ = steps_;
   if (static_cast<double>(steps_ - *race_over_step_) < kRaceResultsShown * rate_) return;
-  restartRace();
-  for (const auto& body : bodies_) {
-    if (std::visit([](const auto& model) { return races(model); }, body.model)) {
-      events_.push_back({time(), body.name, WorldEvent::Kind::Restarted, "started the race's next lap"});
-    }
-  }
+  restartRace("race");
 }
 
-void World::event(double t, std::size_t index, WorldEvent::Kind kind, std::string what) {
-  if (what.empty()) what = toString(kind);
-  events_.push_back({t, bodies_[index].name, kind, std::move(what)});
-}
-
-void World::report(std::size_t index, double t0, const Rod&, bool restarted) {
-  if (restarted) event(t0 + dt_, index, WorldEvent::Kind::Restarted, "restarted (off the end of its floor)");
+template <class Model, class Happened>
+void World::report(std::size_t index, double t0, const Model& model, const Happened& happened) {
+  // At the step's end: the next count's time exactly (t0 + dt may differ from it in the last bit).
+  const double t1 = static_cast<double>(steps_ + 1) / rate_;
+  TypeOfModel<Model>::forEachEvent(
+      model, happened, dt_,
+      [&](std::size_t kind, double offset, const Model& at, std::vector<EventValue> values) {
+        record(index, offset >= dt_ ? t1 : t0 + offset, kind, at, std::move(values));
+      });
 }
 
 template <class Model>
-void World::report(std::size_t index, double t0, const Model& model, const InclineStepEvents& happened) {
+void World::record(std::size_t index, double t, std::size_t kind, const Model& at,
+                   std::vector<EventValue> values) {
   using Type = TypeOfModel<Model>;
-  if (happened.started_slipping) event(t0, index, WorldEvent::Kind::LostGrip, Type::kLostGripText);
-  if (happened.stuck_at) event(t0 + *happened.stuck_at, index, WorldEvent::Kind::Gripped, Type::kGrippedText);
-  if (happened.left_at && model.finished()) finish(index, t0 + *happened.left_at, happened.arrival_speed);
-  if (happened.restarted)
-    event(t0 + dt_, index, WorldEvent::Kind::Restarted, "restarted (off an end of its slope)");
+  Body& body = bodies_[index];
+  const EventKind& what = Type::kEventKinds[kind];
+  BodyEvent event{t, body.name, Type::kName, what.name, {}, std::move(values)};
+  for (const auto& field : stateFields(at))
+    event.state.push_back(EventValue{field.name, field.number, field.text});
+  if (what.role == EventRole::Finish) {
+    const double lap_time = t - body.lap_start;
+    event.values.push_back(EventValue{"lap_time", lap_time});
+    if constexpr (Type::kRaces) {
+      const auto& config = std::get<typename Type::Config>(config_.bodies[index].config);
+      if (body.lap_as_configured) {
+        if (const auto closed_form = Type::closedFormFinish(config)) {
+          event.values.push_back(EventValue{"closed_form", *closed_form});
+        }
+      }
+      const auto& model = std::get<Model>(body.model);
+      if (model.finished()) finish(index, t, findValue(event.values, "speed")->number);
+    }
+  } else if (what.role == EventRole::Restart) {
+    body.lap_start = t;
+    body.lap_as_configured = true;
+  }
+  events_.push_back(std::move(event));
+}
+
+void World::restarted(std::size_t index, const char* cause) {
+  std::visit(
+      [&](const auto& model) {
+        using Type = TypeOfModel<decltype(model)>;
+        for (std::size_t kind = 0; kind < Type::kEventKinds.size(); ++kind) {
+          if (Type::kEventKinds[kind].role != EventRole::Restart) continue;
+          record(index, time(), kind, model, std::vector<EventValue>{EventValue{"cause", 0.0, cause}});
+          return;
+        }
+      },
+      bodies_[index].model);
+}
+
+void World::placeFinishers(std::size_t first_event) {
+  for (std::size_t e = first_event; e < events_.size(); ++e) {
+    BodyEvent& event = events_[e];
+    const auto index = indexOf(event.body);
+    if (!index || !bodies_[*index].finish || findValue(event.values, "lap_time") == nullptr) continue;
+    event.values.push_back(EventValue{"place", static_cast<double>(bodies_[*index].finish->place)});
+  }
 }
 
 void World::finish(std::size_t index, double t, double speed) {
@@ -295,7 +342,6 @@ void World::finish(std::size_t index, double t, double speed) {
       if (other.finish && other.finish->time < racer.finish->time - kTieTime) ++racer.finish->place;
     }
   }
-  event(t, index, WorldEvent::Kind::Finished, "finished the race's lap");
 }
 
 bool World::raceOver() const {
@@ -315,18 +361,22 @@ bool World::raceOver() const {
   return any;
 }
 
-void World::restartRace() {
-  if (!config_.race) return;
-  for (auto& body : bodies_) {
+bool World::restartRace(const char* cause) {
+  if (!config_.race) return false;
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
     std::visit(
-        [](auto& model) {
-          if constexpr (TypeOfModel<decltype(model)>::kRaces) model.restartLap();
+        [&](auto& model) {
+          if constexpr (TypeOfModel<decltype(model)>::kRaces) {
+            model.restartLap();
+            restarted(i, cause);
+          }
         },
-        body.model);
-    body.finish.reset();
+        bodies_[i].model);
+    bodies_[i].finish.reset();
   }
   lap_start_step_ = steps_;
   race_over_step_.reset();
+  return true;
 }
 
 void World::reset() {
@@ -336,6 +386,7 @@ void World::reset() {
   }
   lap_start_step_ = steps_;
   race_over_step_.reset();
+  for (std::size_t i = 0; i < bodies_.size(); ++i) restarted(i, "reset");
 }
 
 std::optional<std::size_t> World::indexOf(const std::string& name) const {
@@ -352,8 +403,8 @@ Body* World::find(const std::string& name) {
   return nullptr;
 }
 
-std::vector<WorldEvent> World::takeEvents() {
-  std::vector<WorldEvent> taken;
+std::vector<BodyEvent> World::takeEvents() {
+  std::vector<BodyEvent> taken;
   taken.swap(events_);
   return taken;
 }
@@ -365,6 +416,27 @@ double energyOf(const Body& body) {
 std::string typeName(const Body& body) {
   return std::visit([](const auto& model) -> std::string { return TypeOfModel<decltype(model)>::kName; },
                     body.model);
+}
+
+const std::vector<std::pair<std::string, std::vector<EventKindInfo>>>& eventKindsByType() {
+  static const auto table = [] {
+    std::vector<std::pair<std::string, std::vector<EventKindInfo>>> out;
+    BodyTypes::forEach([&](auto type) {
+      using Type = decltype(type);
+      std::vector<EventKindInfo> kinds;
+      for (const auto& kind : Type::kEventKinds) kinds.push_back({kind.name, kind.meaning});
+      out.emplace_back(Type::kName, std::move(kinds));
+    });
+    return out;
+  }();
+  return table;
+}
+
+const EventValue* findValue(const std::vector<EventValue>& values, const std::string& name) {
+  for (const auto& value : values) {
+    if (value.name == name) return &value;
+  }
+  return nullptr;
 }
 
 std::string fixedFrameOf(const Body& body) {

@@ -44,9 +44,38 @@ std::string csvRow(double t, const Body& body) {
   return std::visit([t](const auto& model) { return joinFields(t, stateFields(model)); }, body.model);
 }
 
+std::string eventsCsvHeader() { return "t,body,type,kind,values,state"; }
+
+namespace {
+std::string pairs(const std::vector<EventValue>& values) {
+  std::string out;
+  for (const auto& value : values) {
+    out += (out.empty() ? "" : " ") + value.name + "=" +
+           (value.text.empty() ? formatNumber(value.number) : value.text);
+  }
+  return out;
+}
+}  // namespace
+
+std::string eventsCsvRow(const BodyEvent& event) {
+  return formatNumber(event.t) + ',' + event.body + ',' + event.type + ',' + event.kind + ',' +
+         pairs(event.values) + ',' + pairs(event.state);
+}
+
+CsvWriter::File CsvWriter::open(const std::string& file_name, const std::string& header) const {
+  File file;
+  file.final_path = (std::filesystem::path(out_dir_) / file_name).string();
+  file.temp_path = file.final_path + ".tmp";
+  file.stream = std::make_unique<std::ofstream>(file.temp_path);
+  if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
+  *file.stream << header << '\n';
+  return file;
+}
+
 CsvWriter::CsvWriter(const std::string& out_dir, const std::vector<Body>& bodies) : out_dir_(out_dir) {
   std::filesystem::create_directories(out_dir);
   try {
+    events_ = open(kEventsFile, eventsCsvHeader());
     for (const auto& body : bodies) fileOf(body);
   } catch (...) {
     removeTemporaries();  // no destructor runs for a constructor that throws
@@ -62,14 +91,9 @@ CsvWriter::File& CsvWriter::fileOf(const Body& body) {
     }
     return file;
   }
-  File file;
+  File file = open(body.name + ".csv", csvHeader(body));
   file.name = body.name;
   file.type = body.model.index();
-  file.final_path = (std::filesystem::path(out_dir_) / (body.name + ".csv")).string();
-  file.temp_path = file.final_path + ".tmp";
-  file.stream = std::make_unique<std::ofstream>(file.temp_path);
-  if (!*file.stream) throw std::runtime_error("cannot write '" + file.temp_path + "'");
-  *file.stream << csvHeader(body) << '\n';
   files_.push_back(std::move(file));
   return files_.back();
 }
@@ -79,11 +103,22 @@ CsvWriter::~CsvWriter() {
 }
 
 void CsvWriter::removeTemporaries() {
-  for (auto& file : files_) {
-    file.stream->close();
+  for (File* file : all()) {
+    file->stream->close();
     std::error_code ignored;
-    std::filesystem::remove(file.temp_path, ignored);
+    std::filesystem::remove(file->temp_path, ignored);
   }
+}
+
+std::vector<CsvWriter::File*> CsvWriter::all() {
+  std::vector<File*> files;
+  if (events_.stream) files.push_back(&events_);
+  for (auto& file : files_) files.push_back(&file);
+  return files;
+}
+
+void CsvWriter::write(const std::vector<BodyEvent>& events) {
+  for (const auto& event : events) *events_.stream << eventsCsvRow(event) << '\n';
 }
 
 void CsvWriter::write(double t, const std::vector<Body>& bodies) {
@@ -102,10 +137,10 @@ void CsvWriter::write(double t, const std::vector<Body>& bodies) {
 }
 
 void CsvWriter::commit() {
-  for (auto& file : files_) {
-    file.stream->close();
-    if (file.stream->fail()) throw std::runtime_error("cannot write '" + file.temp_path + "'");
-    std::filesystem::rename(file.temp_path, file.final_path);
+  for (File* file : all()) {
+    file->stream->close();
+    if (file->stream->fail()) throw std::runtime_error("cannot write '" + file->temp_path + "'");
+    std::filesystem::rename(file->temp_path, file->final_path);
   }
   committed_ = true;
 }

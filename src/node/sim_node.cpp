@@ -11,6 +11,7 @@
 #include "rigid_body_sim/io/config_writer.h"
 #include "rigid_body_sim/ros/launch_end.h"
 #include "rigid_body_sim/ros/master_watch.h"
+#include "rigid_body_sim/ros/messages.h"
 #include "rigid_body_sim/ros/subscriber_backlog.h"
 #include "rigid_body_sim/run/session.h"
 
@@ -81,7 +82,8 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
                                 [this](bool paused) { onStepper([&] { setPaused(paused); }); },
                                 [this](std::uint64_t steps, Step::Response& response) {
                                   onStepper([&] { stepPaused(steps, response); });
-                                }}) {
+                                },
+                                [this] { return onStepper([this] { return runEventMessages(); }); }}) {
   paused_ = options_.start_paused;
   for (const auto& note : autoSubstepNotes(world().config())) ROS_INFO_STREAM(note);
   for (const auto& warning : slowRunWarnings(world().config())) ROS_WARN_STREAM(warning);
@@ -146,10 +148,7 @@ void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
       guard_.release(index, world().bodies()[index]);
       return;
-    case WorldCommand::Kind::Reset:
-      session_.takeEvents();
-      guard_.releaseAll(world().bodies());
-      return;
+    case WorldCommand::Kind::Reset: guard_.releaseAll(world().bodies()); return;
     case WorldCommand::Kind::Config: return;  // the node applies none after its start
   }
 }
@@ -245,9 +244,16 @@ void SimNode::afterStep(World& world) {
                               << "others go on (a reconfigure of it or ~reset restarts it). It ran with: "
                               << describeBody(held));
   }
-  for (const auto& event : world.takeEvents()) {
-    ROS_DEBUG_STREAM(event.body << " " << event.what << " at t = " << event.t << " s");
+  for (const auto& event : session_.takeEvents()) {
+    ROS_DEBUG_STREAM(event.body << " " << event.kind << " at t = " << formatNumber(event.t) << " s");
   }
+}
+
+std::vector<Event> SimNode::runEventMessages() const {
+  std::vector<Event> messages;
+  for (const auto& event : publisher_.runEvents())
+    messages.push_back(toEventMsg(event, publisher_.stampOf(event.t)));
+  return messages;
 }
 
 void SimNode::stopRecording(double t, const std::string& what) {

@@ -65,6 +65,34 @@ struct BodySamples {
   std::vector<std::vector<std::string>> texts;  // by field (empty for a number field)
 };
 
+py::dict valueDict(const std::vector<EventValue>& values) {
+  py::dict out;
+  for (const auto& value : values) {
+    if (value.text.empty()) {
+      out[py::str(value.name)] = value.number;
+    } else {
+      out[py::str(value.name)] = value.text;
+    }
+  }
+  return out;
+}
+
+// Events as Python records: {"t", "body", "type", "kind", "values": {name: value}, "state": {field: value}}.
+py::list eventRecords(const std::vector<BodyEvent>& events) {
+  py::list out;
+  for (const auto& event : events) {
+    py::dict record;
+    record["t"] = event.t;
+    record["body"] = event.body;
+    record["type"] = event.type;
+    record["kind"] = event.kind;
+    record["values"] = valueDict(event.values);
+    record["state"] = valueDict(event.state);
+    out.append(record);
+  }
+  return out;
+}
+
 void sample(const Body& body, BodySamples& out) {
   std::visit(
       [&](const auto& model) {
@@ -220,6 +248,18 @@ class PyWorld {
     session_.advance(n);
   }
 
+  // The events handed out since the last call (steps, runs, changes), oldest first, as records.
+  py::list events() {
+    std::vector<BodyEvent> taken;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      taken.swap(unread_);
+      std::vector<BodyEvent> newer = session_.takeEvents();
+      taken.insert(taken.end(), newer.begin(), newer.end());
+    }
+    return eventRecords(taken);
+  }
+
   py::dict state(const std::string& name) {
     std::lock_guard<std::mutex> lock(mutex_);
     return stateDict(body(name));
@@ -229,7 +269,8 @@ class PyWorld {
   // from t = 0: options checked as its options (one line), the last sample at the last multiple of
   // 1 / sample_rate not after the duration. With a bag path, writes at every sample what `simulate --bag`
   // writes (through the same BagRecorder), from a World as loaded: its config, then its states from t = 0.
-  py::dict run(double duration, std::optional<double> sample_rate, const py::object& bag) {
+  py::object run(double duration, std::optional<double> sample_rate, const py::object& bag,
+                 bool with_events) {
     std::string bag_path;
     SinkOpener open_bag;
     if (!bag.is_none()) {
@@ -238,6 +279,7 @@ class PyWorld {
     }
     std::vector<BodySamples> bodies;
     std::vector<double> times;
+    std::vector<BodyEvent> happened;
     {
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
@@ -266,11 +308,15 @@ class PyWorld {
       times.reserve(static_cast<std::size_t>(last + 1));
       for (std::int64_t j = 0; j <= last; ++j) {
         if (j > 0) session_.advance(every);
+        std::vector<BodyEvent> events = session_.takeEvents();
+        if (sink && !events.empty()) sink->happened(events, world);
+        happened.insert(happened.end(), events.begin(), events.end());
         times.push_back(world.time());
         for (std::size_t b = 0; b < bodies.size(); ++b) sample(world.bodies()[b], bodies[b]);
         if (sink) sink->write(world);
       }
       if (sink) sink->commit();
+      if (!with_events) unread_.insert(unread_.end(), happened.begin(), happened.end());  // for events()
     }
     py::dict out;
     for (const auto& body : bodies) {
@@ -282,7 +328,8 @@ class PyWorld {
       }
       out[py::str(body.name)] = fields;
     }
-    return out;
+    if (!with_events) return std::move(out);
+    return py::make_tuple(out, eventRecords(happened));
   }
 
   // The changes of the node's services and reconfigure servers, through the one path (Session::apply).
@@ -422,7 +469,8 @@ class PyWorld {
 
   const WorldConfig loaded_;  // the config as loaded: the one a bag starts with
   Session session_;
-  mutable std::mutex mutex_;  // a world used from several Python threads: one call at a time
+  std::vector<BodyEvent> unread_;  // a run's events, until events() reads them
+  mutable std::mutex mutex_;       // a world used from several Python threads: one call at a time
 };
 
 }  // namespace
@@ -443,11 +491,16 @@ PYBIND11_MODULE(core, m) {
       .def_property_readonly("bodies", &PyWorld::bodies, "the bodies' names, in order")
       .def("step", &PyWorld::step, py::arg("n") = 1, "take n steps")
       .def("state", &PyWorld::state, py::arg("name"), "{field: value} of a body now (the CSV's columns)")
-      .def("run", &PyWorld::run, py::arg("duration") = 10.0, py::arg("sample_rate") = py::none(),
-           py::arg("bag") = py::none(),
-           "step `duration` s, sampling every body now and at every 1 / sample_rate (None: publish_rate): "
-           "{body: {field: numpy array}}, simulate's CSV columns bit for bit; with `bag` (a path), from a "
-           "World as loaded, also the bag simulate --bag writes")
+      .def(
+          "run", &PyWorld::run, py::arg("duration") = 10.0, py::arg("sample_rate") = py::none(),
+          py::arg("bag") = py::none(), py::arg("events") = false,
+          "step `duration` s, sampling every body now and at every 1 / sample_rate (None: publish_rate): "
+          "{body: {field: numpy array}}, simulate's CSV columns bit for bit; with `bag` (a path), from a "
+          "World as loaded, also the bag simulate --bag writes; with events=True, (samples, the run's events "
+          "as events() gives them), events.csv's rows")
+      .def("events", &PyWorld::events,
+           "what happened since the last call (steps, runs, changes), oldest first: [{\"t\", \"body\", "
+           "\"type\", \"kind\", \"values\": {name: value}, \"state\": {field: value}}], the exact instants")
       .def("set", &PyWorld::set, py::arg("name"), "set keys of a body, as a reconfigure does")
       .def("set_state", &PyWorld::setState, py::arg("name"), "move a body now (settable state fields)")
       .def("spawn", &PyWorld::spawn, py::arg("name"), py::arg("body"), "a new body (YAML map text or dict)")

@@ -6,6 +6,8 @@
     theirs = runs.read_run("out/rod")            # the folder `simulate config/rod.yaml --out-dir out/rod` wrote
     assert (mine["rod"]["y"] == theirs["rod"]["y"]).all()   # bit for bit
     theirs = runs.read_bag("run.bag")            # the states a node (or `simulate --bag`) recorded
+    samples, happened = world.run(10, events=True)
+    assert happened == runs.read_events("out/rod")   # events.csv: the same instants, bit for bit
 
 A CSV file's numbers are in their shortest round-trip form, so float() gives back the very doubles; a column
 with a text (a roller's mode) comes back as str, as World.run and World.sweep return them.
@@ -13,7 +15,7 @@ with a text (a roller's mode) comes back as str, as World.run and World.sweep re
 import csv
 import glob
 import os
-from typing import Dict, List
+from typing import Any, Dict, List
 
 import numpy
 
@@ -37,11 +39,53 @@ def read_csv(path: str) -> Fields:
     return {name: column([row[i] for row in body]) for i, name in enumerate(header)}
 
 
+EVENTS_FILE = "events.csv"
+
+
 def read_run(folder: str) -> Dict[str, Fields]:
     """Every <body>.csv of a folder `simulate` (or `simulate --replay`) wrote, by body name."""
     paths = sorted(glob.glob(os.path.join(folder, "*.csv")))
     return {os.path.basename(path)[:-len(".csv")]: read_csv(path) for path in paths
-            if not os.path.basename(path).startswith("sweep")}
+            if not os.path.basename(path).startswith("sweep") and os.path.basename(path) != EVENTS_FILE}
+
+
+def _pairs(cell: str) -> Dict[str, Any]:
+    """events.csv's "name=value name=value" cell: numbers as float (bit for bit), texts as str."""
+    out: Dict[str, Any] = {}
+    for pair in cell.split():
+        name, text = pair.split("=", 1)
+        try:
+            out[name] = float(text)
+        except ValueError:
+            out[name] = text
+    return out
+
+
+def read_events(folder: str) -> List[Dict[str, Any]]:
+    """The events.csv of a folder `simulate` wrote, as the records World.events() and World.run(...,
+    events=True) give: {"t", "body", "type", "kind", "values": {...}, "state": {...}}."""
+    with open(os.path.join(folder, EVENTS_FILE), newline="") as f:
+        rows = list(csv.DictReader(f))
+    return [{"t": float(row["t"]), "body": row["body"], "type": row["type"], "kind": row["kind"],
+             "values": _pairs(row["values"]), "state": _pairs(row["state"])} for row in rows]
+
+
+def event_record(message: Any) -> Dict[str, Any]:
+    """A rigid_body_sim/Event message as the same record."""
+    def values(items: Any) -> Dict[str, Any]:
+        return {item.name: item.text if item.text else item.number for item in items}
+
+    return {"t": message.t, "body": message.body, "type": message.type, "kind": message.kind,
+            "values": values(message.values), "state": values(message.state)}
+
+
+def read_bag_events(path: str, namespace: str = "/sim") -> List[Dict[str, Any]]:
+    """The events of a bag (`NAMESPACE/events`, from sim_node's recording or `simulate --bag`) as records."""
+    import rosbag  # only here: reading CSV needs no ROS
+
+    topic = namespace.rstrip("/") + "/events"
+    with rosbag.Bag(path) as bag:
+        return [event_record(message) for _, message, _ in bag.read_messages(topics=[topic])]
 
 
 def read_bag(path: str, namespace: str = "/sim") -> Dict[str, Fields]:

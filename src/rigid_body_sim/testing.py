@@ -9,6 +9,9 @@ wall seconds; one that passes fails the test (AssertionError, unittest's failure
     sim.unpause()                              # sim.launch start_paused:=true held it at t = 0
     state = sphere.wait_for(1.0)               # the first state at t >= 1 s
     phi = sim.body_param("sphere", "incline_angle")
+    events = sim.events()                      # what happens, as it happens (~events)
+    finished = events.wait_for("finished", "sphere")   # its exact instant: finished.t
+    lap_time = value(finished, "lap_time")
 """
 import threading
 import time
@@ -22,7 +25,8 @@ from std_srvs.srv import Empty
 
 from rigid_body_sim import description
 from rigid_body_sim.sim_tools import state_message
-from rigid_body_sim.srv import GetConfig, Step
+from rigid_body_sim.msg import Event
+from rigid_body_sim.srv import GetConfig, GetEvents, Step
 
 DEADLINE = 10.0  # wall seconds of every wait unless told otherwise
 STATE_TYPES = {name: state_message(name) for name in description.body_types()}  # a body's `type` -> its state message
@@ -40,43 +44,78 @@ def wait_until(what: str, condition: Callable[[], bool], deadline: float, seen: 
         time.sleep(0.01)
 
 
-class States:
-    """Every state of one body from the subscription on, in the order they came."""
+class _Log:
+    """Every message of one topic from the subscription on, in the order they came."""
 
     def __init__(self, topic: str, message: type, deadline: float) -> None:
         self.topic = topic
-        self._states: List[Any] = []
+        self._messages: List[Any] = []
         self._arrived = threading.Condition()
-        self._subscriber = rospy.Subscriber(topic, message, self._on_state, queue_size=10000)
+        self._subscriber = rospy.Subscriber(topic, message, self._on_message, queue_size=10000)
         wait_until(f"publisher of {topic} connected", lambda: self._subscriber.get_num_connections() > 0,
                    deadline, lambda: "is the node running?")
 
-    def _on_state(self, state: Any) -> None:
+    def _on_message(self, message: Any) -> None:
         with self._arrived:
-            self._states.append(state)
+            self._messages.append(message)
             self._arrived.notify_all()
 
     @property
     def received(self) -> List[Any]:
         with self._arrived:
-            return list(self._states)
+            return list(self._messages)
+
+    def _first(self, wanted: Callable[[Any], bool], what: str, deadline: float) -> Any:
+        """The first message received that is `wanted`; fails the test, saying the last one's t, if none comes
+        within `deadline` wall seconds (the simulation ended, died or is paused)."""
+        def first() -> Any:
+            return next((message for message in self._messages if wanted(message)), None)
+
+        with self._arrived:
+            if not self._arrived.wait_for(lambda: first() is not None or rospy.is_shutdown(), deadline) \
+                    or first() is None:
+                last = f"the last at t = {self._messages[-1].t:.6g} s of {len(self._messages)}" if self._messages \
+                    else "none at all"
+                raise AssertionError(f"no {what} on {self.topic} within {deadline:g} s ({last}): the simulation "
+                                     "ended or died early, or is paused")
+            return first()
+
+    def close(self) -> None:
+        self._subscriber.unregister()
+
+
+class States(_Log):
+    """Every state of one body from the subscription on, in the order they came."""
 
     def wait_for(self, t: float, deadline: float = DEADLINE) -> Any:
         """The first state at or after simulated time t; fails the test, saying the last state's t, if none
         comes within `deadline` wall seconds (the simulation ended, died or is paused)."""
-        def found() -> bool:
-            return bool(self._states) and self._states[-1].t >= t - T_TOLERANCE
+        return self._first(lambda state: state.t >= t - T_TOLERANCE, f"state at t >= {t:g} s", deadline)
 
-        with self._arrived:
-            if not self._arrived.wait_for(lambda: found() or rospy.is_shutdown(), deadline) or not found():
-                last = f"the last at t = {self._states[-1].t:.6g} s of {len(self._states)}" if self._states \
-                    else "none at all"
-                raise AssertionError(f"no state on {self.topic} at t >= {t:g} s within {deadline:g} s ({last}): "
-                                     "the simulation ended or died early, or is paused")
-            return next(state for state in self._states if state.t >= t - T_TOLERANCE)
 
-    def close(self) -> None:
-        self._subscriber.unregister()
+def value(event: Any, name: str) -> Any:
+    """A value an event carries (a finish's lap_time, a rod's end), else its state field of that name: a
+    number, or a text (a mode); fails the test if it has neither."""
+    for values in (event.values, event.state):
+        for item in values:
+            if item.name == name:
+                return item.text if item.text else item.number
+    raise AssertionError(f"event {event.kind} of {event.body} at t = {event.t:.9g} s carries no {name}")
+
+
+class Events(_Log):
+    """Every event of the node (`<node>/events`) from the subscription on, in the order they came. Subscribe
+    before the node steps (sim.launch start_paused:=true) to miss none; SimNode.run_events() has those of the
+    current run so far."""
+
+    def __init__(self, topic: str, deadline: float) -> None:
+        super().__init__(topic, Event, deadline)
+
+    def wait_for(self, kind: str, body: str = "", deadline: float = DEADLINE) -> Any:
+        """The first event of `kind` (of `body`, unless empty); fails the test if none comes within `deadline`
+        wall seconds."""
+        return self._first(lambda event: event.kind == kind and (not body or event.body == body),
+                           f"event {kind}" + (f" of {body}" if body else ""), deadline)
 
 
 class SimNode:
@@ -114,7 +153,15 @@ class SimNode:
         message = message or STATE_TYPES[self.body_param(body, "type")]
         return States(f"{self.name}/{body}/state", message, deadline or self.deadline)
 
+    def events(self, deadline: float = 0.0) -> Events:
+        """A subscription to the node's events (rigid_body_sim/Event), waited for until connected."""
+        return Events(f"{self.name}/events", deadline or self.deadline)
+
     # --- its services
+    def run_events(self) -> List[Any]:
+        """The events of the current run so far (since the start or the last reset), oldest first."""
+        return list(self._call("get_events", GetEvents).events)
+
     def pause(self) -> None:
         self._call("pause", Empty)
 

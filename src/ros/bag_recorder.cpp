@@ -19,6 +19,7 @@
 
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
+#include "rigid_body_sim/ros/messages.h"
 
 namespace rigid_body_sim {
 
@@ -165,6 +166,15 @@ void BagRecorder::applied(const WorldCommand& command, std::size_t index, const 
     tf2_msgs::TFMessage message;
     message.transforms = snapshots_.staticTransforms(stamp);
     bag.write("/tf_static", stamp, message, latchedHeader<tf2_msgs::TFMessage>(node_namespace_));
+  });
+}
+
+void BagRecorder::happened(const std::vector<BodyEvent>& events, const World&) {
+  guarded([&](rosbag::Bag& bag) {
+    for (const auto& event : events) {
+      const ros::Time stamp = simStamp(event.t);
+      bag.write(nodeTopic(node_namespace_, node_interface::kEvents), stamp, toEventMsg(event, stamp));
+    }
   });
 }
 

@@ -41,4 +41,28 @@ geometry_msgs::TransformStamped toTransform(const Eigen::Isometry3d& transform, 
   return msg;
 }
 
+namespace {
+std::vector<rigid_body_sim::EventField> toValueMsgs(const std::vector<EventValue>& values) {
+  std::vector<rigid_body_sim::EventField> out(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    out[i].name = values[i].name;
+    out[i].number = values[i].number;
+    out[i].text = values[i].text;
+  }
+  return out;
+}
+}  // namespace
+
+rigid_body_sim::Event toEventMsg(const BodyEvent& event, const ros::Time& stamp) {
+  rigid_body_sim::Event message;
+  message.header.stamp = stamp;
+  message.t = event.t;
+  message.body = event.body;
+  message.type = event.type;
+  message.kind = event.kind;
+  message.state = toValueMsgs(event.state);
+  message.values = toValueMsgs(event.values);
+  return message;
+}
+
 }  // namespace rigid_body_sim

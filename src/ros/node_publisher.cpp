@@ -9,6 +9,7 @@
 
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/ros/command_log.h"
+#include "rigid_body_sim/ros/messages.h"
 
 namespace rigid_body_sim {
 
@@ -66,6 +67,7 @@ NodePublisher::NodePublisher(ros::NodeHandle node, ros::NodeHandle private_node,
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
   commands_ = private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
+  events_ = private_node_.advertise<rigid_body_sim::Event>(names::kEvents, kCommandQueue);
   paused_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
   for (const auto& body : world.bodies()) advertiseState(body);
 }
@@ -147,7 +149,18 @@ void NodePublisher::write(const World& world) {
   }
 }
 
+void NodePublisher::happened(const std::vector<BodyEvent>& events, const World&) {
+  for (const auto& event : events) {
+    events_.publish(toEventMsg(event, stampOf(event.t)));  // few: built whether or not one listens
+    if (run_events_.size() == kKeptEvents) run_events_.pop_front();
+    run_events_.push_back(event);
+  }
+}
+
 void NodePublisher::applied(const WorldCommand& command, std::size_t index, const World& world) {
+  if (command.kind == WorldCommand::Kind::Reset || command.kind == WorldCommand::Kind::Config) {
+    run_events_.clear();  // a new run: its restart events follow
+  }
   ROS_INFO_STREAM(toString(command.kind)
                   << (command.body.empty() ? "" : " '" + command.body + "'") << " at step " << command.step
                   << " (t = " << formatNumber(world.time()) << " s)");

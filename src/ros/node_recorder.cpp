@@ -36,6 +36,10 @@ void NodeRecorder::applied(const WorldCommand& command, std::size_t index, const
   guarded(world.time(), [&](SampleSink& bag) { bag.applied(command, index, world); });
 }
 
+void NodeRecorder::happened(const std::vector<BodyEvent>& events, const World& world) {
+  guarded(world.time(), [&](SampleSink& bag) { bag.happened(events, world); });
+}
+
 void NodeRecorder::commit() {
   guarded(last_t_, [](SampleSink& bag) { bag.commit(); });
 }

@@ -14,6 +14,7 @@ NodeServices::NodeServices(ros::NodeHandle private_node, Calls calls) : calls_(s
   services_.push_back(private_node.advertiseService(names::kDelete, &NodeServices::onDelete, this));
   services_.push_back(private_node.advertiseService(names::kSetState, &NodeServices::onSetState, this));
   services_.push_back(private_node.advertiseService(names::kGetConfig, &NodeServices::onGetConfig, this));
+  services_.push_back(private_node.advertiseService(names::kGetEvents, &NodeServices::onGetEvents, this));
   services_.push_back(private_node.advertiseService(names::kReset, &NodeServices::onReset, this));
   services_.push_back(private_node.advertiseService(names::kPause, &NodeServices::onPause, this));
   services_.push_back(private_node.advertiseService(names::kUnpause, &NodeServices::onUnpause, this));
@@ -57,6 +58,11 @@ bool NodeServices::onSetState(SetState::Request& request, SetState::Response& re
 
 bool NodeServices::onGetConfig(GetConfig::Request&, GetConfig::Response& response) {
   response.yaml = toYaml(calls_.config());
+  return true;
+}
+
+bool NodeServices::onGetEvents(GetEvents::Request&, GetEvents::Response& response) {
+  response.events = calls_.events();
   return true;
 }
 

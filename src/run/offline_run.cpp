@@ -64,7 +64,7 @@ class EnergyTracker {
 };
 
 // Bodies that restarted or changed mode since the last sample: their rolling stretch starts anew.
-std::vector<bool> interruptedBodies(const std::vector<Body>& bodies, const std::vector<WorldEvent>& events) {
+std::vector<bool> interruptedBodies(const std::vector<Body>& bodies, const std::vector<BodyEvent>& events) {
   std::vector<bool> interrupted(bodies.size(), false);
   for (const auto& event : events) {
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -131,13 +131,13 @@ OfflineSummary stepAndSample(Session& session, std::int64_t last_sample, Progres
   EnergyTracker energy(session.world().bodies());
   BounceCounter bounces(session.world().bodies());
   const StepHook count_bounces = [&bounces](World& world) { bounces.step(world.bodies()); };
-  std::vector<WorldEvent> events;
+  std::vector<BodyEvent> events;
   session.sampleNow();
   if (progress) progress->update(0);
   for (std::int64_t j = 1; j <= last_sample; ++j) {
     session.advance(session.stepsPerSample(), count_bounces);
     if (progress) progress->update(j);
-    std::vector<WorldEvent> new_events = session.takeEvents();
+    std::vector<BodyEvent> new_events = session.takeEvents();
     energy.sample(session.world().bodies(), interruptedBodies(session.world().bodies(), new_events));
     events.insert(events.end(), new_events.begin(), new_events.end());
   }
@@ -189,6 +189,11 @@ void RunFiles::applied(const WorldCommand& command, std::size_t index, const Wor
   if (bag_) bag_->applied(command, index, world);
 }
 
+void RunFiles::happened(const std::vector<BodyEvent>& events, const World& world) {
+  csv_.write(events);
+  if (bag_) bag_->happened(events, world);
+}
+
 void RunFiles::commit() {
   csv_.commit();
   if (bag_) bag_->commit();
@@ -212,6 +217,33 @@ OfflineSummary summariseRun(const WorldConfig& config, const OfflineOptions& opt
   return stepAndSample(session, lastSample(config, options), nullptr);
 }
 
+namespace {
+// A line per kind of the body's events: every instant of a kind that happened up to three times, else the
+// count and the first (a rod's contacts come by the dozen).
+std::string eventLines(const std::vector<BodyEvent>& events, const std::string& body) {
+  std::vector<std::pair<std::string, std::vector<double>>> kinds;
+  for (const auto& event : events) {
+    if (event.body != body) continue;
+    auto same =
+        std::find_if(kinds.begin(), kinds.end(), [&](const auto& kind) { return kind.first == event.kind; });
+    if (same == kinds.end()) same = kinds.insert(kinds.end(), {event.kind, {}});
+    same->second.push_back(event.t);
+  }
+  std::ostringstream out;
+  for (const auto& [kind, times] : kinds) {
+    out << "  " << kind << ": ";
+    if (times.size() > 3) {
+      out << times.size() << " times, first at t = " << times.front() << " s\n";
+      continue;
+    }
+    out << "t =";
+    for (std::size_t k = 0; k < times.size(); ++k) out << (k == 0 ? " " : ", ") << times[k];
+    out << " s\n";
+  }
+  return out.str();
+}
+}  // namespace
+
 std::string formatSummary(const OfflineSummary& summary) {
   std::ostringstream out;
   out << "simulated " << summary.end_time << " s in " << summary.steps << " steps, " << summary.samples
@@ -223,9 +255,7 @@ std::string formatSummary(const OfflineSummary& summary) {
     if (e.rolling_drift > 0.0) out << ", largest drift while rolling " << e.rolling_drift << " J";
     out << "\n";
     if (summary.bounces[i] > 0) out << "  " << summary.bounces[i] << " bounces\n";
-    for (const auto& event : summary.events) {
-      if (event.body == summary.bodies[i]) out << "  t = " << event.t << " s: " << event.what << "\n";
-    }
+    out << eventLines(summary.events, summary.bodies[i]);
   }
   return out.str();
 }

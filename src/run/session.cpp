@@ -1,6 +1,8 @@
 #include "rigid_body_sim/run/session.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 
@@ -25,6 +27,7 @@ void Session::advance(std::int64_t steps, const StepHook& after_step) {
   for (std::int64_t i = 0; i < steps; ++i) {
     world_.step();
     if (after_step) after_step(world_);
+    if (world_.hasEvents()) handEvents();
     if (atSamplingInstant()) handOut();
   }
 }
@@ -35,7 +38,37 @@ std::size_t Session::apply(WorldCommand command) {
   world_.apply(command);  // a refusal throws here, before anything below
   const std::size_t index = ++commands_applied_;
   for (SampleSink* sink : sinks_) sink->applied(command, index, world_);
+  if (world_.hasEvents()) handEvents();
   return index;
+}
+
+namespace {
+bool finite(const std::vector<EventValue>& values) {
+  for (const auto& value : values) {
+    if (!std::isfinite(value.number)) return false;
+  }
+  return true;
+}
+}  // namespace
+
+void Session::handEvents() {
+  std::vector<BodyEvent> events = world_.takeEvents();
+  events.erase(std::remove_if(events.begin(), events.end(),
+                              [](const BodyEvent& event) {
+                                return !std::isfinite(event.t) || !finite(event.state) ||
+                                       !finite(event.values);
+                              }),
+               events.end());
+  if (events.empty()) return;
+  for (SampleSink* sink : sinks_) sink->happened(events, world_);
+  events_.insert(events_.end(), std::make_move_iterator(events.begin()),
+                 std::make_move_iterator(events.end()));
+}
+
+std::vector<BodyEvent> Session::takeEvents() {
+  std::vector<BodyEvent> taken;
+  taken.swap(events_);
+  return taken;
 }
 
 bool Session::sampleNow() {

@@ -105,10 +105,10 @@ std::string bodyColumns(const BodyConfig& body) {
   return columns;
 }
 
-// The first instant friction took hold of a body (slip to roll, a stop), or "" when there was none.
-std::string firstGrip(const OfflineSummary& summary, const std::string& body) {
+// The instant of the body's first event of that kind, or "" when there was none.
+std::string firstEvent(const OfflineSummary& summary, const std::string& body, const std::string& kind) {
   for (const auto& event : summary.events) {
-    if (event.body == body && event.kind == WorldEvent::Kind::Gripped) return formatNumber(event.t);
+    if (event.body == body && event.kind == kind) return formatNumber(event.t);
   }
   return "";
 }
@@ -260,8 +260,10 @@ std::string sweepRow(const WorldConfig& base, std::int64_t variant, const std::v
     const std::string& state = summary.final_rows[b];
     row += state.substr(state.find(','));  // the CSV row without its t
     row += "," + formatNumber(summary.energy[b].final - summary.energy[b].initial);
-    const bool bounces = sweepColumnOf(base.bodies[b]).of == SweepColumn::Of::Bounces;
-    row += "," + (bounces ? std::to_string(summary.bounces[b]) : firstGrip(summary, summary.bodies[b]));
+    const SweepColumn column = sweepColumnOf(base.bodies[b]);
+    row +=
+        "," + (column.of == SweepColumn::Of::Bounces ? std::to_string(summary.bounces[b])
+                                                     : firstEvent(summary, summary.bodies[b], column.event));
   }
   return row;
 }

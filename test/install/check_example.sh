@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Another package's rostests on the installed node: examples/sim_fixture_example in a workspace of its own
 # on top of INSTALL (only INSTALL/setup.bash sourced), built and run with catkin_make run_tests: the
-# installed helpers (rigid_body_sim.testing, rigid_body_sim/testing/sim_fixture.h) are all it has. Its four
-# tests must end as written: `rolls` (a true claim) and `steeper` (C++) pass; `slides` (a false claim) and
-# `cut_short` (the simulation's duration ends before the state the test waits for) fail, each with its own
-# line. A test that passes by not running (rostest's "TESTS: 0") fails this check.
+# installed helpers (rigid_body_sim.testing, rigid_body_sim/testing/sim_fixture.h) are all it has. Its five
+# tests must end as written: `rolls` (a true claim), `finishes` (an event) and `steeper` (C++: a state and an
+# event) pass; `slides` (a false claim) and `cut_short` (the simulation's duration ends before the state the
+# test waits for) fail, each with its own line. A test that passes by not running (rostest's "TESTS: 0")
+# fails this check.
 # Usage: check_example.sh INSTALL_DIR EXAMPLE_DIR
 set -euo pipefail
 install=$(cd "$1" && pwd)
@@ -28,6 +29,7 @@ import xml.etree.ElementTree as ElementTree
 results = sys.argv[1]
 expected = {  # test -> None (passes), or a text its one failure must say
     "rolls": None,
+    "finishes": None,
     "steeper": None,
     "slides": "sliding: x(1 s) =",
     "cut_short": "the simulation ended or died early",
@@ -53,5 +55,5 @@ for test, says in expected.items():
         failures.append(f"{test}: should fail saying '{says}'; failures {failed}: {messages[:500]}")
 if failures:
     sys.exit("check_example: FAILED:\n" + "\n".join(failures))
-print("check_example: rolls and steeper passed; slides and cut_short failed, each with its line")
+print("check_example: rolls, finishes and steeper passed; slides and cut_short failed, each with its line")
 PY

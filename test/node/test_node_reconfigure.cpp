@@ -199,7 +199,7 @@ TEST(SimNodeReconfigure, ChangesApplyLikeTheCore) {
   rodOf(world, "rod").setParams(bounded);
   stepAndCompare(c, world, 1500, "after floor_length = x0 + 0.6");
   int restarts = 0;
-  for (const auto& event : world.takeEvents()) restarts += event.body == "rod";
+  for (const auto& event : world.takeEvents()) restarts += event.body == "rod" && event.kind == "restarted";
   EXPECT_GE(restarts, 2) << "the rod did not run off its floor";
 
   // --- the README's example, as written: every key it assigns applies

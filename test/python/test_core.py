@@ -116,6 +116,7 @@ class CoreCase(unittest.TestCase):
     def test_runs_equal_simulate_bit_for_bit(self) -> None:
         rng = random.Random(SEED)
         kinds: Set[str] = set()
+        kinds_seen: Set[str] = set()
         for n in range(20):
             config, sample_rate = draw_config(rng)
             kinds.update(body["type"] for body in config["bodies"].values())
@@ -124,9 +125,14 @@ class CoreCase(unittest.TestCase):
             done, folder = self.simulate_run(config, "--duration", repr(duration), "--sample-rate", repr(sample_rate))
             self.assertEqual(done.returncode, 0, what + ": " + done.stderr)
             world = core.World(config)
-            self.assert_same_run(world.run(duration, sample_rate=sample_rate), runs.read_run(folder), what)
+            samples, happened = world.run(duration, sample_rate=sample_rate, events=True)
+            self.assert_same_run(samples, runs.read_run(folder), what)
             self.assertEqual(world.t, duration, what)
+            # The events, bit for bit (float() of events.csv's shortest round-trip numbers gives the doubles).
+            self.assertEqual(happened, runs.read_events(folder), what)
+            kinds_seen.update(f"{event['type']}.{event['kind']}" for event in happened)
         self.assertEqual(kinds, set(core.body_types()["types"]), "every body type drawn")
+        self.assertGreater(len(kinds_seen), len(kinds), f"events of several kinds compared: {kinds_seen}")
 
     def test_text_rod_and_demo_for_ten_seconds(self) -> None:
         for name in ["rod.yaml", "demo.yaml"]:
@@ -144,6 +150,27 @@ class CoreCase(unittest.TestCase):
                 for field in fresh[body]:
                     if field != "t":
                         self.assertTrue(numpy.array_equal(bits(again[body][field]), bits(fresh[body][field])))
+
+    def test_events_after_steps_and_changes(self) -> None:
+        """World.events() after steps: the closed form's slip-to-roll instant of a ball launched sliding
+        (t = -u0 / (du/dt), section 16.3.2), in the state it carries (u = 0); a reset's restart after it."""
+        world = core.World({"bodies": {"ball": {"type": "roller", "v0": 3.0, "mu_s": 0.3, "mu_d": 0.2}}})
+        kinds = [kind["name"] for kind in core.body_types()["types"]["roller"]["event_kinds"]]
+        self.assertIn("slip_to_roll", kinds)
+        world.step(1000)
+        happened = world.events()
+        self.assertEqual([event["kind"] for event in happened], ["slip_to_roll"])
+        rolled = happened[0]
+        c, phi, g = 0.4, 0.349, 9.8
+        dudt = g * (math.sin(phi) - 0.2 * math.cos(phi) * (1 + c) / c)
+        self.assertAlmostEqual(rolled["t"], -3.0 / dudt, delta=1e-12)
+        self.assertEqual(rolled["state"]["mode"], "rolling")
+        self.assertEqual(rolled["state"]["omega"], -rolled["state"]["v"] / 0.1)
+        self.assertEqual(world.events(), [], "read once")
+        world.reset()
+        restart = world.events()
+        self.assertEqual([(e["kind"], e["values"]["cause"], e["t"]) for e in restart],
+                         [("lap_restarted", "reset", 1.0)])
 
     def test_a_bag_reads_back_into_the_same_arrays(self) -> None:
         path = os.path.join(CONFIG_DIR, "demo.yaml")

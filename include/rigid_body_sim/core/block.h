@@ -51,9 +51,18 @@ class Block {
  public:
   Block(const BlockParams& params, const BlockInitial& initial);
 
+  // Everything a step changes, kept and put back exactly (the node's guard keeps one after every step).
+  struct Progress {
+    BlockMotion state;
+    BlockMode mode;
+    int laps;
+    bool pending_started_slipping;
+  };
+  using StepEvents = InclineStepEvents<Progress>;
+
   // Advances by dt seconds in closed form, split at the instant the block stops. When the centre leaves the
   // slope at the end of the step, the block restarts from its initial conditions (a new lap).
-  InclineStepEvents step(double dt);
+  StepEvents step(double dt);
 
   // New parameters apply from the next step; a sticking block that static friction no longer holds starts
   // sliding downhill. The state is kept.
@@ -69,12 +78,6 @@ class Block {
   bool finished() const { return mode_ == BlockMode::Finished; }
   void restartLap();
 
-  struct Progress {
-    BlockMotion state;
-    BlockMode mode;
-    int laps;
-    bool pending_started_slipping;
-  };
   Progress progress() const { return {state_, mode_, laps_, pending_started_slipping_}; }
   void restore(const Progress& progress);
 

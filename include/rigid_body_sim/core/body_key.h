@@ -132,9 +132,12 @@ std::string BodyKey<Config>::text(const Config& config) const {
 // The column a sweep writes for a body after its final state and energy drift: the rod's bounces, or the
 // instant friction first took hold (a roller's slip_to_roll, a block's stop).
 struct SweepColumn {
-  enum class Of { Bounces, FirstGrip };
+  // Bounces: the run summary's count of contacts begun (Type::touchesFloor); FirstEvent: the instant of the
+  // first event of kind `event` (one of the type's kEventKinds), empty when none happened.
+  enum class Of { Bounces, FirstEvent };
   const char* name;
   Of of;
+  const char* event;  // for FirstEvent
   const char* label;  // for a plot's axis: "slip-to-roll time"
   const char* unit;   // "s", "" for a count
 };

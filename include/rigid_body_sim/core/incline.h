@@ -6,15 +6,19 @@
 
 namespace rigid_body_sim {
 
-// What happened inside one step of a body on an incline.
+// What happened inside one step of a body on an incline, with the model's progress at each instant (from
+// which the events' state fields are read: core/types/incline_events.h).
+template <class Progress>
 struct InclineStepEvents {
-  std::optional<double> stuck_at;  // offset in [0, dt] at which it came to grip (rolls, or a block rests)
-  bool started_slipping = false;   // a gripping body could not hold (only after setParams)
-  std::optional<double> left_at;   // offset in (0, dt] at which the centre passed an end of the slope
-  double arrival_speed = 0.0;      // its speed along the slope at left_at (m/s)
-  bool restarted = false;          // the centre left the slope and the body restarted
+  std::optional<double> stuck_at;    // offset in [0, dt] at which it came to grip (rolls, or a block rests)
+  bool started_slipping = false;     // a gripping body could not hold (only after setParams)
+  std::optional<double> left_at;     // offset in (0, dt] at which the centre passed an end of the slope
+  double arrival_speed = 0.0;        // its speed along the slope at left_at (m/s)
+  bool restarted = false;            // the centre left the slope and the body restarted
+  std::optional<Progress> at_start;  // at the step's start, when started_slipping
+  std::optional<Progress> at_stuck;  // at stuck_at, gripping
+  std::optional<Progress> at_left;   // at left_at: on the line, at its arrival speed
 };
-using RollerStepEvents = InclineStepEvents;
 
 // The first s in (0, h] at which x + v s + a s^2 / 2 passes beyond [0, length] (above length, or below 0),
 // given that the position after h is beyond it; the root is taken in its cancellation-free form.

@@ -34,6 +34,8 @@ inline constexpr const char* kDelete = "delete";
 inline constexpr const char* kSetState = "set_state";
 inline constexpr const char* kGetConfig = "get_config";
 inline constexpr const char* kCommands = "commands";        // every accepted change of the world, latched
+inline constexpr const char* kEvents = "events";            // what happened, an Event a message, none dropped
+inline constexpr const char* kGetEvents = "get_events";     // the current run's events, for a late subscriber
 inline constexpr const char* kPaused = "paused";            // whether stepping is paused, latched
 inline constexpr const char* kInteractive = "interactive";  // the interactive marker server's namespace
 
@@ -59,7 +61,7 @@ inline const std::vector<std::string>& ownNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> all = optionNames();
     all.insert(all.end(), {kMarkers, kScene, kReset, kPause, kUnpause, kStep, kSpawn, kDelete, kSetState,
-                           kGetConfig, kCommands, kPaused, kInteractive});
+                           kGetConfig, kCommands, kEvents, kGetEvents, kPaused, kInteractive});
     return all;
   }();
   return names;

@@ -48,6 +48,14 @@ struct RodMotion {
   double omega = 0.0;
 };
 
+// What one step of a rod tells: which ends were below the floor before and after it (bit 0: end A, bit 1:
+// end B), and whether it left a bounded floor and restarted.
+struct RodStepEvents {
+  unsigned contacts_before = 0;
+  unsigned contacts_after = 0;
+  bool restarted = false;
+};
+
 class Rod {
  public:
   // Sub-stepping starts where omega_c * dt exceeds this fraction of the stability bound 2
@@ -56,10 +64,10 @@ class Rod {
 
   Rod(const RodParams& params, const RodMotion& initial);
 
-  // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator. Returns true when
-  // the centre left a bounded floor (x < 0 or x > floor_length) and the rod restarted from its initial
-  // conditions at the end of the step.
-  bool step(double dt);
+  // Advances by dt, split into substepsFor(dt) equal sub-steps of the chosen integrator. Tells the ends'
+  // contacts before and after, and whether the centre left a bounded floor (x < 0 or x > floor_length) and
+  // the rod restarted from its initial conditions at the end of the step.
+  RodStepEvents step(double dt);
 
   void setParams(const RodParams& params);    // applies from the next step; the state is kept
   void setInitial(const RodMotion& initial);  // restarts from it
@@ -81,6 +89,7 @@ class Rod {
   double energy() const;            // kinetic + gravitational + elastic (J)
   double endHeightA() const;        // y of end A
   double endHeightB() const;        // y of end B
+  unsigned contacts() const;        // the ends below the floor now: bit 0 end A, bit 1 end B
   double contactFrequency() const;  // omega_c = sqrt(4 k / M) (rad/s)
   // The sub-steps of a step of dt: params().substeps, or autoSubstepsFor(dt) under kAutoSubsteps.
   int substepsFor(double dt) const;

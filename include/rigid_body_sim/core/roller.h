@@ -75,10 +75,21 @@ class Roller {
  public:
   Roller(const RollerParams& params, const RollerInitial& initial);
 
+  // Everything a step changes (the motion, the mode, the laps): kept and put back exactly, a few bytes
+  // instead of the whole body (the node's guard keeps one after every step).
+  struct Progress {
+    RollerMotion state;
+    RollMode mode;
+    int slip_sign;
+    int laps;
+    bool pending_started_slipping;
+  };
+  using StepEvents = InclineStepEvents<Progress>;
+
   // Advances by dt seconds in closed form, splitting at a slip-to-roll instant. When the centre leaves
   // the slope (x > incline_length or x < 0) at the end of the step, the body restarts from its initial
   // conditions (a new "lap"); the restart is reported in the returned events.
-  RollerStepEvents step(double dt);
+  StepEvents step(double dt);
 
   // New parameters apply from the next step; a rolling body whose static friction no longer holds
   // starts slipping forward. The state is kept.
@@ -98,15 +109,6 @@ class Roller {
   // A new lap from the initial conditions, as at the end of the slope.
   void restartLap();
 
-  // Everything a step changes (the motion, the mode, the laps): kept and put back exactly, a few bytes
-  // instead of the whole body (the node's guard keeps one after every step).
-  struct Progress {
-    RollerMotion state;
-    RollMode mode;
-    int slip_sign;
-    int laps;
-    bool pending_started_slipping;
-  };
   Progress progress() const { return {state_, mode_, slip_sign_, laps_, pending_started_slipping_}; }
   void restore(const Progress& progress);
 
@@ -158,5 +160,7 @@ class Roller {
   bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
   bool hold_at_end_ = false;
 };
+
+using RollerStepEvents = Roller::StepEvents;
 
 }  // namespace rigid_body_sim

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "rigid_body_sim/core/command.h"
+#include "rigid_body_sim/core/event.h"
 #include "rigid_body_sim/core/parameters.h"
 
 namespace rigid_body_sim {
@@ -27,18 +29,15 @@ struct Body {
   std::string name;
   AnyModel model;
   std::optional<RaceFinish> finish;  // a racer that finished the current lap
+  double lap_start = 0.0;            // s: when its current lap started (its start, a restart, a reset)
+  bool lap_as_configured = true;     // nothing moved it or changed it since (its lap's closed form holds)
 };
 
-// Something worth telling that happened to a body at simulated time t.
-struct WorldEvent {
-  // Gripped: friction took hold (a roller started rolling, a block came to rest); LostGrip: it let go.
-  enum class Kind { Gripped, LostGrip, Restarted, Finished };
-  double t;
-  std::string body;
-  Kind kind;
-  std::string what;  // in the body's own words: "started rolling", "came to rest", "restarted" ...
+// The names of a type's event kinds, and what each means (Type::kEventKinds), in its order.
+struct EventKindInfo {
+  std::string name;
+  std::string meaning;
 };
-std::string toString(WorldEvent::Kind kind);
 
 class World {
  public:
@@ -76,8 +75,9 @@ class World {
   Body* find(const std::string& name);
   std::optional<std::size_t> indexOf(const std::string& name) const;
 
-  // Events since the last takeEvents().
-  std::vector<WorldEvent> takeEvents();
+  // What happened since the last takeEvents() (core/event.h), in time order.
+  std::vector<BodyEvent> takeEvents();
+  bool hasEvents() const { return !events_.empty(); }
 
  private:
   std::size_t existingIndex(const WorldCommand& command) const;  // of command.body; throws ConfigError
@@ -89,12 +89,20 @@ class World {
   // `speed` finishes; places follow the times (ties share one). Once every racer has, the results stand
   // kRaceResultsShown simulated seconds, then all start a new lap together.
   void finish(std::size_t index, double t, double speed);
-  void report(std::size_t index, double t0, const Rod& rod, bool restarted);
+  // Collects the events of a step of body `index` that started at t0.
+  template <class Model, class Happened>
+  void report(std::size_t index, double t0, const Model& model, const Happened& happened);
+  // Collects one event of kind Type::kEventKinds[kind] at t, `at` being the model at that instant.
   template <class Model>
-  void report(std::size_t index, double t0, const Model& model, const InclineStepEvents& happened);
-  void event(double t, std::size_t index, WorldEvent::Kind kind, std::string what = "");
+  void record(std::size_t index, double t, std::size_t kind, const Model& at, std::vector<EventValue> values);
+  // The body started again from its initial conditions now (a reset, a restarting change): its type's
+  // restart event, with `cause`.
+  void restarted(std::size_t index, const char* cause);
+  void placeFinishers(std::size_t first_event);  // a race's places on the finish events from first_event on
   bool raceOver() const;
-  void restartRace();
+  // Every racer starts a new lap now (a restart event with `cause` each); false, doing nothing, unless the
+  // world races.
+  bool restartRace(const char* cause);
 
   WorldConfig config_;
   std::vector<std::string> reserved_names_;
@@ -104,13 +112,15 @@ class World {
   std::int64_t lap_start_step_ = 0;             // of the race's current lap
   std::optional<std::int64_t> race_over_step_;  // when its last racer finished
   std::vector<Body> bodies_;
-  std::vector<WorldEvent> events_;
+  std::vector<BodyEvent> events_;
 };
 
 // Total energy of a body (J), whatever its kind.
 double energyOf(const Body& body);
 
-std::string typeName(const Body& body);      // rod, roller or block
+std::string typeName(const Body& body);  // its type's kName
+// Each type's event kinds, by type name, in the list's order.
+const std::vector<std::pair<std::string, std::vector<EventKindInfo>>>& eventKindsByType();
 std::string fixedFrameOf(const Body& body);  // <name>_floor or <name>_slope
 
 }  // namespace rigid_body_sim

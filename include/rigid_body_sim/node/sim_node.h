@@ -80,6 +80,7 @@ class SimNode {
   void afterStep(World& world);
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).
+  std::vector<Event> runEventMessages() const;  // ~get_events: the run's events as messages
   void stopRecording(double t, const std::string& what);
   const World& world() const { return session_.world(); }  // on the stepping thread
   void anchor();       // the pace and the wall-clock stamps start from now and the current step

@@ -1,7 +1,8 @@
 // Writes what the node publishes into a bag with the rosbag C++ API: no master needed. Topic names are
 // the node's (launch files name it `sim`): /tf, /tf_static, /sim/scene (latched, once), /sim/markers (trail
-// pieces and labels at the marker rate), /sim/<body>/state, and /sim/commands with the config (so that
-// `simulate --replay` takes the bag). A SampleSink (run/session.h): the bag of `simulate --bag` and
+// pieces and labels at the marker rate), /sim/<body>/state, /sim/events (each stamped with its instant), and
+// /sim/commands with the config (so that `simulate --replay` takes the bag). A SampleSink (run/session.h):
+// the bag of `simulate --bag` and
 // `--replay --bag`, and the node's own recorder (ros/node_recorder.h), stamped in simulated time.
 #pragma once
 
@@ -42,6 +43,7 @@ class BagRecorder : public SampleSink {
   void write(
       const World& world) override;  // TF, every state and (at marker instants) markers at world.time()
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+  void happened(const std::vector<BodyEvent>& events, const World& world) override;  // on /sim/events
   void commit() override;
 
  private:

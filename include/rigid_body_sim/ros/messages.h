@@ -1,4 +1,4 @@
-// Core state -> ROS messages: the state messages, stamps, and Eigen poses as geometry messages.
+// Core state -> ROS messages: the state messages, events, stamps, and Eigen poses as geometry messages.
 #pragma once
 
 #include <string>
@@ -11,6 +11,7 @@
 #include <ros/time.h>
 #include <Eigen/Geometry>
 
+#include "rigid_body_sim/Event.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_types_ros.h"
 
@@ -26,6 +27,9 @@ auto toStateMsg(double t, const Model& model) {
   return RosBodyType<TypeOfModel<Model>>::state(t, model);
 }
 StateMsg toStateMsg(double t, const Body& body);
+
+// An event as published on ~events and recorded (rigid_body_sim/Event), stamped `stamp` (its instant).
+rigid_body_sim::Event toEventMsg(const BodyEvent& event, const ros::Time& stamp);
 
 geometry_msgs::Point toPoint(const Eigen::Vector3d& point);
 geometry_msgs::Pose toPose(const Eigen::Isometry3d& transform);

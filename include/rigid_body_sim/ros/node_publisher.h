@@ -1,8 +1,8 @@
 // sim_node's topics as a sink of its Session (run/session.h): at every sample /clock, the transforms on /tf
 // (and <ns>/tf), ~markers and every ~<body>/state; at every applied command its INFO line, the command on
-// ~commands (its index as header.seq) and what follows the bodies: a spawned body's state topic, a deleted
-// one's gone, /tf_static and ~scene rebuilt for a new set of bodies or a new look, the trails cleared by a
-// reset. Each message is built only for a topic with a subscriber.
+// ~commands (its index as header.seq) and what follows the bodies; every event on ~events: a spawned body's
+// state topic, a deleted one's gone, /tf_static and ~scene rebuilt for a new set of bodies or a new look, the
+// trails cleared by a reset. Each message is built only for a topic with a subscriber.
 //
 // Owned by the stepping thread, which owns the Session: every call but the constructor comes from it. The
 // scene sent again for a viewer that joined (a timer on the spinner thread) is handed to it through
@@ -12,6 +12,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -35,6 +36,13 @@ class NodePublisher : public SampleSink {
 
   void write(const World& world) override;
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+  // Each event on ~events, stamped with its instant, and kept for ~get_events.
+  void happened(const std::vector<BodyEvent>& events, const World& world) override;
+
+  // The events of the current run (since the start or the last reset or config), at most kKeptEvents, the
+  // latest: what ~get_events answers.
+  static constexpr std::size_t kKeptEvents = 10000;
+  const std::deque<BodyEvent>& runEvents() const { return run_events_; }
 
   void publishConfig(const World& world);  // ~commands' entry 0, the world at the start
   void publishPaused(bool paused);         // ~paused (latched)
@@ -81,6 +89,8 @@ class NodePublisher : public SampleSink {
   double time_anchor_ = 0.0;        // s
 
   ros::Publisher commands_;
+  ros::Publisher events_;
+  std::deque<BodyEvent> run_events_;
   ros::Publisher paused_;
   CountedPublisher markers_;
   ros::Publisher scene_;

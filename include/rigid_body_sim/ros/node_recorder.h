@@ -26,6 +26,7 @@ class NodeRecorder : public SampleSink {
 
   void write(const World& world) override;
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+  void happened(const std::vector<BodyEvent>& events, const World& world) override;
   void commit() override;  // the end of the run: FILE.active becomes FILE
   bool recording() const { return bag_ != nullptr; }
 

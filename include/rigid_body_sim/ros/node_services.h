@@ -1,7 +1,7 @@
 // sim_node's services. ~spawn, ~delete, ~set_state and ~reset turn a request into the command of a change
 // (built on the stepping thread from the running world, a ConfigError its refusal) and hand it to the node's
-// one path for every change (docs/commands.md); ~get_config, ~pause, ~unpause and ~step hand their work
-// to the node likewise. The services' callbacks run on the spinner thread.
+// one path for every change (docs/commands.md); ~get_config, ~get_events, ~pause, ~unpause and ~step hand
+// their work to the node likewise. The services' callbacks run on the spinner thread.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +15,7 @@
 
 #include "rigid_body_sim/Delete.h"
 #include "rigid_body_sim/GetConfig.h"
+#include "rigid_body_sim/GetEvents.h"
 #include "rigid_body_sim/SetState.h"
 #include "rigid_body_sim/Spawn.h"
 #include "rigid_body_sim/Step.h"
@@ -44,6 +45,7 @@ class NodeServices {
     std::function<WorldConfig()> config;                                      // ~get_config: what runs
     std::function<void(bool paused)> pause;                                   // ~pause, ~unpause
     std::function<void(std::uint64_t steps, Step::Response& response)> step;  // ~step
+    std::function<std::vector<Event>()> events;                               // ~get_events
   };
   // Advertises every service in `private_node`.
   NodeServices(ros::NodeHandle private_node, Calls calls);
@@ -58,6 +60,7 @@ class NodeServices {
   bool onDelete(Delete::Request& request, Delete::Response& response);
   bool onSetState(SetState::Request& request, SetState::Response& response);
   bool onGetConfig(GetConfig::Request& request, GetConfig::Response& response);
+  bool onGetEvents(GetEvents::Request& request, GetEvents::Response& response);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);

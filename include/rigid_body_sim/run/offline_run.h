@@ -41,7 +41,7 @@ struct OfflineSummary {
   std::vector<std::string> final_rows;    // the same rows without their header (csvRow)
   std::vector<EnergyRecord> energy;       // per body
   std::vector<int> bounces;               // per body: contacts with a floor begun (rods; 0 for the others)
-  std::vector<WorldEvent> events;
+  std::vector<BodyEvent> events;
 };
 
 // Checks the options against the config; throws ConfigError naming the option.
@@ -63,14 +63,16 @@ using SinkOpener = std::function<std::unique_ptr<SampleSink>(
 std::unique_ptr<SampleSink> openSink(const std::string& path, const WorldConfig& config,
                                      const std::vector<Body>& bodies, const SinkOpener& open_bag);
 
-// The files of a run of `config` whose bodies start as `bodies`: DIR/<body>.csv and, if `bag` is set, the
-// bag through `open_bag` (opened in that order). Final only on commit(); throws as CsvWriter and openSink.
+// The files of a run of `config` whose bodies start as `bodies`: DIR/<body>.csv, DIR/events.csv and, if `bag`
+// is set, the bag through `open_bag` (opened in that order). Final only on commit(); throws as CsvWriter and
+// openSink.
 class RunFiles : public SampleSink {
  public:
   RunFiles(const std::string& out_dir, const std::string& bag, const WorldConfig& config,
            const std::vector<Body>& bodies, const SinkOpener& open_bag);
   void write(const World& world) override;  // a CSV row per body; the bag's messages
   void applied(const WorldCommand& command, std::size_t index, const World& world) override;
+  void happened(const std::vector<BodyEvent>& events, const World& world) override;  // events.csv; the bag's
   void commit() override;  // the CSV files, then the bag
 
  private:

@@ -10,8 +10,9 @@
 // markers; applied publishes the command on ~commands with the index as its seq); every change, whatever
 // its entry point, goes through Session::apply (which publishes a pending instant first; a ConfigError is
 // the refusal to report); the stepping thread calls advance() with the NaN guard as the step hook and takes
-// the events; sampleNow() shows the state at the start and after a ~step that ends off the publishing grid.
-// Pausing is the caller's: paused, it does not advance, while commands still apply. No ROS here.
+// the events (handed to every sink too); sampleNow() shows the state at the start and after a ~step that ends
+// off the publishing grid. Pausing is the caller's: paused, it does not advance, while commands still apply.
+// No ROS here.
 #pragma once
 
 #include <cstddef>
@@ -32,6 +33,9 @@ class SampleSink {
   // A change of the world (number `index` of its log; 0 is the config the sink was opened with), applied
   // to `world` at world.time(): logged as the node logs it, the scene following.
   virtual void applied(const WorldCommand& command, std::size_t index, const World& world) = 0;
+  // What happened in a step or with a change (core/event.h), in time order, each event at or before
+  // world.time(); before the state at that count is written.
+  virtual void happened(const std::vector<BodyEvent>& events, const World& world) = 0;
   // The run is complete: the output becomes final. The owner of the run calls it, never the Session.
   virtual void commit() {}
 };
@@ -74,16 +78,21 @@ class Session {
   std::size_t commandsApplied() const { return commands_applied_; }  // after the config
 
   const World& world() const { return world_; }
-  std::vector<WorldEvent> takeEvents() { return world_.takeEvents(); }
+  // The events handed to the sinks since the last call.
+  std::vector<BodyEvent> takeEvents();
 
  private:
   void handOut();
+  // The world's new events to the sinks (an event with a non-finite number, from a step the NaN guard
+  // undid, is dropped: nothing hands out NaN), and kept for takeEvents().
+  void handEvents();
 
   World world_;
   std::int64_t steps_per_sample_;
   std::int64_t last_sampled_ = -1;  // the count last handed out
   std::size_t commands_applied_ = 0;
   std::vector<SampleSink*> sinks_;
+  std::vector<BodyEvent> events_;  // handed out, not yet taken
 };
 
 }  // namespace rigid_body_sim

@@ -10,6 +10,9 @@
 //   ASSERT_TRUE(sim.step(1000));                                    // start_paused:=true held it at t = 0
 //   rigid_body_sim::RollerState state;
 //   ASSERT_TRUE(sphere.waitFor(1.0, &state));                       // the first state at t >= 1 s
+//   rigid_body_sim::EventLog events(sim);                           // what happens, as it happens
+//   rigid_body_sim::Event finished;
+//   ASSERT_TRUE(events.waitFor("finished", "sphere", &finished));   // its exact instant: finished.t
 //
 // Header-only; the states arrive on a spinner thread of the log's own, whatever the test's main spins. The
 // test's main keeps a ros::NodeHandle for as long as the tests run (roscpp ends the node with the last one).
@@ -18,6 +21,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <string>
@@ -33,7 +37,9 @@
 #include <std_srvs/Empty.h>
 #include <xmlrpcpp/XmlRpc.h>
 
+#include "rigid_body_sim/Event.h"
 #include "rigid_body_sim/GetConfig.h"
+#include "rigid_body_sim/GetEvents.h"
 #include "rigid_body_sim/RodState.h"
 #include "rigid_body_sim/RollerState.h"
 #include "rigid_body_sim/Step.h"
@@ -104,6 +110,13 @@ class SimFixture {
     return get(name_ + "/bodies/" + body + "/" + key, value);
   }
 
+  // The events of the current run so far (since the start or the last reset), oldest first (~get_events).
+  ::testing::AssertionResult getEvents(std::vector<Event>* events) const {
+    GetEvents srv;
+    auto called = call("get_events", srv);
+    if (called) *events = srv.response.events;
+    return called;
+  }
   // The world as it runs now, every key with its value in use, as a config file (~get_config).
   ::testing::AssertionResult getConfig(std::string* yaml) const {
     GetConfig srv;
@@ -195,32 +208,29 @@ class SimFixture {
   mutable ServiceCalls calls_;  // a fixture's calls come from its test's thread
 };
 
-// Every state of one body from the subscription on, in the order they came. State: RodState or RollerState,
-// as the body's type.
-template <class State>
-class StateLog {
+// Every message of one topic of the node from the subscription on, in the order they came; the base of
+// StateLog and EventLog.
+template <class Message>
+class MessageLog {
  public:
-  StateLog(const SimFixture& sim, const std::string& body)
-      : node_(sim.name()),
-        topic_(sim.name() + "/" + body + "/state"),
-        deadline_(sim.deadline()),
-        spinner_(1, &queue_) {
+  MessageLog(const SimFixture& sim, std::string topic)
+      : node_(sim.name()), topic_(std::move(topic)), deadline_(sim.deadline()), spinner_(1, &queue_) {
     nh_.setCallbackQueue(&queue_);
-    subscriber_ = nh_.subscribe<State>(topic_, 10000, [this](const typename State::ConstPtr& state) {
+    subscriber_ = nh_.subscribe<Message>(topic_, 10000, [this](const typename Message::ConstPtr& message) {
       const std::lock_guard<std::mutex> lock(mutex_);
-      states_.push_back(*state);
+      messages_.push_back(*message);
       arrived_.notify_all();
     });
     spinner_.start();
   }
-  ~StateLog() {
+  ~MessageLog() {
     subscriber_.shutdown();
     spinner_.stop();
   }
-  StateLog(const StateLog&) = delete;
-  StateLog& operator=(const StateLog&) = delete;
+  MessageLog(const MessageLog&) = delete;
+  MessageLog& operator=(const MessageLog&) = delete;
 
-  // Until the node publishes the states to this node (publishesHere): every state from then on arrives.
+  // Until the node publishes the topic to this node (publishesHere): every message from then on arrives.
   ::testing::AssertionResult waitConnected() {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(deadline_);
     while (!publishesHere(node_, topic_)) {
@@ -235,34 +245,38 @@ class StateLog {
     return ::testing::AssertionSuccess();
   }
 
-  // The first state at or after simulated time t, into `state`; a failure, saying the last state's t, if
-  // none comes within the deadline (the simulation ended, died or is paused).
-  ::testing::AssertionResult waitFor(double t, State* state) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    const auto reached = [&] { return !states_.empty() && states_.back().t >= t - kStateTimeTolerance; };
-    if (!arrived_.wait_for(lock, std::chrono::duration<double>(deadline_), reached)) {
-      std::ostringstream last;
-      if (states_.empty()) {
-        last << "none at all";
-      } else {
-        last << "the last at t = " << states_.back().t << " s of " << states_.size();
-      }
-      return ::testing::AssertionFailure()
-             << "no state on " << topic_ << " at t >= " << t << " s within " << deadline_ << " s ("
-             << last.str() << "): the simulation ended or died early, or is paused";
-    }
-    for (const State& s : states_) {
-      if (s.t >= t - kStateTimeTolerance) {
-        *state = s;
-        break;
-      }
-    }
-    return ::testing::AssertionSuccess();
+  std::vector<Message> messages() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
   }
 
-  std::vector<State> states() const {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    return states_;
+ protected:
+  // Until a message received satisfies `wanted`: the first such into `found`; else, after the deadline, a
+  // failure naming `what` and the number received.
+  template <class Wanted>
+  ::testing::AssertionResult waitUntil(const Wanted& wanted, Message* found, const std::string& what) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const auto first = [&]() -> const Message* {
+      for (const Message& message : messages_) {
+        if (wanted(message)) return &message;
+      }
+      return nullptr;
+    };
+    if (!arrived_.wait_for(lock, std::chrono::duration<double>(deadline_),
+                           [&] { return first() != nullptr; })) {
+      std::ostringstream last;
+      if (messages_.empty()) {
+        last << "none at all";
+      } else {
+        last << "the last at t = " << messages_.back().t << " s of " << messages_.size();
+      }
+      return ::testing::AssertionFailure()
+             << "no " << what << " on " << topic_ << " within " << deadline_ << " s (" << last.str()
+             << "): the simulation ended or died early, "
+             << "or is paused";
+    }
+    *found = *first();
+    return ::testing::AssertionSuccess();
   }
 
  private:
@@ -271,11 +285,55 @@ class StateLog {
   double deadline_;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
-  std::vector<State> states_;
+  std::vector<Message> messages_;
   ros::CallbackQueue queue_;
   ros::AsyncSpinner spinner_;
   ros::NodeHandle nh_;  // its own: the subscription lives as long as the log
   ros::Subscriber subscriber_;
 };
+
+// Every state of one body from the subscription on, in the order they came. State: the body's type's state
+// message (RodState, RollerState, BlockState).
+template <class State>
+class StateLog : public MessageLog<State> {
+ public:
+  StateLog(const SimFixture& sim, const std::string& body)
+      : MessageLog<State>(sim, sim.name() + "/" + body + "/state") {}
+
+  // The first state at or after simulated time t, into `state`; a failure, saying the last state's t, if
+  // none comes within the deadline (the simulation ended, died or is paused).
+  ::testing::AssertionResult waitFor(double t, State* state) {
+    std::ostringstream what;
+    what << "state at t >= " << t << " s";
+    return this->waitUntil([t](const State& s) { return s.t >= t - kStateTimeTolerance; }, state, what.str());
+  }
+
+  std::vector<State> states() const { return this->messages(); }
+};
+
+// Every event of the node (<node>/events) from the subscription on, in the order they came: subscribe before
+// the node steps (sim.launch start_paused:=true) to miss none; SimFixture::getEvents has those of the
+// current run so far.
+class EventLog : public MessageLog<Event> {
+ public:
+  explicit EventLog(const SimFixture& sim) : MessageLog<Event>(sim, sim.name() + "/events") {}
+
+  // The first event of `kind` (of `body`, unless empty) into `event`; a failure if none comes within the
+  // deadline.
+  ::testing::AssertionResult waitFor(const std::string& kind, const std::string& body, Event* event) {
+    return waitUntil([&](const Event& e) { return e.kind == kind && (body.empty() || e.body == body); },
+                     event, "event " + kind + (body.empty() ? "" : " of " + body));
+  }
+};
+
+// A number an event carries (its values, else its state fields) by name; NaN when it has none.
+inline double eventNumber(const Event& event, const std::string& name) {
+  for (const auto* values : {&event.values, &event.state}) {
+    for (const auto& value : *values) {
+      if (value.name == name) return value.number;
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
 
 }  // namespace rigid_body_sim

@@ -10,6 +10,7 @@
 #include "rigid_body_sim/core/block.h"
 #include "rigid_body_sim/core/body_key.h"
 #include "rigid_body_sim/core/state_field_def.h"
+#include "rigid_body_sim/core/types/incline_events.h"
 
 namespace rigid_body_sim {
 
@@ -20,17 +21,20 @@ struct BlockConfig {
 
 std::string modeText(const Block& block);  // sticking | sliding | finished
 
-struct BlockType {
+struct BlockType : InclineEvents<Block> {  // its events' lifecycle: incline_events.h
   using Config = BlockConfig;
   using Model = Block;
   static constexpr const char* kName = "block";
   static constexpr const char* kFixedFrameSuffix = "_slope";
-  static constexpr const char* kGrippedText = "came to rest";  // its WorldEvent texts
-  static constexpr const char* kLostGripText = "started sliding";
+  // Its events: its grip kinds, then the lap's.
+  static constexpr std::array kEventKinds = inclineEventKinds(
+      {"came_to_rest", "it stopped where static friction holds it"},
+      {"started_sliding",
+       "at rest, it started to slide: a change made the slope too steep for static friction to hold"});
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"stops_at", SweepColumn::Of::FirstGrip, "time it came to rest",
-                                            "s"};
+  static constexpr SweepColumn kSweepColumn{"stops_at", SweepColumn::Of::FirstEvent, "came_to_rest",
+                                            "time it came to rest", "s"};
   // friction and normal: the forces on the block along the slope's +x and +y.
   static constexpr std::array kStateFields{
       StateFieldDef<Block>{"x", "m", &BlockMotion::x},

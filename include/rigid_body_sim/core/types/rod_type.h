@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rigid_body_sim/core/body_key.h"
+#include "rigid_body_sim/core/event.h"
 #include "rigid_body_sim/core/rod.h"
 #include "rigid_body_sim/core/state_field_def.h"
 
@@ -24,8 +25,33 @@ struct RodType {
   // Its coordinates are measured in <name>_floor; on an unbounded floor it also has <name>_ground.
   static constexpr const char* kFixedFrameSuffix = "_floor";
   static constexpr bool kRaces = false;
+  // Its events: an end's contact with the floor, seen in the step in which it began or ended (at the
+  // step's end), and a restart.
+  static constexpr std::array kEventKinds{
+      EventKind{"contact_began",
+                "an end went below the floor in this step, its spring pushing it up; value end: A or B"},
+      EventKind{"contact_ended", "an end came back above the floor in this step; value end: A or B"},
+      EventKind{
+          "restarted",
+          "it started again from its initial conditions; value cause: lap (off the end of a bounded floor), "
+          "reset, reconfigure, spawn or config",
+          EventRole::Restart},
+  };
+  template <class Report>
+  static void forEachEvent(const Rod& rod, const RodStepEvents& happened, double dt, Report&& report) {
+    if (happened.restarted) {
+      report(2, dt, rod, std::vector<EventValue>{EventValue{"cause", 0.0, "lap"}});
+      return;
+    }
+    const unsigned changed = happened.contacts_before ^ happened.contacts_after;
+    for (const unsigned end : {1u, 2u}) {
+      if ((changed & end) == 0) continue;
+      const bool began = (happened.contacts_after & end) != 0;
+      report(began ? 0 : 1, dt, rod, std::vector<EventValue>{EventValue{"end", 0.0, end == 1u ? "A" : "B"}});
+    }
+  }
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces, "bounces", ""};
+  static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces, "", "bounces", ""};
   static constexpr std::array kStateFields{
       StateFieldDef<Rod>{"x", "m", &RodMotion::x},
       StateFieldDef<Rod>{"y", "m", &RodMotion::y},

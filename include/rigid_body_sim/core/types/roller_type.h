@@ -10,6 +10,7 @@
 #include "rigid_body_sim/core/body_key.h"
 #include "rigid_body_sim/core/roller.h"
 #include "rigid_body_sim/core/state_field_def.h"
+#include "rigid_body_sim/core/types/incline_events.h"
 
 namespace rigid_body_sim {
 
@@ -20,17 +21,21 @@ struct RollerConfig {
 
 std::string modeText(const Roller& roller);  // rolling | slipping | finished
 
-struct RollerType {
+struct RollerType : InclineEvents<Roller> {  // its events' lifecycle: incline_events.h
   using Config = RollerConfig;
   using Model = Roller;
   static constexpr const char* kName = "roller";
   static constexpr const char* kFixedFrameSuffix = "_slope";
-  static constexpr const char* kGrippedText = "started rolling";  // its WorldEvent texts
-  static constexpr const char* kLostGripText = "started slipping";
+  // Its events: its grip kinds, then the lap's.
+  static constexpr std::array kEventKinds = inclineEventKinds(
+      {"slip_to_roll",
+       "slipping turned into rolling: the contact point's speed reached 0 where static friction holds"},
+      {"roll_to_slip",
+       "rolling turned into slipping: a change made the slope too steep for static friction to hold"});
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
   static const BodyType<Config>& description();
-  static constexpr SweepColumn kSweepColumn{"slip_to_roll", SweepColumn::Of::FirstGrip, "slip-to-roll time",
-                                            "s"};
+  static constexpr SweepColumn kSweepColumn{"slip_to_roll", SweepColumn::Of::FirstEvent, "slip_to_roll",
+                                            "slip-to-roll time", "s"};
   // friction and normal: the forces on the body along the slope's +x and +y.
   static constexpr std::array kStateFields{
       StateFieldDef<Roller>{"x", "m", &RollerMotion::x},
