@@ -67,7 +67,7 @@ NodePublisher::NodePublisher(ros::NodeHandle node, ros::NodeHandle private_node,
     namespace_tf_static_ = node_.advertise<tf2_msgs::TFMessage>(names::kNamespaceTfStatic, 1, true);
   }
   commands_ = private_node_.advertise<rigid_body_sim::Command>(names::kCommands, kCommandQueue, true);
-  events_ = private_node_.advertise<rigid_body_sim::Event>(names::kEvents, kCommandQueue);
+  events_ = advertiseCounted<rigid_body_sim::Event>(private_node_, names::kEvents, kCommandQueue);
   paused_ = private_node_.advertise<std_msgs::Bool>(names::kPaused, 1, true);
   for (const auto& body : world.bodies()) advertiseState(body);
 }
@@ -84,7 +84,7 @@ void NodePublisher::advertiseState(const Body& body) {
 }
 
 bool NodePublisher::subscribed() const {
-  return (tf_.watched() || namespace_tf_.watched()) &&
+  return (tf_.watched() || namespace_tf_.watched()) && events_.watched() &&
          std::all_of(states_.begin(), states_.end(), [](const CountedPublisher& p) { return p.watched(); });
 }
 
@@ -151,7 +151,7 @@ void NodePublisher::write(const World& world) {
 
 void NodePublisher::happened(const std::vector<BodyEvent>& events, const World&) {
   for (const auto& event : events) {
-    events_.publish(toEventMsg(event, stampOf(event.t)));  // few: built whether or not one listens
+    events_.publisher.publish(toEventMsg(event, stampOf(event.t)));  // few: built whether or not one listens
     if (run_events_.size() == kKeptEvents) run_events_.pop_front();
     run_events_.push_back(event);
   }

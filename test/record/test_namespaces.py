@@ -163,7 +163,8 @@ class TwoInstances(unittest.TestCase):
 
     def check_bag(self, ns: str) -> None:
         world = world_value(self.config, "world_frame")
-        expected = {f"/{ns}/tf", f"/{ns}/tf_static", f"/{ns}/sim/scene", f"/{ns}/sim/markers", f"/{ns}/sim/commands"}
+        expected = {f"/{ns}/tf", f"/{ns}/tf_static", f"/{ns}/sim/scene", f"/{ns}/sim/markers", f"/{ns}/sim/commands",
+                    f"/{ns}/sim/events"}
         expected |= {f"/{ns}/sim/{body}/state" for body in self.bodies}
         topics: Set[str] = set()
         times: Dict[str, List[float]] = {}
@@ -176,6 +177,8 @@ class TwoInstances(unittest.TestCase):
                         self.assertTrue(transform.child_frame_id.startswith(f"{ns}/"), transform.child_frame_id)
                 elif topic.endswith("commands"):
                     continue  # the log of changes, for simulate --replay
+                elif topic.endswith("events"):
+                    self.assertIn(msg.body, self.bodies, topic)  # its own instance's bodies' events
                 elif topic.endswith("markers") or topic.endswith("scene"):
                     for marker in msg.markers:
                         if marker.action == marker.ADD:

@@ -17,6 +17,7 @@ import argparse
 import csv
 import math
 import os
+import pathlib
 import shutil
 import subprocess
 import sys
@@ -30,6 +31,7 @@ import rosgraph
 import rospy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Empty
+from rigid_body_sim import core, runs
 from rigid_body_sim.testing import STATE_TYPES
 from rigid_body_sim.sim_tools import (Config, free_port, load_config, play_until, state_fields, subscribe_to_the_rest,
                                       wait_for, world_value)
@@ -217,9 +219,14 @@ class NodeOutput(unittest.TestCase):
         with rosbag.Bag(bag_path) as bag:
             for topic, msg, _ in bag.read_messages():
                 recorded.setdefault(topic, []).append(msg)
-        topics = {"/tf", "/tf_static", "/sim/scene", "/sim/markers", "/sim/commands"}
+        topics = {"/tf", "/tf_static", "/sim/scene", "/sim/markers", "/sim/commands", "/sim/events"}
         topics |= {f"/sim/{name}/state" for name in self.config["bodies"]}
         self.assertEqual(set(recorded), topics)
+        # Every event of the run, each at its instant, as the core's World has them (bit for bit).
+        _, happened = core.World(pathlib.Path(self.tools.config)).run(duration, events=True)
+        self.assertEqual([runs.event_record(m) for m in recorded["/sim/events"]], happened)
+        for m in recorded["/sim/events"]:
+            self.assertEqual(m.header.stamp, sim_stamp(m.t), f"{m.kind} of {m.body} at t = {m.t}")
 
         states = {name: recorded[f"/sim/{name}/state"] for name in self.config["bodies"]}
         self.expect_every_sample(states, duration, "recorded")

@@ -4,7 +4,8 @@
 sim.launch record:=true at wall-clock pace; a script changes the world with every kind of change: a
 reconfigure through dynparam, ~spawn, ~set_state, ~delete, ~reset, ~pause / ~step / ~unpause (with changes
 while paused). Then `simulate --replay BAG --sample-rate RATE` rebuilds the run from /sim/commands alone, and
-every state message in the bag equals the replay's CSV row at its t, field for field, bit for bit. The bag's
+every state message in the bag equals the replay's CSV row at its t, field for field, bit for bit, and every
+event in the bag (/sim/events) the replay's events.csv row. The bag's
 commands are numbered 0, 1, 2, ... from the config, with every kind of change among them. The replay with
 `--bag OUT` holds the bag's commands and state messages unchanged, and OUT replays to the same CSV files.
 
@@ -25,6 +26,7 @@ from typing import Any, Dict, List
 import rosbag
 import rosgraph
 import rospy
+from rigid_body_sim import runs
 from rigid_body_sim.msg import RodState
 from rigid_body_sim.sim_tools import (body_of_state_topic, free_port, load_config, read_states, state_fields,
                                       wait_for, world_value)
@@ -94,6 +96,8 @@ def csv_rows(folder: str) -> Dict[str, Dict[float, List[str]]]:
     """{body: {t: the row's values after t}} from the replay's CSV files."""
     rows: Dict[str, Dict[float, List[str]]] = {}
     for name in os.listdir(folder):
+        if name == runs.EVENTS_FILE:
+            continue
         with open(os.path.join(folder, name), newline="") as handle:
             reader = csv.reader(handle)
             next(reader)
@@ -183,6 +187,14 @@ class Replay(unittest.TestCase):
         self.assertEqual(set(compared), set(rows))
         self.assertIn("stick", rows)
         self.every_publishing_instant_recorded(recorded_ts)
+        # What happened, bit for bit: the node's events (its changes' restarts among them) are the replay's, up
+        # to the replay's end (its last recorded state: the node may have stepped on a little before its end).
+        end = max(t for body_rows in rows.values() for t in body_rows)
+        recorded_events = [event for event in runs.read_bag_events(bag_path) if event["t"] <= end]
+        self.assertEqual(recorded_events, runs.read_events(out_dir))
+        self.assertIn("reset", {event["values"].get("cause") for event in recorded_events})
+        self.assertEqual(runs.read_bag_events(again), recorded_events)
+        print(f"{len(recorded_events)} events equal to the replay's", file=sys.stderr)
         print(f"{sum(compared.values())} state messages equal to the replay ({compared}), {len(kinds)} commands",
               file=sys.stderr)
         self.replayed_bag_holds_the_run(bag_path, again, rate, out_dir)

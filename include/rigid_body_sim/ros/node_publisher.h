@@ -54,7 +54,7 @@ class NodePublisher : public SampleSink {
   // Stamps continue from now at simulated time t (the start of stepping, an unpause).
   void anchor(double t);
   ros::Time stampOf(double t) const;
-  // Whether every state topic and the transforms (/tf or <ns>/tf) have a subscriber.
+  // Whether every state topic, ~events and the transforms (/tf or <ns>/tf) have a subscriber.
   bool subscribed() const;
   bool markersSubscribed() const { return markers_.watched(); }
 
@@ -89,7 +89,7 @@ class NodePublisher : public SampleSink {
   double time_anchor_ = 0.0;        // s
 
   ros::Publisher commands_;
-  ros::Publisher events_;
+  CountedPublisher events_;
   std::deque<BodyEvent> run_events_;
   ros::Publisher paused_;
   CountedPublisher markers_;
