@@ -34,9 +34,7 @@ std::string keyName(const YAML::Node& key) { return key.IsScalar() ? key.Scalar(
 double asNumber(const std::string& body, const std::string& key, const YAML::Node& node,
                 const std::string& allowed = "a number") {
   // A quoted scalar ("1") is text, tagged "!" by the parser: a number is written without quotes.
-  if (node.IsScalar() && node.Tag() == "!") {
-    throw ConfigError(body, key, "\"" + node.Scalar() + "\" (quoted: a text)", allowed + ", without quotes");
-  }
+  if (node.IsScalar() && node.Tag() == "!") throw quotedTextRefusal(body, key, node.Scalar(), allowed);
   try {
     if (node.IsScalar()) return node.as<double>();
   } catch (const YAML::Exception&) {
@@ -54,7 +52,7 @@ std::string asString(const std::string& body, const std::string& key, const YAML
 bool asBool(const std::string& body, const std::string& key, const YAML::Node& node) {
   const std::string allowed = "true or false (or yes, no, on, off)";
   if (node.IsScalar() && node.Tag() == "!") {  // quoted: a text, as a quoted number is
-    throw ConfigError(body, key, "\"" + node.Scalar() + "\" (quoted: a text)", allowed + ", without quotes");
+    throw quotedTextRefusal(body, key, node.Scalar(), allowed);
   }
   std::string text = asString(body, key, node, allowed);
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char ch) { return std::tolower(ch); });
@@ -307,6 +305,11 @@ YAML::Node loadText(const std::string& text, const std::string& what) {
 }
 
 }  // namespace
+
+ConfigError quotedTextRefusal(const std::string& body, const std::string& key, const std::string& text,
+                              const std::string& allowed) {
+  return ConfigError(body, key, "\"" + text + "\" (quoted: a text)", allowed + ", without quotes");
+}
 
 WorldConfig parseWorldConfig(const YAML::Node& root) {
   if (!root.IsMap()) {

@@ -334,8 +334,9 @@ class PyWorld {
 
   // The changes of the node's services and reconfigure servers, through the one path (Session::apply).
   void set(const std::string& name, const py::kwargs& keys) {
-    std::vector<std::pair<std::string, std::string>> texts;
-    for (const auto& [key, value] : keys) texts.emplace_back(key.cast<std::string>(), keyText(value));
+    std::vector<KeyText> texts;
+    for (const auto& [key, value] : keys)
+      texts.push_back({key.cast<std::string>(), keyText(value), py::isinstance<py::str>(value)});
     change(WorldCommand::Kind::Reconfigure, name, [&](const World& world, WorldCommand& command) {
       command.config = withKeys(bodyConfig(world, name), texts);
     });
@@ -427,12 +428,19 @@ class PyWorld {
 
   // The body's config with `keys` set as a reconfigure request sets them: in the order of its type's keys (a
   // roller's shape before its inertia_factor), each read from its text as a config file's.
-  static BodyConfig withKeys(BodyConfig body, const std::vector<std::pair<std::string, std::string>>& keys) {
+  // A key's value from Python as text; `quoted` when it came as a str, which a number key refuses as it
+  // refuses a quoted value in a file.
+  struct KeyText {
+    std::string name;
+    std::string text;
+    bool quoted;
+  };
+  static BodyConfig withKeys(BodyConfig body, const std::vector<KeyText>& keys) {
     std::visit(
         [&](auto& config) {
           using Config = std::decay_t<decltype(config)>;
           const auto& type = bodyType<Config>();
-          for (const auto& [name, text] : keys) {
+          for (const auto& [name, text, quoted] : keys) {
             if (!findKey(type.keys, name)) {
               std::vector<std::string> known;
               for (const auto& key : type.keys) known.emplace_back(key.name);
@@ -441,8 +449,10 @@ class PyWorld {
             }
           }
           for (const auto& key : type.keys) {
-            for (const auto& [name, text] : keys) {
-              if (name == key.name) setKeyText(body.name, key, text, config);
+            for (const auto& [name, text, quoted] : keys) {
+              if (name != key.name) continue;
+              if (quoted && key.isNumber()) throw quotedTextRefusal(body.name, name, text, key.allowed());
+              setKeyText(body.name, key, text, config);
             }
           }
         },

@@ -259,6 +259,27 @@ class CoreCase(unittest.TestCase):
             lone.delete("rod")  # a world keeps one body
         self.assert_same_run(world.run(2.0, sample_rate=1000), twin.run(2.0, sample_rate=1000), "after refusals")
 
+    def test_a_text_where_a_number_is_asked_is_refused_as_in_a_file(self) -> None:
+        """Every number key of every type: a str from Python is refused with the line a quoted value in a
+        config file gets, and changes nothing."""
+        checked = 0
+        for kind, described in core.body_types()["types"].items():
+            world = core.World({"bodies": {"b": {"type": kind}}})
+            for key in described["keys"]:
+                if "range" not in key or not key["written"]:
+                    continue  # a text key, or one no file writes
+                with self.assertRaises(ValueError) as loader:
+                    core.World(f'{{bodies: {{b: {{type: {kind}, {key["name"]}: "0.3"}}}}}}')
+                before = world.config()
+                with self.assertRaises(ValueError, msg=f"{kind}.{key['name']}") as changed:
+                    world.set("b", **{key["name"]: "0.3"})
+                self.assertEqual(str(changed.exception),
+                                 "refused reconfigure of 'b', simulation unchanged: " + str(loader.exception))
+                self.assertIn("(quoted: a text)", str(loader.exception))
+                self.assertEqual(world.config(), before)
+                checked += 1
+        self.assertGreater(checked, 20)
+
     def test_changes_go_through_the_one_path(self) -> None:
         world = core.World({"bodies": {"rod": {"type": "rod"}}})
         world.step(100)

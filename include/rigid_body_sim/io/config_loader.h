@@ -15,6 +15,10 @@ namespace rigid_body_sim {
 // may take neither a world key nor one of the node's own names (core/node_interface.h).
 WorldConfig parseWorldConfig(const YAML::Node& root);
 
+// The refusal of a text where a number or a boolean is asked: a quoted scalar in a file, a str from Python.
+ConfigError quotedTextRefusal(const std::string& body, const std::string& key, const std::string& text,
+                              const std::string& allowed);
+
 // Parses YAML text (`source` names it in messages); a YAML syntax error is a ConfigError too.
 WorldConfig parseWorldConfigText(const std::string& text, const std::string& source);
 
