@@ -619,7 +619,7 @@ void checkFloorRestarts(const RodMotion& initial, double floor_length) {
   for (int lap = 1; lap <= 2; ++lap) {
     unbounded = Rod(textParams(), initial);
     for (int k = 1; k <= k_off; ++k) {
-      const bool restarted = rod.step(kTextDt).restarted;
+      const bool restarted = rod.step(kTextDt).restarted();
       unbounded.step(kTextDt);
       ASSERT_EQ(restarted, k == k_off) << "lap " << lap << " k = " << k;
       // On the floor the run is the unbounded one, bit for bit.
@@ -634,7 +634,7 @@ TEST(RodFloor, UnboundedIsTheTextsFloor) {
   Rod text(textParams(), textInitial(0.3));
   Rod unbounded(onFloorOf(0.0), textInitial(0.3));
   for (int n = 0; n < 10000; ++n) {
-    EXPECT_FALSE(unbounded.step(kTextDt).restarted);
+    EXPECT_FALSE(unbounded.step(kTextDt).restarted());
     text.step(kTextDt);
   }
   EXPECT_EQ(maxAbsDiff(unbounded.state(), text.state()), 0.0);
@@ -652,7 +652,7 @@ TEST(RodFloor, BothEndsOfTheFloorAreOnIt) {
   for (const double x0 : {0.0, 5.0}) {
     Rod rod(onFloorOf(5.0), RodMotion{x0, 2.0, 0.0, 0.0, 0.0, 0.0});
     for (int n = 0; n < 5000; ++n)
-      ASSERT_FALSE(rod.step(kTextDt).restarted) << "x0 = " << x0 << ", step " << n;
+      ASSERT_FALSE(rod.step(kTextDt).restarted()) << "x0 = " << x0 << ", step " << n;
     EXPECT_EQ(rod.state().x, x0);
   }
 }

@@ -44,8 +44,10 @@ Rod::Rod(const RodParams& params, const RodMotion& initial)
     : params_(params), initial_(initial), state_(initial) {}
 
 RodStepEvents Rod::step(double dt) {
-  RodStepEvents events;
-  events.contacts_before = contacts();
+  // The last step's contacts, unless something moved the rod or changed its length since.
+  const bool same = last_contacts_.length == params_.length && last_contacts_.y == state_.y &&
+                    last_contacts_.theta == state_.theta;
+  const unsigned before = same ? last_contacts_.ends : contacts();
   const int n = substepsFor(dt);
   const double h = dt / n;  // n == 1 leaves dt bit-exact, so the text's run is unchanged
   for (int i = 0; i < n; ++i) {
@@ -55,17 +57,18 @@ RodStepEvents Rod::step(double dt) {
       case Integrator::Rk4: state_ = rk4Step(params_, state_, h); break;
     }
   }
-  if (!onFloor()) {
-    state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
-    events.restarted = true;
-  }
-  events.contacts_after = contacts();
-  return events;
+  const bool restarted = !onFloor();
+  if (restarted) state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
+  const unsigned after = contacts();
+  last_contacts_ = {state_.y, state_.theta, params_.length, after};
+  return RodStepEvents(before, after, restarted);
 }
 
 unsigned Rod::contacts() const {
   if (inFlight(params_, state_)) return 0;  // both ends above the floor, no sine needed
-  return (endHeightA() < 0.0 ? 1u : 0u) | (endHeightB() < 0.0 ? 2u : 0u);
+  // endHeightA and endHeightB's expressions, with one sine.
+  const double half = (0.5 * params_.length) * std::sin(state_.theta);
+  return (state_.y + half < 0.0 ? 1u : 0u) | (state_.y - half < 0.0 ? 2u : 0u);
 }
 
 bool Rod::onFloor() const {

@@ -262,6 +262,7 @@ void World::step() {
 
 template <class Model, class Happened>
 void World::report(std::size_t index, double t0, const Model& model, const Happened& happened) {
+  if (!happened.any()) return;  // most steps: nothing to build
   // At the step's end: the next count's time exactly (t0 + dt may differ from it in the last bit).
   const double t1 = static_cast<double>(steps_ + 1) / rate_;
   TypeOfModel<Model>::forEachEvent(

@@ -10,14 +10,18 @@ namespace rigid_body_sim {
 // which the events' state fields are read: core/types/incline_events.h).
 template <class Progress>
 struct InclineStepEvents {
-  std::optional<double> stuck_at;    // offset in [0, dt] at which it came to grip (rolls, or a block rests)
-  bool started_slipping = false;     // a gripping body could not hold (only after setParams)
-  std::optional<double> left_at;     // offset in (0, dt] at which the centre passed an end of the slope
-  double arrival_speed = 0.0;        // its speed along the slope at left_at (m/s)
-  bool restarted = false;            // the centre left the slope and the body restarted
-  std::optional<Progress> at_start;  // at the step's start, when started_slipping
-  std::optional<Progress> at_stuck;  // at stuck_at, gripping
-  std::optional<Progress> at_left;   // at left_at: on the line, at its arrival speed
+  std::optional<double> stuck_at;  // offset in [0, dt] at which it came to grip (rolls, or a block rests)
+  bool started_slipping = false;   // a gripping body could not hold (only after setParams)
+  std::optional<double> left_at;   // offset in (0, dt] at which the centre passed an end of the slope
+  double arrival_speed = 0.0;      // its speed along the slope at left_at (m/s)
+  bool restarted = false;          // the centre left the slope and the body restarted
+  bool any() const { return started_slipping || stuck_at || left_at || restarted; }  // the common case: none
+  // The model's progress at the step's start (when started_slipping), at stuck_at (gripping) and at left_at
+  // (on the line, at its arrival speed): set with those, left uninitialised otherwise, so that a step
+  // without an event does not clear them (zeroing them was half the cost of a roller's step).
+  Progress at_start;
+  Progress at_stuck;
+  Progress at_left;
 };
 
 // The first s in (0, h] at which x + v s + a s^2 / 2 passes beyond [0, length] (above length, or below 0),

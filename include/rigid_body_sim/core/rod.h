@@ -50,10 +50,18 @@ struct RodMotion {
 
 // What one step of a rod tells: which ends were below the floor before and after it (bit 0: end A, bit 1:
 // end B), and whether it left a bounded floor and restarted.
-struct RodStepEvents {
-  unsigned contacts_before = 0;
-  unsigned contacts_after = 0;
-  bool restarted = false;
+// Packed in one word, so that it comes back in a register (built in memory, its return stalled the step).
+class RodStepEvents {
+ public:
+  RodStepEvents(unsigned contacts_before, unsigned contacts_after, bool restarted)
+      : bits_(contacts_before | contacts_after << 2 | (restarted ? 16u : 0u)) {}
+  unsigned contactsBefore() const { return bits_ & 3u; }
+  unsigned contactsAfter() const { return (bits_ >> 2) & 3u; }
+  bool restarted() const { return (bits_ & 16u) != 0; }
+  bool any() const { return restarted() || contactsBefore() != contactsAfter(); }  // the common case: none
+
+ private:
+  unsigned bits_;
 };
 
 class Rod {
@@ -101,6 +109,15 @@ class Rod {
   RodParams params_;
   RodMotion initial_;
   RodMotion state_;
+  // The contacts the last step ended with, and where: the next step's contacts before, unless the rod was
+  // moved or its length changed since (a sine saved a step).
+  struct Contacts {
+    double y = 0.0;
+    double theta = 0.0;
+    double length = 0.0;  // 0: none yet (a rod's length is positive)
+    unsigned ends = 0;
+  };
+  Contacts last_contacts_;
 };
 
 }  // namespace rigid_body_sim

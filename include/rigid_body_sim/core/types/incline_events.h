@@ -36,13 +36,13 @@ void forEachInclineEvent(const Model& model, const typename Model::StepEvents& h
     then.restore(progress);
     return then;
   };
-  if (happened.started_slipping) report(kLostGrip, 0.0, at(*happened.at_start), std::vector<EventValue>{});
+  if (happened.started_slipping) report(kLostGrip, 0.0, at(happened.at_start), std::vector<EventValue>{});
   // A grip after the centre left its slope happened off it (the body restarts at the step's end): none.
   if (happened.stuck_at && !(happened.left_at && *happened.left_at < *happened.stuck_at)) {
-    report(kGripped, *happened.stuck_at, at(*happened.at_stuck), std::vector<EventValue>{});
+    report(kGripped, *happened.stuck_at, at(happened.at_stuck), std::vector<EventValue>{});
   }
   if (happened.left_at) {
-    report(kFinished, *happened.left_at, at(*happened.at_left),
+    report(kFinished, *happened.left_at, at(happened.at_left),
            std::vector<EventValue>{EventValue{"speed", happened.arrival_speed}});
   }
   if (happened.restarted)

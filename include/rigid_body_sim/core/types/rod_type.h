@@ -39,14 +39,14 @@ struct RodType {
   };
   template <class Report>
   static void forEachEvent(const Rod& rod, const RodStepEvents& happened, double dt, Report&& report) {
-    if (happened.restarted) {
+    if (happened.restarted()) {
       report(2, dt, rod, std::vector<EventValue>{EventValue{"cause", 0.0, "lap"}});
       return;
     }
-    const unsigned changed = happened.contacts_before ^ happened.contacts_after;
+    const unsigned changed = happened.contactsBefore() ^ happened.contactsAfter();
     for (const unsigned end : {1u, 2u}) {
       if ((changed & end) == 0) continue;
-      const bool began = (happened.contacts_after & end) != 0;
+      const bool began = (happened.contactsAfter() & end) != 0;
       report(began ? 0 : 1, dt, rod, std::vector<EventValue>{EventValue{"end", 0.0, end == 1u ? "A" : "B"}});
     }
   }
