@@ -6,7 +6,10 @@ from the master's `<node>/<body>/state` topics (a live node's or a played bag's)
 config on `<node>/commands` (and `<node>/get_config` when it missed some), `<node>/paused`, and the node's
 WARN lines on /rosout. Every state goes to every page in frames at `~frame_rate`; a page that cannot keep up
 loses frames (a queue of `~queue` frames each), never slows the others or the simulation, which sees one
-subscriber per topic whatever the number of pages.
+subscriber per topic whatever the number of pages. The node's events (`<node>/events`: a grip, a finish with
+its lap time and place, a restart, each at its exact instant) go to every page as they come, and the run's
+(`<node>/get_events`, read when the node is found and kept since) to a page that opens: the page draws them
+and computes none.
 
 With `~control` a page opened with `?token=<the token this node prints>` may pause, run, step, reset and
 change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
@@ -58,16 +61,16 @@ from dynamic_reconfigure.msg import Config as ReconfigureConfig
 from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
 from rigid_body_sim import description
-from rigid_body_sim.msg import Command
+from rigid_body_sim.msg import Command, Event
+from rigid_body_sim.runs import event_record
 from rigid_body_sim.sim_tools import WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
-from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, FrameQueue, Refusal, Request,
-                                         finish_of_label, frame_message, parse_request, part_of_config,
-                                         tied_places, websocket_text_frame)
-from rigid_body_sim.srv import GetConfig, Step
+from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, EventLog, FrameQueue, Record, Refusal,
+                                         Request, event_roles, events_message, frame_message, parse_request,
+                                         part_of_config, websocket_text_frame)
+from rigid_body_sim.srv import GetConfig, GetEvents, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from std_srvs.srv import Empty, SetBool
-from visualization_msgs.msg import MarkerArray
 
 
 # The state messages' types ("rigid_body_sim/RodState") -> (the body type, the message).
@@ -206,8 +209,7 @@ class Page(tornado.websocket.WebSocketHandler):
             hello["addresses"] = self.view.watch_urls
         self.reply(hello)
         self.reply_text(self.view.world.message())
-        if self.view.finishes:
-            self.reply({"type": "finishes", "finishes": self.view.finishes})
+        self.reply_text(events_message(self.view.events.records(), True))  # the run's so far: marks, finishes
         if refused_token:
             self.reply({"type": "reply", "id": None, "ok": False, "line": str(refused_token)})
         latest = self.view.latest_frame()
@@ -353,7 +355,9 @@ class WebView:
         self.line_came: asyncio.Event  # made on the server's loop (serve)
         self.subscribers: Dict[str, Any] = {}
         self.held: Dict[str, Any] = {}  # a player's other topics (take_the_rest)
-        self.finishes: Dict[str, Optional[Dict[str, Any]]] = {}  # a race's results by body (on_markers)
+        self.events = EventLog(event_roles(DESCRIPTION["types"]))  # the run's, for a page that opens
+        self.new_events: List[Record] = []  # since the last frame
+        self.ended_at = 0  # the events that had come when a recording ended
         self.need_config = threading.Event()
         self.calls = concurrent.futures.ThreadPoolExecutor(max_workers=1)  # one request at a time, in order
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
@@ -366,8 +370,9 @@ class WebView:
         rospy.Subscriber(self.node + "/commands", Command, lambda m: self.loop.add_callback(self.on_command, m),
                          queue_size=1000)
         rospy.Subscriber("/rosout", Log, self.on_log, queue_size=100)
-        rospy.Subscriber(self.node + "/markers", MarkerArray,
-                         lambda m: self.loop.add_callback(self.on_markers, m), queue_size=10)
+        # A burst (a reset: one restart a body) waits in the queue, none dropped: the node drops none either.
+        rospy.Subscriber(self.node + "/events", Event,
+                         lambda m: self.loop.add_callback(self.on_event, event_record(m)), queue_size=10000)
         threading.Thread(target=self.discover, daemon=True).start()
 
     def discover(self) -> None:
@@ -384,6 +389,7 @@ class WebView:
                 if live and (self.world.source != "node" or self.need_config.is_set()):
                     self.need_config.clear()
                     self.fetch_config()
+                    self.fetch_events()
                 bodies = {}
                 for topic, kind in topics.items():
                     match = self.state_topic.match(topic)
@@ -410,7 +416,7 @@ class WebView:
         """Subscribes (the messages dropped) to every other topic the player publishes: playback.launch plays
         nothing until each topic of the bag has a subscriber (rosbag play --wait-for-subscribers), and a web
         view without rviz is the only one there."""
-        mine = {self.node + "/commands", self.node + "/paused", "/rosout", "/clock"}
+        mine = {self.node + "/commands", self.node + "/paused", self.node + "/events", "/rosout", "/clock"}
         for topic, nodes in master.getSystemState()[0]:
             if player in nodes and topic not in mine and topic not in self.held and not self.state_topic.match(topic):
                 self.held[topic] = rospy.Subscriber(topic, rospy.AnyMsg, lambda _: None)
@@ -429,6 +435,18 @@ class WebView:
             rospy.logwarn(f"web view: {self.node}/get_config: {error}")
             return
         self.loop.add_callback(self.on_config, config)
+
+    def fetch_events(self) -> None:
+        """The run's events as the node kept them: what came before this view subscribed (it started later
+        than the node, or the node restarted)."""
+        since = self.events.arrivals  # those that come on the topic from now on stay (EventLog.replace)
+        try:
+            rospy.wait_for_service(self.node + "/get_events", timeout=5.0)
+            answer = rospy.ServiceProxy(self.node + "/get_events", GetEvents)()
+        except (rospy.ROSException, rospy.ServiceException) as error:
+            rospy.logwarn(f"web view: {self.node}/get_events: {error}")
+            return
+        self.loop.add_callback(self.on_events_fetched, [event_record(m) for m in answer.events], since)
 
     def on_log(self, line: Log) -> None:
         if line.name == self.node and line.level >= Log.WARN:
@@ -449,10 +467,15 @@ class WebView:
         if source == "none" and self.world.source in ("replay", "ended"):
             source, kinds = "ended", self.world.topics  # the recording's last frame stays, and says so
         if kinds != self.world.topics or source != self.world.source:
-            self.world.topics = kinds
-            self.world.source = source
             for body in set(self.latest) - set(kinds):
                 del self.latest[body]
+            if source == "ended":
+                self.ended_at = self.events.arrivals
+            elif source == "replay" and self.world.source == "ended":  # played again: from its start
+                self.events.replace([], self.ended_at)  # the events that came since its end stay
+                self.broadcast_text(events_message(self.events.records(), True))
+            self.world.topics = kinds
+            self.world.source = source
             self.send_world()
 
     def on_paused(self, paused: bool) -> None:
@@ -474,25 +497,18 @@ class WebView:
             self.world.bodies[msg.body] = with_defaults(payload)
         elif msg.kind == "delete":
             self.world.bodies.pop(msg.body, None)
-        elif msg.kind == "reset":
-            self.broadcast({"type": "reset", "t": msg.t})
-            return
         else:
-            return
+            return  # no key changed (a reset: its restart events say it, at its instant: on_event)
         self.send_world()
 
-    def on_markers(self, msg: MarkerArray) -> None:
-        """A race's results from the node's boards (a racer's, at its lane's lower end): each finished
-        racer's place and times, None for one racing (its board is no finish)."""
-        finishes: Dict[str, Optional[Dict[str, Any]]] = {}
-        for marker in msg.markers:
-            if marker.ns != "board" or not marker.text:
-                continue
-            body, finish = finish_of_label(marker.text)
-            finishes[body] = finish
-        if finishes and finishes != {b: self.finishes.get(b) for b in finishes}:
-            self.finishes = tied_places({**self.finishes, **finishes})
-            self.broadcast({"type": "finishes", "finishes": self.finishes})
+    def on_event(self, record: Record) -> None:
+        if self.events.add(record):
+            self.new_events.append(record)
+
+    def on_events_fetched(self, records: List[Record], since: int) -> None:
+        self.events.replace(records, since)
+        self.new_events = []
+        self.broadcast_text(events_message(self.events.records(), True))
 
     def on_state(self, body: str, msg: Any) -> None:
         state = state_dict(msg)
@@ -511,7 +527,11 @@ class WebView:
         return websocket_text_frame(frame_message(self.seq, {b: [s] for b, s in self.latest.items()}))
 
     def flush(self) -> None:
-        """One frame of every state since the last, serialised once for every page."""
+        """One frame of every state since the last, serialised once for every page; the events since the last
+        before it, in one message (a reset's burst of restarts is one reply, not one a body)."""
+        if self.new_events and self.pages:
+            self.broadcast_text(events_message(self.new_events, False))
+        self.new_events = []
         if not self.pending or not self.pages:
             self.pending = {}
             return
@@ -527,7 +547,9 @@ class WebView:
             page.reply_text(text)
 
     def broadcast(self, message: Dict[str, Any], control_only: bool = False) -> None:
-        text = json.dumps(message)
+        self.broadcast_text(json.dumps(message), control_only)
+
+    def broadcast_text(self, text: str, control_only: bool = False) -> None:
         for page in list(self.pages):
             if page.control or not control_only:
                 page.reply_text(text)

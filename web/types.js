@@ -1,21 +1,17 @@
 // What the web page draws and plots of each body type: the one place of the page that names a type. Every
 // fact the core's description has (keys, units, defaults, whether a type races, its state fields) comes from
 // the server's hello (body_types.json), not from here; an entry holds what the description cannot say: how
-// the body is drawn, what its plots show, and its motion's closed forms (the core's, src/core/<type>.cpp).
+// the body is drawn, what its plots show and which of its type's events they mark (`marks`: an event kind's
+// name, and its legend's words). When anything happened, and at what speed, comes from the node's events:
+// nothing here computes an instant.
 // view.js dispatches through BODY_TYPES[b.type]; a type missing here is drawn as its name alone.
-// Entries use view.js's drawing helpers (text, wrap, width, panelFrame, stroke, textPx, fixed3, gravity,
-// COLOURS, PLOT_COLOURS), which exist by the time anything is drawn.
+// Entries use view.js's drawing helpers (text, wrap, width, panelFrame, stroke, textPx, fixed3, COLOURS,
+// PLOT_COLOURS), which exist by the time anything is drawn.
 "use strict";
 
-// A body on a slope of its own (x along it, downhill from its top): its mode's constant acceleration between
-// events, and the instant its mode's acceleration brings it to grip (a roller's slip reaching 0, a block
-// coming to rest), as the core's step finds it.
 // The bodies' colours: a roller's by its shape, the rod's and its marked end A, the block's.
 const COLOURS = { sphere: "#f0a030", cylinder: "#4fa3ff", ring: "#e05080", spherical_shell: "#6bd06b",
                   custom: "#c0a0ff", rod: "#4f8cff", rod_end: "#ff8a3d", block: "#ff66cc" };
-
-function slopeSin(b) { return Math.sin(b.incline_angle); }
-function slopeCos(b) { return Math.cos(b.incline_angle); }
 
 const BODY_TYPES = {
   rod: {
@@ -42,7 +38,7 @@ const BODY_TYPES = {
                        { key: "end_b", name: "end B", colour: PLOT_COLOURS.first, pts: series("end_b") }] };
     },
     potentialZero: "floor level",
-    drawPanel(ctx, rect, name, b, s, lineH, type) { drawFloorPanel(ctx, rect, name, b, s, lineH, type); },
+    drawPanel(ctx, rect, name, b, s, lineH, type, size) { drawFloorPanel(ctx, rect, name, b, s, lineH, type, size); },
   },
 
   roller: {
@@ -54,38 +50,6 @@ const BODY_TYPES = {
     kinetic(b, s) {
       return 0.5 * b.mass * s.v * s.v + 0.5 * b.inertia_factor * b.mass * b.radius * b.radius * s.omega * s.omega;
     },
-    // Along the slope in the state's mode (section 16.3.2): rolling, g sin / (1 + c); slipping, gravity
-    // less kinetic friction against the slip u = v + omega R.
-    acceleration(b, s) {
-      const g = gravity();
-      if (s.mode === "rolling") return g * slopeSin(b) / (1 + b.inertia_factor);
-      return g * slopeSin(b) - Math.sign(s.v + s.omega * b.radius) * b.mu_d * g * slopeCos(b);
-    },
-    // From a slipping state, the instant its slip reaches 0 (the accelerations are constant until then) and
-    // its state then, rolling; null when it never does.
-    grip(b, s) {
-      if (s.mode !== "slipping") return null;
-      const g = gravity();
-      const u = s.v + s.omega * b.radius;
-      const sign = u > 0 ? 1 : -1;
-      const rate = b.mu_d * g * slopeCos(b) * (1 + 1 / b.inertia_factor) - sign * g * slopeSin(b); // -du/dt sign
-      if (!(rate > 0)) return null; // slips for ever
-      const dt = Math.abs(u) / rate;
-      const a = this.acceleration(b, s);
-      const v = s.v + a * dt;
-      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, omega: -v / b.radius, mode: "rolling" };
-    },
-    // Its state dt after s in s's mode (no event between): rolling, omega = -v / R; slipping, kinetic
-    // friction's torque turns it at -sign(u) mu_d g cos(phi) / (c R).
-    after(b, s, dt) {
-      const a = this.acceleration(b, s);
-      const v = s.v + a * dt;
-      const u = s.v + s.omega * b.radius;
-      const alpha = -Math.sign(u) * b.mu_d * gravity() * slopeCos(b) / (b.inertia_factor * b.radius);
-      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v, mode: s.mode,
-               omega: s.mode === "rolling" ? -v / b.radius : s.omega + alpha * dt };
-    },
-    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
     plotValues(b, s, p) {
       p.v = s.v;
       p.minus_omega_r = -s.omega * b.radius;
@@ -94,9 +58,9 @@ const BODY_TYPES = {
       return { title: "v and \u2212\u03c9R", unit: "m/s",
                lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") },
                        { key: "minus_omega_r", name: "\u2212\u03c9R", colour: PLOT_COLOURS.second, dash: [10, 6],
-                         pts: series("minus_omega_r") }],
-               dotName: "slip \u2192 roll (closed form)" };
+                         pts: series("minus_omega_r") }] };
     },
+    marks: { slip_to_roll: "slip \u2192 roll" }, // a dot on the motion plot at the event's instant and state
     potentialZero: "the slope's top",
     // A disc with a spoke at its rotation theta about the slope's z; a ring or a shell as its rim.
     drawBody(ctx, cx, cy, rad, phi, b, s) {
@@ -131,29 +95,12 @@ const BODY_TYPES = {
     tanCritical: (b) => b.mu_s, // at rest, static friction holds it
     verdicts: ["can stick", "slides"],
     kinetic(b, s) { return 0.5 * b.mass * s.v * s.v; },
-    acceleration(b, s) {
-      if (s.mode !== "sliding") return 0;
-      const g = gravity();
-      return g * slopeSin(b) - Math.sign(s.v) * b.mu_d * g * slopeCos(b);
-    },
-    // From a sliding state that friction slows, the instant it comes to rest, where static friction holds
-    // it (src/core/block.cpp); null otherwise.
-    grip(b, s) {
-      const a = this.acceleration(b, s);
-      if (s.mode !== "sliding" || !(s.v * a < 0) || Math.tan(b.incline_angle) > b.mu_s) return null;
-      const dt = -s.v / a;
-      return { t: s.t + dt, x: s.x + 0.5 * s.v * dt, v: 0, mode: "sticking" };
-    },
-    after(b, s, dt) {
-      const a = this.acceleration(b, s);
-      return { t: s.t + dt, x: s.x + s.v * dt + 0.5 * a * dt * dt, v: s.v + a * dt, mode: s.mode };
-    },
-    potential: (b, s) => -b.mass * gravity() * s.x * slopeSin(b),
     plotValues(b, s, p) { p.v = s.v; },
     motion(series) {
-      return { title: "v", unit: "m/s", lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") }],
-               dotName: "comes to rest (closed form)" };
+      return { title: "v", unit: "m/s",
+               lines: [{ key: "v", name: "v", colour: PLOT_COLOURS.first, pts: series("v") }] };
     },
+    marks: { came_to_rest: "comes to rest" },
     potentialZero: "the slope's top",
     // A square resting on the slope, turned with it.
     drawBody(ctx, cx, cy, rad, phi) {
@@ -169,14 +116,20 @@ const BODY_TYPES = {
 };
 
 // The rod from the side (section 16.3.3): the floor's band with its metre marks, followed along x (a bounded
-// floor whole where it fits), the rod with its end A marked.
-function drawFloorPanel(ctx, rect, name, b, s, lineH, type) {
+// floor whole where it fits), the rod with its end A marked; `size` names the panel's size (keepLines).
+function drawFloorPanel(ctx, rect, name, b, s, lineH, type, size) {
   const mode = s ? type.mode(b, s) : "\u2013";
   const energy = s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
   const head = wrap(ctx, [`${titleOf(name, b)}: ${mode}`], rect.w - 12, true);
   const info = wrap(ctx, [energy, `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`], rect.w - 12,
                    false);
-  const areaTop = panelFrame(ctx, rect, head, info, lineH);
+  // Room for its label in either mode, at an energy of three digits: the scale stays when the mode changes.
+  const heads = ["on the floor", "in the air"].map((m) => wrap(ctx, [`${titleOf(name, b)}: ${m}`], rect.w - 12, true));
+  const infos = wrap(ctx, ["E = -888.888 J \u00b7", `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`],
+                     rect.w - 12, false);
+  const widest = Math.max(...heads.map((h) => h.length)) + infos.length;
+  const kept = keepLines(size, Math.max(widest, head.length + info.length));
+  const areaTop = panelFrame(ctx, rect, head, info, lineH, kept);
   const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
   const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
   const floorPx = 1.6 * textPx() + 10; // the floor's band, with the metre marks

@@ -1,7 +1,9 @@
 // The web view's page: the followed world from the side, as the text poses its problems, and live plots.
 // Everything comes from this page's server (scripts/web_view.py) over one WebSocket; nothing from elsewhere.
 // What is drawn is kept in window.rbs (the browser test reads it): the latest frame, each body's drawn state
-// and place on the canvas, each plot's last points, and every text drawn on a canvas with its box.
+// and place on the canvas, the node's events, each plot's last points, marks and time axis, and every text
+// drawn on a canvas with its box. When something happened (a grip, a finish, a restart) and the state then
+// come from the node's events: the page computes no instant.
 "use strict";
 
 const PLOT_WINDOW = 10; // s of simulated time in the plots, as the rviz panel's
@@ -11,22 +13,26 @@ const MIN_RADIUS = 10; // px: a body is drawn at least 20 px across (larger than
 const PLOT_COLOURS = { first: "#f2f2f2", second: "#ffe066", third: "#3fd0c0" };
 const TEXT_SCALES = [0.8, 1, 1.25, 1.5, 2];
 const LINE_SHOWN = 10000; // ms a reply's or a node's line stays on the page
+const FINISH_DASH = [3, 5]; // a finish's dotted line
+// A restart with one of these causes begins a run (the node's get_events forgets what came before): the plots
+// lose what came before it, and their time axis counts from it.
+const RUN_STARTS = ["reset", "config"];
 
-const marks = {}; // body -> [{t, v}] its grip instants, at the closed form's
+const events = {}; // body -> its events of the run (the node's, through the server), oldest first
+const eventKeys = new Set();
 const rbs = {
   frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
   drawn: {}, plotLast: {}, panels: {}, replies: [], sent: [], finishes: {}, texts: [], ended: false,
-  shared: {}, arrivals: {}, description: null,
+  shared: {}, description: null, events,
 };
 window.rbs = rbs;
-// The plotted states' t, a reset's earlier ones gone (not the points the page adds at a finish's instant).
-rbs.times = (body) => (points[body] || []).filter((p) => !p.instant).map((p) => p.t);
-rbs.marks = marks; // each body's grip instants (its entry's grip: where friction takes hold), {t, v}
+// The plotted states' t, a reset's earlier ones gone.
+rbs.times = (body) => (points[body] || []).map((p) => p.t);
 
 const latest = {}; // body -> its last state
-const points = {}; // body -> [{t, ...the plotted values}]
-const lastState = {}; // body -> its previous state
-let resetT = -Infinity; // the latest reset's t: no point at or before it is plotted
+const points = {}; // body -> [{t, ...the plotted values}] of its states
+let resetT = -Infinity; // the run's start (a reset): no state at or before it is plotted
+const keptLines = {}; // the most lines each panel's label had at its size (keepLines)
 let socket = null;
 let nextId = 1;
 let drawPending = false;
@@ -55,22 +61,6 @@ function criticalAngle(b) { return Math.atan(typeOf(b).tanCritical(b)); }
 function deg(rad) { return (rad * 180 / Math.PI).toFixed(1) + "\u00b0"; }
 // Three decimals, without the "-0.000" of a tiny negative number.
 function fixed3(x) { return Math.abs(x) < 0.0005 ? "0.000" : x.toFixed(3); }
-function gravity() { return Number(rbs.world.settings.gravity); }
-// A racer's finish from its last state before it (on its slope, at its mode's constant acceleration; through
-// its grip first where that comes first), as the core's step locates it: the instant its x reaches the
-// slope's length, and its speed then.
-function finishFrom(type, b, s) {
-  let from = s;
-  const gripped = type.grip ? type.grip(b, s) : null;
-  if (gripped && gripped.x < b.incline_length) from = gripped;
-  const a = type.acceleration(b, from);
-  const left = b.incline_length - from.x;
-  const root = Math.sqrt(Math.max(0, from.v * from.v + 2 * a * left));
-  const dt = from.v + root > 0 ? 2 * left / (from.v + root) : NaN; // x + v dt + a dt^2 / 2 = L, stably
-  if (!(isFinite(dt) && dt >= 0)) return null;
-  const there = type.after(b, from, dt);
-  return { t: there.t, speed: there.v, state: there };
-}
 function ordinal(n) {
   const tens = n % 100;
   const last = n % 10;
@@ -102,6 +92,7 @@ function receive(m) {
     rbs.control = m.control;
     rbs.description = m.description; // the core's body_types.json: every key's unit, whether a type races
     $("controls").hidden = !m.control;
+    document.body.classList.toggle("control", m.control);
     showAddresses(m.addresses || []);
     rbs.shared = m.view || {};
   } else if (m.type === "world") {
@@ -119,18 +110,15 @@ function receive(m) {
       ownChoice = false;
       followTeacher();
     }
-  } else if (m.type === "finishes") {
-    rbs.finishes = m.finishes; // a race's results: {place, time, closed_form}, places shared by a tie
+  } else if (m.type === "events") {
+    if (m.all) { // the run's events as the server keeps them: they replace this page's
+      for (const body of Object.keys(events)) delete events[body];
+      eventKeys.clear();
+      resetT = -Infinity;
+    }
+    for (const e of m.events) addEvent(e);
   } else if (m.type === "paused") {
     rbs.paused = m.paused;
-  } else if (m.type === "reset") {
-    resetT = Math.max(resetT, m.t);
-    for (const body of Object.keys(points)) {
-      points[body] = points[body].filter((p) => p.t > m.t);
-      marks[body] = (marks[body] || []).filter((p) => p.t > m.t);
-      delete lastState[body];
-      delete rbs.arrivals[body];
-    }
   } else if (m.type === "reply") {
     rbs.replies.push(m);
     if (!m.ok) showKeyValue(); // a refused value: the field shows the one that runs again
@@ -145,46 +133,83 @@ function addState(body, s) {
   latest[body] = s;
   const b = rbs.world && rbs.world.bodies[body];
   const type = b && typeOf(b);
-  // The reset comes on its own topic, and may overtake states from before it: those are not plotted.
+  // A reset's restarts come on their own topic, and may overtake states from before it: those are not plotted.
   if (!type || s.t <= resetT) return;
-  const K = type.kinetic(b, s);
-  const p = { t: s.t, energy: s.energy, kinetic: K, potential: s.energy - K };
-  type.plotValues(b, s, p);
-  const before = lastState[body];
-  // The instants between two states, at the closed forms from the one before (its mode's accelerations are
-  // constant until then): where friction took hold (its grip), and a racer's finish.
-  if (before && before.mode !== s.mode) {
-    const gripped = type.grip ? type.grip(b, before) : null;
-    if (gripped && gripped.t <= s.t + 1e-9 && s.mode === gripped.mode) {
-      (marks[body] = marks[body] || []).push({ t: gripped.t, v: gripped.v });
-      addInstant(body, type, b, gripped.t, gripped);
-    }
-    if (s.mode === "finished" && described(b).races) {
-      const end = finishFrom(type, b, before);
-      if (end && end.t <= s.t + 1e-9) {
-        rbs.arrivals[body] = { t: end.t, speed: end.speed };
-        // The plots at the line: the state it arrived in, then at once the one it waits in (this one's).
-        addInstant(body, type, b, end.t, end.state);
-        addInstant(body, type, b, end.t, s);
-      }
-    }
-  }
-  if (s.mode !== "finished" && rbs.arrivals[body] && s.t > rbs.arrivals[body].t) delete rbs.arrivals[body]; // a new lap
-  while (marks[body] && marks[body].length && marks[body][0].t < s.t - KEEP) marks[body].shift();
-  lastState[body] = s;
   const list = (points[body] = points[body] || []);
-  list.push(p);
+  list.push(plotted(type, b, s, s.t));
   while (list.length && list[0].t < s.t - KEEP) list.shift();
+  trimEvents(body, s.t - KEEP);
 }
 
-// A plotted point at an instant between two states (a grip, a finish), of the state `at` then.
-function addInstant(body, type, b, t, at) {
-  const energy = at.energy !== undefined ? at.energy : type.kinetic(b, at) + type.potential(b, at);
-  const q = { t, instant: true, energy, kinetic: type.kinetic(b, at) };
-  q.potential = energy - q.kinetic;
-  type.plotValues(b, at, q);
-  (points[body] = points[body] || []).push(q);
+// A plotted point of a state at t: what the body's plots show of it, the energy split into its parts.
+function plotted(type, b, s, t) {
+  const kinetic = type.kinetic(b, s);
+  const p = { t, energy: s.energy, kinetic, potential: s.energy - kinetic };
+  type.plotValues(b, s, p);
+  return p;
 }
+
+// --- the node's events -------------------------------------------------------------------------------------
+// An event's role, as the description declares its kind: "finish", "restart" or "".
+function roleOf(e) {
+  const type = rbs.description && rbs.description.types[e.type];
+  const kind = type && (type.event_kinds || []).find((k) => k.name === e.kind);
+  return kind ? kind.role : "";
+}
+function startsRun(e) { return roleOf(e) === "restart" && RUN_STARTS.includes(e.values.cause); }
+function eventKey(e) {
+  return JSON.stringify([e.t, e.body, e.kind, Object.keys(e.values).sort().map((k) => [k, e.values[k]])]);
+}
+
+// Each event once (the server's replay of the run and the topic may both bring it), in time order; a run's
+// start takes what came before it away.
+function addEvent(e) {
+  const key = eventKey(e);
+  if (eventKeys.has(key) || e.t < resetT) return;
+  eventKeys.add(key);
+  const list = (events[e.body] = events[e.body] || []);
+  let i = list.length;
+  while (i > 0 && list[i - 1].t > e.t) i -= 1;
+  list.splice(i, 0, e);
+  if (startsRun(e) && e.t > resetT) {
+    resetT = e.t;
+    for (const body of Object.keys(points)) points[body] = points[body].filter((p) => p.t > e.t);
+    for (const body of Object.keys(events)) events[body] = events[body].filter((f) => f.t >= e.t);
+  }
+}
+
+// Before `cutoff`, only its last finish and last restart (the finish a waiting racer shows; where the time
+// axis of its plots counts from).
+function trimEvents(body, cutoff) {
+  const list = events[body];
+  if (!list || !list.length || list[0].t >= cutoff) return;
+  const last = new Set();
+  const kept = [];
+  for (let i = list.length - 1; i >= 0; i -= 1) {
+    const role = roleOf(list[i]);
+    if (list[i].t >= cutoff || (role && !last.has(role))) {
+      kept.push(list[i]);
+      if (list[i].t < cutoff) last.add(role);
+    } else {
+      eventKeys.delete(eventKey(list[i]));
+    }
+  }
+  events[body] = kept.reverse();
+}
+
+// The finish a body's label shows: its last since its lap started (a racer waiting at the end of its slope).
+function finishOf(name) {
+  const list = events[name] || [];
+  for (let i = list.length - 1; i >= 0; i -= 1) {
+    const role = roleOf(list[i]);
+    if (role === "restart") return null;
+    if (role === "finish") return list[i];
+  }
+  return null;
+}
+
+// Whether the lesson is a race for this body: its plots count lap times, and mark its finishes.
+function races(b) { return Boolean(rbs.world.settings.race) && Boolean(described(b).races); }
 
 function send(request) {
   request.id = nextId++;
@@ -414,28 +439,48 @@ function slopeBox(b) {
            h: L * Math.sin(phi) + below + pad + 2 * R };
 }
 
-// A place as its label says it: "=1st" where racers share it (a tie).
-function placeWords(name, finish) {
-  const shared = Object.entries(rbs.finishes || {}).some(([n, f]) => n !== name && f && f.place === finish.place);
-  return `${shared ? "=" : ""}${ordinal(finish.place)}`;
+// A place as its label says it: "=1st" where racers share it (a tie: the node gives them one place).
+function placeWords(name, place) {
+  const shared = Object.entries(rbs.finishes).some(([n, f]) => n !== name && f.place === place);
+  return `${shared ? "=" : ""}${ordinal(place)}`;
 }
 
-function slopeLines(ctx, name, b, max) {
+// A finisher's head: its place (in a race), its lap's time and the speed it arrived at, then the closed
+// form's time (when the lap ran as configured): the values of its finish event.
+function finishHead(title, place, f) {
+  const closed = typeof f.closed_form === "number" ? [`(closed form ${f.closed_form.toFixed(4)} s)`] : [];
+  return [place ? `${title}: ${place},` : `${title}: finished,`,
+          `${f.lap_time.toFixed(4)} s at ${f.speed.toFixed(2)} m/s`, ...closed];
+}
+
+const WIDEST_FINISH = { lap_time: 88.8888, speed: -88.88, closed_form: 88.8888 };
+// Its label's lines; `widest`, the widest its label takes in a lesson (a racer's at its finish, an energy of
+// three digits and three decimals), for the room kept for it (slopeLinesKept).
+function slopeLines(ctx, name, b, max, widest) {
   const s = latest[name];
   const type = typeOf(b);
   const title = titleOf(name, b);
-  const finish = rbs.finishes && rbs.finishes[name];
-  const arrival = rbs.arrivals[name];
-  // A finisher: its place, its time (the node's) and the speed it arrived at (the page's, from its last state
-  // before the line: none on a page opened after it), then the closed form's time.
-  const head = finish ? [`${title}: ${placeWords(name, finish)},`,
-                         `${finish.time.toFixed(4)} s${arrival ? ` at ${arrival.speed.toFixed(2)} m/s` : ""}`]
-    .concat(finish.closed_form === null ? [] : [`(closed form ${finish.closed_form.toFixed(4)} s)`])
-    : [`${title}: ${s ? s.mode : "\u2013"}`];
+  const finish = rbs.finishes[name];
+  const head = widest && races(b) ? finishHead(title, "=88th", WIDEST_FINISH)
+    : finish ? finishHead(title, finish.place && placeWords(name, finish.place), finish)
+      : [`${title}: ${s ? s.mode : "\u2013"}`];
+  const energy = widest ? "E = -888.888 J \u00b7" : s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
   const holds = Math.tan(b.incline_angle) <= type.tanCritical(b);
-  const info = [s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7", `\u03c6c = ${deg(criticalAngle(b))}`,
-                `(slope ${deg(b.incline_angle)}:`, `${type.verdicts[holds ? 0 : 1]})`];
+  const info = [energy, `\u03c6c = ${deg(criticalAngle(b))}`, `(slope ${deg(b.incline_angle)}:`,
+                `${type.verdicts[holds ? 0 : 1]})`];
   return { head: wrap(ctx, head, max, true), info: wrap(ctx, info, max, false) };
+}
+
+// The lines a panel keeps for its label at its size: the most it has had there, or would have at its widest,
+// so that the scene keeps its scale when a label gains a line (a finish) or loses one (a new lap).
+function keepLines(key, lines) {
+  keptLines[key] = Math.max(keptLines[key] || 0, lines);
+  return keptLines[key];
+}
+function slopeLinesKept(ctx, name, b, max, size) {
+  const count = (lines) => lines.head.length + lines.info.length;
+  return keepLines(`${size}|${name}|${max}`,
+                   Math.max(count(slopeLines(ctx, name, b, max, false)), count(slopeLines(ctx, name, b, max, true))));
 }
 
 function drawScene(names, room) {
@@ -447,6 +492,13 @@ function drawScene(names, room) {
   const floors = names.filter((n) => scene(n) === "floor");
   const gap = 6;
   const lineH = 1.25 * textPx();
+  // The panels' size: a label keeps its lines while it stays (keepLines).
+  const size = JSON.stringify([W, room, textPx(), rbs.world.bodies]);
+  rbs.finishes = {};
+  for (const name of names) {
+    const f = finishOf(name);
+    if (f) rbs.finishes[name] = { t: f.t, ...f.values };
+  }
   // The floors in one band at the bottom (a third of the height beside slopes, all of it alone), the slopes
   // in the grid of columns that draws them largest.
   const floorBand = floors.length ? (slopes.length ? room / 3 : room) : 0;
@@ -459,8 +511,7 @@ function drawScene(names, room) {
     let scale = Infinity;
     let headLines = 0;
     for (const name of slopes) {
-      const lines = slopeLines(ctx, name, rbs.world.bodies[name], w - 12);
-      headLines = Math.max(headLines, lines.head.length + lines.info.length);
+      headLines = Math.max(headLines, slopeLinesKept(ctx, name, rbs.world.bodies[name], w - 12, size));
     }
     for (const name of slopes) {
       const box = slopeBox(rbs.world.bodies[name]);
@@ -468,45 +519,47 @@ function drawScene(names, room) {
     }
     if (!best || scale > best.scale) best = { cols, w, h, scale, headLines };
   }
-  rbs.layout = best && { cols: best.cols, w: best.w, h: best.h, scale: best.scale };
+  rbs.layout = best && { cols: best.cols, w: best.w, h: best.h, scale: best.scale, lines: best.headLines };
   slopes.forEach((name, i) => {
     const rect = { x: (i % best.cols) * (best.w + gap), y: Math.floor(i / best.cols) * (best.h + gap),
                    w: best.w, h: best.h };
-    drawSlopePanel(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH);
+    drawSlopePanel(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH, best.headLines);
   });
   floors.forEach((name, i) => {
     const h = (floorBand - (slopes.length ? gap : 0)) / floors.length;
     const rect = { x: 0, y: room - floorBand + (slopes.length ? gap : 0) + i * h, w: W,
                    h: h - (i < floors.length - 1 ? gap : 0) };
     const b = rbs.world.bodies[name];
-    typeOf(b).drawPanel(ctx, rect, name, b, latest[name], lineH, typeOf(b));
+    typeOf(b).drawPanel(ctx, rect, name, b, latest[name], lineH, typeOf(b), `${size}|${name}`);
   });
 }
 
-function panelFrame(ctx, rect, head, info, lineH) {
+// The panel's label, and the top of what is drawn below it: below `keep` lines (keepLines) or its own, if more.
+function panelFrame(ctx, rect, head, info, lineH, keep) {
   ctx.fillStyle = "#1d2129";
   ctx.fillRect(rect.x, rect.y, rect.w, rect.h);
   let y = rect.y + 4;
   for (const line of head) { text(ctx, line, rect.x + 6, y, "#f2f2f2", true); y += lineH; }
   for (const line of info) { text(ctx, line, rect.x + 6, y, "#c9ced6", false); y += lineH; }
-  return y + 4;
+  return Math.max(y, rect.y + 4 + (keep || 0) * lineH) + 4;
 }
 
-function drawSlopePanel(ctx, rect, name, b, s, lineH) {
+function drawSlopePanel(ctx, rect, name, b, s, lineH, keep) {
   const phi = b.incline_angle;
   const L = b.incline_length;
   const R = typeOf(b).halfSize(b);
   const box = slopeBox(b);
   const lines = slopeLines(ctx, name, b, rect.w - 12);
-  const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w,
-                          (rect.h - (lines.head.length + lines.info.length) * lineH - 10 - MIN_RADIUS) / box.h);
+  const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w, (rect.h - keep * lineH - 10 - MIN_RADIUS) / box.h);
   // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so where that
-  // shows (5 % or more).
+  // shows (5 % or more): a line more kept for it.
+  let kept = keep;
   if (R * scale0 * 1.05 <= MIN_RADIUS) {
     lines.info = wrap(ctx, [...lines.info, `(body drawn \u00d7${(MIN_RADIUS / (R * scale0)).toFixed(1)})`],
                       rect.w - 12, false);
+    kept += 1;
   }
-  const areaTop = panelFrame(ctx, rect, lines.head, lines.info, lineH);
+  const areaTop = panelFrame(ctx, rect, lines.head, lines.info, lineH, kept);
   // Inset by the smallest drawn radius: a body drawn larger than to scale stays inside the panel too.
   const area = { x: rect.x + 6 + MIN_RADIUS, y: areaTop, w: rect.w - 12 - 2 * MIN_RADIUS,
                  h: rect.y + rect.h - areaTop - 4 - MIN_RADIUS };
@@ -563,37 +616,63 @@ function angleLabel(ctx, phi, topX, topY, footX, footY) {
 }
 
 // --- plots -------------------------------------------------------------------------------------------------
+// A body's plots: its states of the last PLOT_WINDOW s since the run's start, and its state at each of its
+// events there that its plots show: a restart (where a new line starts), a finish, a mark of its entry's
+// (`marks`: a dot). In a race a finish is a dotted line too. Every one stays while its window holds it.
 function drawPlots(name, height) {
   const b = rbs.world.bodies[name];
-  const list = points[name] || [];
-  const last = list.length ? list[list.length - 1].t : 0;
-  const t0 = last > PLOT_WINDOW ? last - PLOT_WINDOW : 0;
-  const shown = list.filter((p) => p.t >= t0);
-  const series = (key) => shown.map((p) => [p.t, p[key]]);
   const type = b && typeOf(b);
+  const list = points[name] || [];
+  const start = isFinite(resetT) ? resetT : 0;
+  const last = list.length ? list[list.length - 1].t : start;
+  const t0 = Math.max(start, last - PLOT_WINDOW);
+  const race = Boolean(b) && races(b);
+  // The time axis is the lesson's: from 0 at the run's start (a Reset), a racer's lap times from 0 at each
+  // lap's start (the node's lap_time counts from there).
+  let origins = [start];
   const instants = [];
-  const arrival = rbs.arrivals[name];
-  if (arrival && arrival.t >= t0) instants.push({ t: arrival.t, name: "finish", dash: [3, 5] });
+  const dotted = [];
+  const finishes = [];
+  for (const e of type ? events[name] || [] : []) {
+    const role = roleOf(e);
+    if (role === "restart" && (race || startsRun(e)) && e.t > origins[origins.length - 1]) origins.push(e.t);
+    const mark = type.marks && type.marks[e.kind];
+    if (e.t < t0 || !(role || mark)) continue;
+    const p = Object.assign(plotted(type, b, e.state, e.t), { gap: role === "restart", event: true });
+    instants.push(p);
+    if (mark) dotted.push([p, mark]);
+    if (role === "finish" && race) finishes.push(e.t);
+  }
+  // Those in the window, and the last before it (where its first stretch counts from).
+  origins = origins.filter((o, i) => o <= t0 + PLOT_WINDOW && (i + 1 === origins.length || origins[i + 1] > t0));
+  // Where an event and a state share an instant, the event's point comes first (a restart's line starts there).
+  const shown = list.filter((p) => p.t >= t0).concat(instants)
+    .sort((p, q) => p.t - q.t || (q.event ? 1 : 0) - (p.event ? 1 : 0));
+  const series = (key) => shown.map((p) => [p.t, p[key], p.gap]);
   const motion = type ? type.motion(series) : { title: "", unit: "", lines: [] };
-  const grips = (marks[name] || []).filter((m) => m.t >= t0);
-  if (grips.length) motion.dots = grips.map((m) => [m.t, m.v]);
-  motion.instants = instants;
+  const dotKey = motion.lines.length ? motion.lines[0].key : "";
+  motion.dots = dotted.map(([p, words]) => [p.t, p[dotKey], words]);
+  motion.finishes = finishes;
   const zero = type ? type.potentialZero : "";
   const energy = { title: `energy, potential 0 at ${zero}`, unit: "J",
                    lines: [{ key: "energy", name: "total", colour: PLOT_COLOURS.first, pts: series("energy") },
                            { key: "kinetic", name: "kinetic", colour: PLOT_COLOURS.second, pts: series("kinetic") },
                            { key: "potential", name: "potential", colour: PLOT_COLOURS.third, dash: [10, 6],
                              pts: series("potential") }],
-                   instants };
+                   finishes };
+  const axis = { origins, title: race ? "lap time (s)" : isFinite(resetT) ? "t since reset (s)" : "t (s)" };
+  // The last state plotted, each plotted value of it (not the events' points).
   const lastPoints = {};
+  const newest = list.length && list[list.length - 1].t >= t0 ? list[list.length - 1] : null;
   for (const spec of [motion, energy]) {
-    for (const line of spec.lines) if (line.pts.length) lastPoints[line.key] = line.pts[line.pts.length - 1];
+    for (const line of spec.lines) {
+      if (newest && line.key in newest) lastPoints[line.key] = [newest.t, newest[line.key]];
+    }
   }
-  if (motion.dots && motion.dots.length) lastPoints.slip_to_roll = motion.dots[motion.dots.length - 1];
-  if (instants.length) lastPoints.finish = instants[0].t;
-  rbs.plotLast = { body: name, points: lastPoints };
-  chart($("plot-motion"), height, motion, t0);
-  chart($("plot-energy"), height, energy, t0);
+  const ticks = chart($("plot-motion"), height, motion, t0, axis);
+  chart($("plot-energy"), height, energy, t0, axis);
+  rbs.plotLast = { body: name, points: lastPoints, t0, origins, axis: axis.title, ticks, finishes,
+                   marks: motion.dots.map(([t, v, words]) => ({ t, v, name: words })) };
 }
 
 function niceStep(span, count) {
@@ -603,7 +682,9 @@ function niceStep(span, count) {
   return (norm < 1.5 ? 1 : norm < 3.5 ? 2 : norm < 7.5 ? 5 : 10) * mag;
 }
 
-function chart(canvas, height, spec, t0) {
+// A chart of spec's lines over [t0, t0 + PLOT_WINDOW], its time axis counting from each of axis.origins; the
+// [t, label] of each time tick labelled.
+function chart(canvas, height, spec, t0, axis) {
   const ctx = fitCanvas(canvas, height);
   const W = canvas.clientWidth;
   const fs = textPx();
@@ -618,10 +699,12 @@ function chart(canvas, height, spec, t0) {
   }
   const entries = spec.lines.map((l) => ({ name: l.name, draw: (x, cy) => legendLine(ctx, x, cy, l.colour, l.dash) }));
   const key = 1.3 * fs; // a legend entry's line, then its name
-  if (spec.dots && spec.dots.length) entries.push({ name: spec.dotName, draw: (x, cy) => dot(ctx, x + key / 2, cy) });
-  for (const m of spec.instants || []) {
-    entries.push({ name: `${m.name} (closed form)`,
-                   draw: (x, cy) => instantLine(ctx, x + key / 2, cy - 0.5 * fs, cy + 0.5 * fs, m.dash) });
+  for (const words of new Set((spec.dots || []).map((d) => d[2]))) {
+    entries.push({ name: words, draw: (x, cy) => dot(ctx, x + key / 2, cy) });
+  }
+  if (spec.finishes && spec.finishes.length) {
+    entries.push({ name: "finish",
+                   draw: (x, cy) => instantLine(ctx, x + key / 2, cy - 0.5 * fs, cy + 0.5 * fs, FINISH_DASH) });
   }
   let x = 6;
   for (const entry of entries) {
@@ -632,10 +715,10 @@ function chart(canvas, height, spec, t0) {
     x += w + 0.7 * fs;
   }
   y += lineH + 0.4 * fs;
-  // The value axis' ticks at the left, its unit above them; the time axis' below, "t (s)" at its right end.
+  // The value axis' ticks at the left, its unit above them; the time axis' below, its title at its right end.
   const tickW = width(ctx, "-88.8", false) + 10;
   const area = { x: tickW, y: y + lineH + 0.5 * fs, w: W - tickW - 10, h: height - y - lineH - 2.1 * fs - 8 };
-  if (area.h < 2 * fs || area.w < 4 * fs) return;
+  if (area.h < 2 * fs || area.w < 4 * fs) return [];
   let lo = Infinity;
   let hi = -Infinity;
   for (const line of spec.lines) for (const p of line.pts) { lo = Math.min(lo, p[1]); hi = Math.max(hi, p[1]); }
@@ -660,18 +743,35 @@ function chart(canvas, height, spec, t0) {
     const words = Math.abs(v) < 1e-12 ? "0" : Number(v.toPrecision(3)).toString();
     text(ctx, words, area.x - 6 - width(ctx, words, false), Y(v) - 0.5 * fs, "#c9ced6", false);
   }
-  const unitT = "t (s)";
+  // Each stretch of the time axis counts from its origin (the run's start, a lap's): ticks at whole steps from
+  // it, each origin's 0 labelled first, then the others where they fit.
+  const unitT = axis.title;
   const unitW = width(ctx, unitT, false);
   const tStep = niceStep(PLOT_WINDOW, Math.max(2, Math.min(5, Math.floor(area.w / (4 * fs)))));
-  for (let t = Math.ceil(t0 / tStep) * tStep; t <= t0 + PLOT_WINDOW + 1e-9; t += tStep) {
+  const end = t0 + PLOT_WINDOW;
+  const ticks = [];
+  axis.origins.forEach((o, i) => {
+    const to = i + 1 < axis.origins.length ? axis.origins[i + 1] : Infinity;
+    for (let k = Math.max(0, Math.ceil((t0 - o) / tStep - 1e-9)); o + k * tStep <= end + 1e-9; k += 1) {
+      if (o + k * tStep >= to - 1e-9) break;
+      ticks.push({ t: o + k * tStep, label: `${Number((k * tStep).toPrecision(6))}`, origin: k === 0 });
+    }
+  });
+  const placed = [];
+  const labelled = [];
+  for (const tick of ticks.filter((k) => k.origin).concat(ticks.filter((k) => !k.origin))) {
     ctx.beginPath();
-    ctx.moveTo(X(t), area.y);
-    ctx.lineTo(X(t), area.y + area.h);
+    ctx.moveTo(X(tick.t), area.y);
+    ctx.lineTo(X(tick.t), area.y + area.h);
     ctx.stroke();
-    const words = `${Number(t.toPrecision(6))}`;
-    const w = width(ctx, words, false);
-    const at = Math.max(area.x, X(t) - w / 2);
-    if (at + w < area.x + area.w - unitW - 8) text(ctx, words, at, area.y + area.h + 4, "#c9ced6", false);
+    const w = width(ctx, tick.label, false);
+    const at = Math.max(area.x, X(tick.t) - w / 2);
+    const free = placed.every(([a, b]) => at + w + 0.5 * fs < a || at > b + 0.5 * fs);
+    if (at + w < area.x + area.w - unitW - 8 && free) {
+      text(ctx, tick.label, at, area.y + area.h + 4, "#c9ced6", false);
+      placed.push([at, at + w]);
+      labelled.push([tick.t, tick.label]);
+    }
   }
   text(ctx, unitT, area.x + area.w - unitW, area.y + area.h + 4, "#c9ced6", false);
   ctx.save();
@@ -683,13 +783,14 @@ function chart(canvas, height, spec, t0) {
     ctx.lineWidth = stroke();
     ctx.setLineDash((line.dash || []).map((d) => d * stroke() / 3));
     ctx.beginPath();
-    line.pts.forEach((p, i) => (i ? ctx.lineTo(X(p[0]), Y(p[1])) : ctx.moveTo(X(p[0]), Y(p[1]))));
+    line.pts.forEach((p, i) => (i && !p[2] ? ctx.lineTo(X(p[0]), Y(p[1])) : ctx.moveTo(X(p[0]), Y(p[1]))));
     ctx.stroke();
   }
   ctx.setLineDash([]);
-  for (const m of spec.instants || []) instantLine(ctx, X(m.t), area.y, area.y + area.h, m.dash);
+  for (const t of spec.finishes || []) instantLine(ctx, X(t), area.y, area.y + area.h, FINISH_DASH);
   for (const d of spec.dots || []) dot(ctx, X(d[0]), Y(d[1]));
   ctx.restore();
+  return labelled.sort((p, q) => p[0] - q[0]);
 }
 
 // Lines and marks grow with the text (a 4K screen's are as thick, to the eye, as a laptop's).

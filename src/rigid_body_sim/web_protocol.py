@@ -1,6 +1,6 @@
 """What the web view's server and its pages say to each other, without ROS or a network: the requests a page
-may send (each checked whole before anything is done with it), the frames the server sends, and the bounded
-queue of frames each page has.
+may send (each checked whole before anything is done with it), the messages the server sends, the bounded
+queue of frames each page has, and the run's events the server keeps for a page that opens late.
 
 A request is one JSON object of at most MAX_REQUEST_BYTES, {"op": ..., "id": N, ...} with exactly the keys
 of its op:
@@ -14,7 +14,20 @@ of its op:
                                                            (lesson.launch's, config/): its keys, then a reset
 Every reply names the request it answers by its id.
 Anything else is refused with one line (Refusal) and goes no further: the node's services and reconfigure
-servers see only well-formed requests from pages that hold the token, and judge the values themselves."""
+servers see only well-formed requests from pages that hold the token, and judge the values themselves.
+
+The server's messages, each a JSON object with its "type":
+  hello    {control, node, frame_rate, description (body_types.json), view, [addresses]}: first, once
+  world    {source, paused, settings, bodies, parts, part}: the followed world, whenever it changes
+  frame    {seq, states: {body: [state, ...]}}: every state since the last frame (frame_message)
+  events   {all, events: [record, ...]}: the node's events (rigid_body_sim/Event on <node>/events, each as
+           rigid_body_sim.runs.event_record gives it: {t, body, type, kind, values, state}), oldest first;
+           all: true, the run's events the server keeps (EventLog: after hello, and when it read the node's
+           <node>/get_events again), which replace what the page had; all: false, new ones (events_message)
+  view     {plot_body}: the teacher's choice for every following page
+  paused   {paused}
+  reply    {id, ok, line}: the answer to a request
+  line     {line}: the node's WARN line, to the teacher's page alone"""
 from __future__ import annotations
 
 import collections
@@ -22,7 +35,7 @@ import json
 import math
 import re
 from dataclasses import dataclass
-from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Set, Tuple, Union
+from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Sequence, Set, Tuple, Union
 
 from rigid_body_sim import description
 
@@ -150,34 +163,103 @@ def frame_message(seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
     return json.dumps({"type": "frame", "seq": seq, "states": states}, separators=(",", ":"), allow_nan=False)
 
 
-# The node's label of a racer over the line (a race: `race: true`): its place and time beside the closed
-# form's, as the node computes them (src/ros/scene.cpp; test_scene holds the form).
-# A word on a shared place ("=1st", "1st (tie)") is let through: the times say who ties.
-FINISH_LABEL = re.compile(r"^([A-Za-z][A-Za-z0-9_]*): =?(\d+)(?:st|nd|rd|th)\b[^,]*, ([0-9.]+) s"
-                          r"(?: \(closed form ([0-9.]+) s\))?$")
+# A restart's causes that begin a new run (the node's <node>/get_events forgets what came before it): what
+# came before goes from the plots and from the events a page gets.
+RUN_STARTS: Tuple[str, ...] = ("reset", "config")
+# s of events before the newest that the server keeps for a page that opens late: more than its plots' 10 s.
+EVENTS_KEPT = 30.0
+Record = Dict[str, Any]  # an event as rigid_body_sim.runs.event_record gives it
 
 
-def finish_of_label(text: str) -> Tuple[str, Optional[Dict[str, Any]]]:
-    """(body, {"place", "time", "closed_form"}) from a node's board (its lines joined by a space), or (body,
-    None) for a board that is no finish. closed_form is None when the node gives none."""
-    text = " ".join(text.split("\n"))
-    found = FINISH_LABEL.match(text)
-    if not found:
-        return text.split(":", 1)[0], None
-    closed = found.group(4)
-    return found.group(1), {"place": int(found.group(2)), "time": float(found.group(3)),
-                            "closed_form": float(closed) if closed else None}
+def event_roles(types: Mapping[str, Any]) -> Dict[str, Dict[str, str]]:
+    """{type: {event kind: its role}} from the description's types: "finish", "restart" or ""."""
+    return {name: {kind["name"]: kind["role"] for kind in t.get("event_kinds", [])} for name, t in types.items()}
 
 
-def tied_places(finishes: Mapping[str, Optional[Dict[str, Any]]]) -> Dict[str, Optional[Dict[str, Any]]]:
-    """The finishes with racers that the node's label shows at the same time sharing the best of their
-    places (a tie, to the label's 0.1 ms, is one place: the node's own places, where it ties them, agree)."""
-    best: Dict[float, int] = {}
-    for finish in finishes.values():
-        if finish:
-            best[finish["time"]] = min(best.get(finish["time"], finish["place"]), finish["place"])
-    return {body: {**finish, "place": best[finish["time"]]} if finish else None
-            for body, finish in finishes.items()}
+def _finite(fields: Mapping[str, Any]) -> Dict[str, Any]:
+    return {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in fields.items()}
+
+
+def events_message(records: Sequence[Mapping[str, Any]], whole: bool) -> str:
+    """One events message (`whole`: the run's events the server keeps, which replace a page's), numbers in
+    shortest round-trip form, a value that is not finite as null (JSON has no NaN)."""
+    events = [{**r, "values": _finite(r["values"]), "state": _finite(r["state"])} for r in records]
+    return json.dumps({"type": "events", "all": whole, "events": events}, separators=(",", ":"), allow_nan=False)
+
+
+class EventLog:
+    """The run's events the server keeps for its pages, oldest first, each once (<node>/get_events and the
+    topic may both bring one). A restart that begins a run (RUN_STARTS) drops what came before it; of what is
+    more than `kept` s older than the newest, each body's last finish and last restart stay (a racer that
+    waits shows its finish; a plot's time axis counts from its lap's start)."""
+
+    def __init__(self, roles: Mapping[str, Mapping[str, str]], kept: float = EVENTS_KEPT) -> None:
+        self.roles = roles
+        self.kept = kept
+        self.events: List[Tuple[int, Record]] = []  # (its arrival, the record), in time order
+        self.keys: Set[Tuple[Any, ...]] = set()
+        self.arrivals = 0  # records that came on the topic so far: a fetch notes it before it asks (replace)
+        self.run_start = -math.inf
+
+    @staticmethod
+    def key(record: Mapping[str, Any]) -> Tuple[Any, ...]:
+        return (record["t"], record["body"], record["kind"], json.dumps(record["values"], sort_keys=True))
+
+    def role(self, record: Mapping[str, Any]) -> str:
+        return self.roles.get(record["type"], {}).get(record["kind"], "")
+
+    def starts_run(self, record: Mapping[str, Any]) -> bool:
+        return self.role(record) == "restart" and record["values"].get("cause") in RUN_STARTS
+
+    def add(self, record: Record) -> bool:
+        """A record from the topic; False if it was there already, or belongs to a run before this one."""
+        self.arrivals += 1
+        return self._insert(self.arrivals, record)
+
+    def replace(self, records: Sequence[Record], since: int) -> None:
+        """The run's events as <node>/get_events answered, asked when `since` records had come on the topic:
+        those that came after stay (the answer may lack them), the rest go (a run the node forgot)."""
+        later = [(arrival, record) for arrival, record in self.events if arrival > since]
+        self.clear()
+        for record in records:
+            self._insert(0, record)
+        for arrival, record in later:
+            self._insert(arrival, record)
+
+    def clear(self) -> None:
+        self.events, self.keys, self.run_start = [], set(), -math.inf
+
+    def records(self) -> List[Record]:
+        return [record for _, record in self.events]
+
+    def _insert(self, arrival: int, record: Record) -> bool:
+        key = self.key(record)
+        if key in self.keys or record["t"] < self.run_start:
+            return False
+        self.keys.add(key)
+        self.events.append((arrival, record))
+        if len(self.events) > 1 and self.events[-2][1]["t"] > record["t"]:  # two topics' order: seldom
+            self.events.sort(key=lambda pair: pair[1]["t"])
+        if self.starts_run(record) and record["t"] > self.run_start:
+            self.run_start = record["t"]
+            self.events = [(a, r) for a, r in self.events if r["t"] >= self.run_start]
+        self._trim()
+        return True
+
+    def _trim(self) -> None:
+        cutoff = self.events[-1][1]["t"] - self.kept
+        if self.events[0][1]["t"] >= cutoff:
+            return
+        last: Set[Tuple[str, str]] = set()  # (body, role) kept from before the cutoff
+        kept: List[Tuple[int, Record]] = []
+        for arrival, record in reversed(self.events):
+            mark = (record["body"], self.role(record))
+            if record["t"] >= cutoff or (mark[1] and mark not in last):
+                kept.append((arrival, record))
+                if record["t"] < cutoff:
+                    last.add(mark)
+        self.events = kept[::-1]
+        self.keys = {self.key(record) for _, record in self.events}
 
 
 def websocket_text_frame(text: str) -> bytes:

@@ -1,16 +1,21 @@
 #!/usr/bin/env python3
-"""The web view's requests and frames (rigid_body_sim.web_protocol), without ROS or a network: every well-formed
-request parses to what it says; every malformed, oversized, unexpected or uncontrolled one is refused with
-one line, of its own kind; a full frame queue drops its oldest frame and counts it; frames carry the doubles
-exactly.
+"""The web view's requests, frames and events (rigid_body_sim.web_protocol), without ROS or a network: every
+well-formed request parses to what it says; every malformed, oversized, unexpected or uncontrolled one is refused
+with one line, of its own kind; a full frame queue drops its oldest frame and counts it; frames and events carry
+the doubles exactly; the run's events the server keeps are each there once, in time order, from the run's start
+(a reset), with what the node's get_events answered and what came on the topic after it was asked, and each
+body's last finish and restart however old.
 
 Usage: test_web_protocol.py"""
 import json
+import math
 import unittest
-from typing import Any, Dict, Optional
+from typing import Any, Dict, List
 
-from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, FrameQueue, Refusal, Request,
-                                         finish_of_label, frame_message, parse_request, tied_places)
+from rigid_body_sim import description
+from rigid_body_sim.web_protocol import (EVENTS_KEPT, LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, EventLog,
+                                         FrameQueue, Refusal, Request, event_roles, events_message, frame_message,
+                                         parse_request)
 
 BODIES = {"rod": "rod", "sphere": "roller"}
 
@@ -104,31 +109,85 @@ class Frames(unittest.TestCase):
             frame_message(8, {"sphere": [{"t": float("nan")}]})
 
 
-class FinishLabels(unittest.TestCase):
-    """The node's boards of a race, as test_scene holds the form of a finished racer's."""
+ROLES = event_roles(description.body_types())
 
-    def test_a_finished_racer_gives_its_place_and_times(self) -> None:
-        self.assertEqual(finish_of_label("sphere: 1st, 2.0439 s\n(closed form 2.0438 s)"),
-                         ("sphere", {"place": 1, "time": 2.0439, "closed_form": 2.0438}))
-        self.assertEqual(finish_of_label("ring_2: 12th, 10.5000 s"),
-                         ("ring_2", {"place": 12, "time": 10.5, "closed_form": None}))
-        for tied in ("ring: =1st, 1.4325 s\n(closed form 1.4325 s)",
-                     "ring: 1st (tie), 1.4325 s\n(closed form 1.4325 s)"):
-            self.assertEqual(finish_of_label(tied), ("ring", {"place": 1, "time": 1.4325, "closed_form": 1.4325}))
 
-    def test_racers_at_the_same_time_share_a_place(self) -> None:
-        # part:=above: all three down at 1.4325 s, whatever places the node's labels give them
-        finishes: Dict[str, Optional[Dict[str, Any]]] = {
-            name: {"place": place, "time": 1.4325, "closed_form": 1.4325}
-            for name, place in (("cylinder", 1), ("ring", 2), ("sphere", 3))}
-        finishes["late"] = {"place": 4, "time": 1.5, "closed_form": None}
-        finishes["racing"] = None
-        places = {body: f and f["place"] for body, f in tied_places(finishes).items()}
-        self.assertEqual(places, {"cylinder": 1, "ring": 1, "sphere": 1, "late": 4, "racing": None})
+def event(t: float, body: str, kind: str, **values: Any) -> Dict[str, Any]:
+    """A roller's event as rigid_body_sim.runs.event_record gives it."""
+    return {"t": t, "body": body, "type": "roller", "kind": kind, "values": values,
+            "state": {"x": 0.0, "v": 0.0, "theta": 0.0, "omega": 0.0, "mode": "rolling", "friction": 0.0,
+                      "normal": 9.2, "energy": 0.0}}
 
-    def test_any_other_label_is_no_finish(self) -> None:
-        for text in ("ring: rolling\ncritical angle 21.8 deg", "rod:\nE = 20.600 J", "ring: rolling\nE = 0.000 J"):
-            self.assertEqual(finish_of_label(text), (text.split(":")[0], None))
+
+def kinds(log: EventLog) -> List[Any]:
+    return [(r["t"], r["body"], r["kind"]) for r in log.records()]
+
+
+class Events(unittest.TestCase):
+    def test_roles_are_the_descriptions(self) -> None:
+        # The page and the server read roles, never kinds' names: each type that races has a finish and a restart.
+        for name, kinds_of in ROLES.items():
+            self.assertIn("restart", kinds_of.values(), name)
+            if description.body_types()[name]["races"]:
+                self.assertIn("finish", kinds_of.values(), name)
+        self.assertEqual(ROLES["roller"]["finished"], "finish")
+        self.assertEqual(ROLES["roller"]["lap_restarted"], "restart")
+        self.assertEqual(ROLES["roller"]["slip_to_roll"], "")
+
+    def test_messages_carry_the_doubles_exactly(self) -> None:
+        finished = event(0.1 + 0.2, "sphere", "finished", speed=1 / 3, lap_time=2.0439, closed_form=math.nan,
+                         place=1.0)
+        sent = json.loads(events_message([finished], False))
+        self.assertEqual((sent["type"], sent["all"]), ("events", False))
+        self.assertEqual(sent["events"][0]["t"].hex(), (0.1 + 0.2).hex())
+        self.assertEqual(sent["events"][0]["values"]["speed"].hex(), (1 / 3).hex())
+        self.assertIsNone(sent["events"][0]["values"]["closed_form"], "JSON has no NaN: null")
+        self.assertEqual(sent["events"][0]["state"], finished["state"])
+        self.assertEqual(json.loads(events_message([], True)), {"type": "events", "all": True, "events": []})
+
+    def test_each_once_in_time_order(self) -> None:
+        log = EventLog(ROLES)
+        self.assertTrue(log.add(event(1.0, "ring", "slip_to_roll")))
+        self.assertTrue(log.add(event(0.5, "sphere", "slip_to_roll")))  # two topics: not always in order
+        self.assertFalse(log.add(event(1.0, "ring", "slip_to_roll")))
+        self.assertTrue(log.add(event(1.0, "ring", "slip_to_roll", end="A")))  # other values: another event
+        self.assertEqual(kinds(log), [(0.5, "sphere", "slip_to_roll"), (1.0, "ring", "slip_to_roll"),
+                                      (1.0, "ring", "slip_to_roll")])
+
+    def test_a_reset_begins_a_run(self) -> None:
+        log = EventLog(ROLES)
+        log.add(event(1.0, "ring", "slip_to_roll"))
+        log.add(event(2.0, "ring", "finished", lap_time=2.0, speed=3.0))
+        log.add(event(3.0, "ring", "lap_restarted", cause="race"))  # a lap: the run goes on
+        self.assertEqual(len(log.records()), 3)
+        log.add(event(4.0, "ring", "lap_restarted", cause="reset"))
+        log.add(event(4.0, "sphere", "lap_restarted", cause="reset"))
+        self.assertFalse(log.add(event(3.5, "sphere", "slip_to_roll")), "from before the reset, come late")
+        self.assertEqual(kinds(log), [(4.0, "ring", "lap_restarted"), (4.0, "sphere", "lap_restarted")])
+
+    def test_get_events_and_the_topic(self) -> None:
+        log = EventLog(ROLES)
+        log.add(event(1.0, "ring", "slip_to_roll"))  # a run the node forgot (it restarted)
+        since = log.arrivals  # the fetch asks now
+        log.add(event(5.0, "ring", "slip_to_roll"))  # on the topic while it asked: in the answer too
+        log.add(event(6.0, "ring", "finished", lap_time=6.0, speed=2.0))  # after the answer
+        log.replace([event(3.0, "sphere", "slip_to_roll"), event(5.0, "ring", "slip_to_roll")], since)
+        self.assertEqual(kinds(log), [(3.0, "sphere", "slip_to_roll"), (5.0, "ring", "slip_to_roll"),
+                                      (6.0, "ring", "finished")])
+
+    def test_old_events_but_the_last_finish_and_restart(self) -> None:
+        log = EventLog(ROLES)
+        log.add(event(0.0, "ring", "lap_restarted", cause="race"))
+        log.add(event(1.0, "ring", "slip_to_roll"))
+        log.add(event(2.0, "ring", "finished", lap_time=2.0, speed=3.0))
+        log.add(event(3.0, "sphere", "lap_restarted", cause="race"))
+        log.add(event(4.0, "sphere", "slip_to_roll"))
+        log.add(event(4.5, "sphere", "lap_restarted", cause="race"))
+        log.add(event(5.0 + EVENTS_KEPT, "sphere", "slip_to_roll"))
+        # The ring waits at its finish (a race not over): its finish and its lap's start stay; of the sphere's,
+        # its last restart before the cutoff (where its plots' axis counts from) and the recent.
+        self.assertEqual(kinds(log), [(0.0, "ring", "lap_restarted"), (2.0, "ring", "finished"),
+                                      (4.5, "sphere", "lap_restarted"), (5.0 + EVENTS_KEPT, "sphere", "slip_to_roll")])
 
 
 if __name__ == "__main__":

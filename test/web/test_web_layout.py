@@ -12,8 +12,13 @@ finished), the teacher's page at a phone's 390x844, a laptop's 1366x768, a proje
   height below the page's top lines (beside the plots on a wide screen);
 - a race's finishers at the same time share a place, "=1st" (part:=above: all three at 1.4325 s);
 - a finished racer stands still at the end of its slope, its label with its place, its time and its arrival
-  speed, the page's finish instant at the closed form's and, released from rest, its speed 2 L / t;
-- the plots mark the slip -> roll instants at the closed form's, and their axes carry units;
+  speed: its finish event's (the node's ~get_events), the time the closed form's (to 1e-9 s) and, released
+  from rest, the speed 2 L / t;
+- the scene keeps its scale at every size while labels gain lines at the finishes and lose them at a new lap;
+- the plots mark the slip -> roll events at their instants, the first at the closed form's, and their axes
+  carry units; part:=slip run on into its second lap (LAPS): each racer's plots keep both laps' slip -> roll
+  dots and finish lines, their time axis counting lap times (0 at each lap's start), a finish's lap_time its
+  instant less its lap's start;
 - the teacher's choice of part:=above from part:=below's page sets every body's keys, and the page names it.
 
 Screenshots of each part at the four sizes go to OUT_DIR (web_<part>_<size>.png) to be looked at.
@@ -35,10 +40,12 @@ import unittest
 from typing import Any, Dict, List, Optional
 
 import rospy
-from rigid_body_sim.srv import Step
+from rigid_body_sim import description
+from rigid_body_sim.runs import event_record
+from rigid_body_sim.srv import GetEvents, Step
 from rigid_body_sim.sim_tools import (INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for,
                                       with_defaults)
-from rigid_body_sim.web_protocol import part_config
+from rigid_body_sim.web_protocol import event_roles, part_config
 
 from browser import Browser, end
 
@@ -50,6 +57,9 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 # s of simulated time: all racing (slip: all slipping); below and slip: two finished, the ring racing after
 # its slip -> roll; above: all three finished together at 1.4325 s
 INSTANTS = (0.4, 2.2)
+# s: part:=slip's second lap, every racer down again (its first lap's last at 2.43 s, the next 2 s later)
+LAPS = 7.5
+ROLES = event_roles(description.body_types())
 SIZES = {"phone": (390, 844, 3, True), "laptop": (1366, 768, 1, False), "projector": (1600, 900, 1, False),
          "4k": (3840, 2160, 1, False)}
 PARTS = ("below", "above", "slip", "block", "rod")  # lesson.launch's
@@ -214,18 +224,23 @@ class Layout(unittest.TestCase):
             step = rospy.ServiceProxy(f"/{part}/sim/step", Step)
             now = 0.0
             rate = float(config.get("rate", 1000.0))
-            for instant in INSTANTS:
+            scales: Dict[str, Any] = {}  # size -> every panel's scale, at the first instant
+            for instant in INSTANTS + ((LAPS,) if part == "slip" else ()):
                 answer = step(round((instant - now) * rate))
                 self.assertTrue(answer.success, answer.message)
                 now = answer.t
                 browser.wait(f"t = {now} drawn", f"Object.keys(rbs.drawn).length === {len(bodies)} && "
                              f"Object.values(rbs.drawn).every((d) => d.t === {now!r})", DEADLINE)
                 for size, (width, height, scale, mobile) in SIZES.items():
+                    if instant == LAPS and size not in ("phone", "projector"):
+                        continue
                     browser.resize(width, height, scale, mobile)
                     self.laid_out(browser, width, height, scale)
                     self.check(browser, f"part:={part} t = {now} at {size}", width, height)
+                    self.check_scale(browser, scales.setdefault(size, self.scales(browser)),
+                                     f"part:={part} t = {now} at {size}")
                     checks += 1
-                    if instant == INSTANTS[-1] or part == "slip":
+                    if instant != INSTANTS[0] or part == "slip":
                         browser.screenshot(os.path.join(ARGS.out_dir, f"web_{part}_{size}_t{instant}.png"))
                 if part == "above" and instant >= 1.4325:
                     places = browser.evaluate("Object.fromEntries(Object.entries(rbs.finishes)"
@@ -234,9 +249,11 @@ class Layout(unittest.TestCase):
                     shown = [t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas"]
                     for body in bodies:
                         self.assertTrue(any(t.startswith(f"{body}: =1st,") for t in shown), shown)
-                self.check_finishes(browser, config)
+                self.check_finishes(browser, part, config)
                 if part == "slip" and instant == INSTANTS[-1]:
-                    self.check_slip_marks(browser, config)
+                    self.check_slip_marks(browser, part, config)
+                if instant == LAPS:
+                    self.check_laps(browser, part)
             if part == "below":  # the slopes a lesson's key allows, from nearly flat to nearly upright
                 for angle in ANGLES:
                     self.set_angle(browser, angle)
@@ -295,45 +312,103 @@ class Layout(unittest.TestCase):
         self.check(browser, f"part:={part} from the teacher's page", 1600, 900)
         browser.screenshot(os.path.join(ARGS.out_dir, f"web_part_{part}_from_page.png"))
 
-    def check_finishes(self, browser: Browser, config: Dict[str, Any]) -> None:
-        """Every racer the node says finished (its board): drawn at rest at the end of its slope, the page's
-        finish instant at the node's closed form (the first lap starts at t = 0; the board gives it to 0.1 ms),
-        and its label with its arrival speed, 2 L / t for one released from rest (constant acceleration from
-        rest to L in t)."""
+    @staticmethod
+    def scales(browser: Browser) -> Dict[str, Any]:
+        """The scene's height, the lines its slopes' panels keep for their labels, every panel's scale."""
+        scales: Dict[str, Any] = browser.evaluate(
+            "({room: document.getElementById('scene-canvas').clientHeight, lines: rbs.layout && rbs.layout.lines, "
+            "panels: Object.fromEntries(Object.entries(rbs.panels).map(([n, p]) => [n, p.scale]))})")
+        return scales
+
+    def check_scale(self, browser: Browser, first: Dict[str, Any], where: str) -> None:
+        """The lines kept for the labels as at the first instant at this size, and so, in a scene as high,
+        every panel's scale: no label's line more or less rescales the scene. (The teacher's controls above
+        it may change its height by a pixel or two, a reply line not: view.css.)"""
+        now = self.scales(browser)
+        if now["lines"] != first["lines"] or (now["room"] == first["room"] and now["panels"] != first["panels"]):
+            self.breaches.append(f"{where}: the scene rescaled: {first} then {now}")
+
+    @staticmethod
+    def events(part: str) -> List[Dict[str, Any]]:
+        """The run's events, as the node has them (~get_events)."""
+        answer = rospy.ServiceProxy(f"/{part}/sim/get_events", GetEvents)()
+        return [event_record(m) for m in answer.events]
+
+    @staticmethod
+    def role(e: Dict[str, Any]) -> str:
+        return ROLES[e["type"]].get(e["kind"], "")
+
+    def check_finishes(self, browser: Browser, part: str, config: Dict[str, Any]) -> None:
+        """Every racer whose last event is a finish (the node's ~get_events): drawn at rest at the end of its
+        slope; the page's finish its event's values, exactly, and its label with them; the lap's time the
+        closed form's (to 1e-9 s, test_race's bound) and, for one released from rest, its speed 2 L / t
+        (constant acceleration from rest to L in t)."""
+        finished: Dict[str, Dict[str, Any]] = {}
+        for e in self.events(part):
+            if self.role(e) == "restart":
+                finished.pop(e["body"], None)
+            elif self.role(e) == "finish":
+                finished[e["body"]] = e
         finishes = browser.evaluate("rbs.finishes")
-        arrivals = browser.evaluate("rbs.arrivals")
+        self.assertEqual(sorted(finishes), sorted(finished), "the racers down")
         drawn = browser.evaluate("rbs.drawn")
-        shown = [t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas"]
-        for body, finish in finishes.items():
-            if not finish:
-                continue
+        shown = " ".join(t["text"] for t in browser.evaluate("rbs.texts") if t["canvas"] == "scene-canvas")
+        for body, e in finished.items():
+            values = e["values"]
+            self.assertEqual(finishes[body], {"t": e["t"], **values}, f"{body}'s finish on the page")
             b = with_defaults(config["bodies"][body])
             self.assertEqual((drawn[body]["mode"], drawn[body]["v"], drawn[body]["x"]),
                              ("finished", 0.0, b["incline_length"]), f"{body} stands at the line")
-            self.assertIn(body, arrivals, f"{body}: no finish instant")
-            arrival = arrivals[body]
-            if finish["closed_form"] is not None:  # the board's, to 0.1 ms
-                self.assertAlmostEqual(arrival["t"], finish["closed_form"], delta=0.5e-4 + 1e-12,
-                                       msg=f"{body}'s finish")
+            self.assertIn(f"{values['lap_time']:.4f} s at {values['speed']:.2f} m/s", shown, f"{body}'s label")
+            self.assertIn(f"(closed form {values['closed_form']:.4f} s)", shown, f"{body}'s label")
+            self.assertAlmostEqual(values["lap_time"], values["closed_form"], delta=1e-9, msg=f"{body}'s lap")
             if float(b.get("v0", 0.0)) == 0.0 and float(b.get("omega0", 0.0)) == 0.0:
-                self.assertAlmostEqual(arrival["speed"], 2 * b["incline_length"] / arrival["t"], delta=1e-9,
+                self.assertAlmostEqual(values["speed"], 2 * b["incline_length"] / values["lap_time"], delta=1e-9,
                                        msg=f"{body}'s arrival speed")
-            self.assertIn(f"at {arrival['speed']:.2f} m/s", " ".join(shown), f"{body}'s label")
 
-    def check_slip_marks(self, browser: Browser, config: Dict[str, Any]) -> None:
-        """Each racer's slip -> roll dot at the closed form's instant from its launch (config/race_slip.yaml:
-        all three before INSTANTS[-1])."""
+    def check_slip_marks(self, browser: Browser, part: str, config: Dict[str, Any]) -> None:
+        """Each racer's slip -> roll dots at its slip_to_roll events' instants and v then, the first at the
+        closed form's instant from its launch (config/race_slip.yaml: all three before INSTANTS[-1])."""
         g = float(config.get("gravity", 9.8))
+        truth = self.events(part)
         for body, b in config["bodies"].items():
             browser.choose("plot-body", body)
             browser.wait(f"the plots of {body}", f"rbs.plotLast.body === {json.dumps(body)}", DEADLINE)
-            mark = browser.evaluate("rbs.plotLast.points.slip_to_roll")
+            marks = browser.evaluate("rbs.plotLast.marks")
+            gripped = [e for e in truth if e["body"] == body and e["kind"] == "slip_to_roll"]
+            self.assertEqual([(m["t"], m["v"]) for m in marks], [(e["t"], e["state"]["v"]) for e in gripped])
             c, phi = INERTIA_FACTORS[b["shape"]], b["incline_angle"]
             instant = ((b["v0"] + b["omega0"] * b["radius"])
                        / (b["mu_d"] * g * math.cos(phi) * (1 + 1 / c) - g * math.sin(phi)))
             self.assertLess(instant, INSTANTS[-1])
-            self.assertIsNotNone(mark, f"{body}: no slip -> roll mark")
-            self.assertAlmostEqual(mark[0], instant, delta=1e-9, msg=f"{body}'s slip -> roll")
+            self.assertTrue(marks, f"{body}: no slip -> roll mark")
+            self.assertAlmostEqual(marks[0]["t"], instant, delta=1e-9, msg=f"{body}'s slip -> roll")
+
+    def check_laps(self, browser: Browser, part: str) -> None:
+        """In the race's second lap: each racer's plots keep the first lap's slip -> roll dot and finish line
+        beside the second's; their time axis counts lap times, from 0 at each lap's start (the race's restarts);
+        each finish's lap_time is its instant less its lap's start."""
+        truth = self.events(part)
+        for body in sorted({e["body"] for e in truth}):
+            mine = [e for e in truth if e["body"] == body]
+            starts = [0.0] + [e["t"] for e in mine if self.role(e) == "restart"]
+            finishes = [e for e in mine if self.role(e) == "finish"]
+            gripped = [e for e in mine if e["kind"] == "slip_to_roll"]
+            self.assertEqual((len(starts), len(finishes), len(gripped)), (2, 2, 2), f"{body}: two laps")
+            for e in finishes:
+                start = max(s for s in starts if s <= e["t"])
+                self.assertEqual(e["values"]["lap_time"], e["t"] - start, f"{body}: the lap's time")
+            browser.choose("plot-body", body)
+            browser.wait(f"the plots of {body}", f"rbs.plotLast.body === {json.dumps(body)}", DEADLINE)
+            plot = browser.evaluate("rbs.plotLast")
+            self.assertEqual((plot["t0"], plot["origins"], plot["axis"]), (0.0, starts, "lap time (s)"), body)
+            self.assertEqual(plot["finishes"], [e["t"] for e in finishes], f"{body}: both laps' finishes")
+            self.assertEqual([(m["t"], m["v"]) for m in plot["marks"]], [(e["t"], e["state"]["v"]) for e in gripped],
+                             f"{body}: both laps' slip -> roll")
+            self.assertIn([starts[1], "0"], plot["ticks"], f"{body}: the second lap's time from 0")
+        browser.screenshot(os.path.join(ARGS.out_dir, f"web_{part}_laps_plots.png"))
+        print(f"part:={part} at t = {LAPS}: both laps' marks and finishes, lap times from each lap's start",
+              file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -9,9 +9,13 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   received from the node, field for field, exactly; each body is drawn where the page's own view puts that
   state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
   (v, -omega R, the total energy and a rod's end heights exactly; the kinetic and potential energies to 1e-12).
-- Reset, then Pause 1.5 s later: the bowler, launched sliding with backspin, is marked once at its slip-to-roll
-  instant, the closed form's, between its last slipping and first rolling state since the reset;
-  every body's plot holds every state since the reset, once, while a page that reads nothing is open too.
+- Reset, then Pause 1.5 s later: the node's events (~events, as ~get_events answers) start with every body's
+  restart of cause "reset" at the reset's instant, and the page holds them all, each once; the bowler, launched
+  sliding with backspin, is marked at each of its slip_to_roll events' instants and speeds since the reset,
+  the first at the closed form's, each between its last slipping and first rolling state; the plots' time axis
+  starts at 0 at the reset; every body's plot holds every state since the reset, once, while a page that reads
+  nothing is open too. A second web view started then reads the run's events from ~get_events: the first page
+  it serves gets them all.
 - Step (a count of 100 typed in) moves every body to the node's state 0.1 s on.
 - A lesson's key: k = 2000 typed for the rod reaches the node (~get_config); k = -5 is refused, the page's line
   is the node's own WARN line from /rosout, and k stays 2000.
@@ -57,8 +61,9 @@ from typing import Any, Dict, List, NamedTuple, Optional
 import rospy
 import websocket
 import yaml
-from rigid_body_sim.msg import Command
-from rigid_body_sim.srv import GetConfig
+from rigid_body_sim.msg import Command, Event
+from rigid_body_sim.runs import event_record, read_bag_events
+from rigid_body_sim.srv import GetConfig, GetEvents
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
 from rigid_body_sim.sim_tools import (free_port, load_config, rospy_on_python39, state_message, wait_for,
@@ -69,6 +74,7 @@ from browser import Browser, end
 rospy_on_python39()
 ARGS: Any = None
 DEADLINE = 60.0  # s for any one wait
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
 class Listener:
@@ -79,12 +85,14 @@ class Listener:
         self.states: Dict[str, List[Any]] = {body: [] for body in bodies}
         self.paused: Optional[bool] = None
         self.commands: List[Command] = []
+        self.events: List[Dict[str, Any]] = []
         self.warnings: List[str] = []
         for body, kind in bodies.items():
             rospy.Subscriber(f"/sim/{body}/state", state_message(kind),
                              lambda m, b=body: self.on_state(b, m), queue_size=1000)
         rospy.Subscriber("/sim/paused", Bool, self.on_paused)
         rospy.Subscriber("/sim/commands", Command, self.on_command, queue_size=1000)
+        rospy.Subscriber("/sim/events", Event, lambda m: self.events.append(event_record(m)), queue_size=1000)
         rospy.Subscriber("/rosout", Log, self.on_log, queue_size=1000)
 
     def on_state(self, body: str, msg: Any) -> None:
@@ -104,6 +112,11 @@ class Listener:
     def last(self, body: str) -> Any:
         with self.lock:
             return self.states[body][-1] if self.states[body] else None
+
+
+def event_key(e: Dict[str, Any]) -> Any:
+    """An event, comparable and sortable: its instant, body, kind, values and state."""
+    return (e["t"], e["body"], e["kind"], sorted(e["values"].items()), sorted(e["state"].items()))
 
 
 class Answer(NamedTuple):
@@ -255,7 +268,9 @@ class WebView(unittest.TestCase):
         wait_for("~paused true", lambda: node.paused is True, DEADLINE)
         self.check_drawn_is_the_node(browser, node)
         self.check_plots(browser, node)
-        self.check_slip_to_roll(browser, node, reset_t)
+        truth = self.check_events(browser, node, reset_t)
+        self.check_slip_to_roll(browser, node, reset_t, truth)
+        self.check_late_view(truth)
         for body in self.kinds:
             with node.lock:
                 sent = [m.t for m in node.states[body] if m.t > reset_t]
@@ -356,6 +371,7 @@ class WebView(unittest.TestCase):
                 self.assertEqual(world[body][key], value, f"{body}.{key}: the played config's")
         self.check_drawn_is_the_node(browser, node)
         self.check_plots(browser, node)
+        self.check_replayed_marks(browser, node, bag)
         self.assertEqual(browser.evaluate("document.getElementById('status').textContent"),
                          "replay of a recording, paused")
         self.assertEqual(self.click_and_answer(browser, "step")["line"],
@@ -494,7 +510,7 @@ class WebView(unittest.TestCase):
             points = browser.evaluate("rbs.plotLast.points")
             s = fields(node.last(body))
             b = self.bodies[body]
-            for key in set(points) - {"slip_to_roll", "finish"}:
+            for key in points:
                 self.assertEqual(points[key][0], s["t"], f"{body}: {key}'s last point is at t = {points[key][0]}")
             self.assertEqual(points["energy"][1], s["energy"])
             checks = TYPE_CHECKS[self.kinds[body]]
@@ -506,33 +522,122 @@ class WebView(unittest.TestCase):
             self.assertAlmostEqual(points["potential"][1], potential, delta=1e-12 * max(1.0, abs(s["energy"])))
         print(f"plots' last points: the states of {sorted(self.kinds)}", file=sys.stderr)
 
-    def check_slip_to_roll(self, browser: Browser, node: Listener, reset_t: float) -> None:
-        """The bowler's slip -> roll dots since the reset, one for each slipping state the node followed with a
-        rolling one, each between the two: the first at the closed form's instant after the reset
-        (docs/testing.md: 0.802 s) and v then, each at the closed form's instant from its last slipping state
-        (a slipping roller's accelerations are constant). Under load the pause may come after more than one."""
+    def check_events(self, browser: Browser, node: Listener, reset_t: float) -> List[Dict[str, Any]]:
+        """The run's events as ~get_events answers (paused: all there are): every body's restart of cause
+        "reset" at the reset's instant first, then nothing older; the same on ~events; the page holds each of
+        them once. The run's events, oldest first."""
+        answer = rospy.ServiceProxy("/sim/get_events", GetEvents)()
+        truth = [event_record(m) for m in answer.events]
+        firsts = truth[:len(self.kinds)]
+        self.assertEqual(sorted(e["body"] for e in firsts), sorted(self.kinds), firsts)
+        for e in firsts:
+            self.assertEqual((e["t"], e["values"]["cause"]), (reset_t, "reset"), e)
+        self.assertTrue(all(e["t"] >= reset_t for e in truth))
+        wait_for("every event since the reset on ~events",
+                 lambda: sorted(map(event_key, (e for e in node.events if e["t"] >= reset_t))) ==
+                 sorted(map(event_key, truth)), DEADLINE)
+        on_page: List[Dict[str, Any]] = []
+
+        def page_has_them() -> bool:
+            on_page[:] = [e for es in browser.evaluate("rbs.events").values() for e in es]
+            return sorted(map(event_key, on_page)) == sorted(map(event_key, truth))
+        try:
+            wait_for("the page's events: the node's", page_has_them, DEADLINE)
+        except TimeoutError:
+            self.assertEqual(sorted(map(event_key, on_page)), sorted(map(event_key, truth)))
+        # The plots count from the reset: 0 there (the bowler's, as every body's).
         browser.choose("plot-body", "bowler")
         browser.wait("the bowler's plots", "rbs.plotLast.body === 'bowler'", DEADLINE)
+        plot = browser.evaluate("rbs.plotLast")
+        self.assertEqual((plot["t0"], plot["origins"], plot["axis"]), (reset_t, [reset_t], "t since reset (s)"))
+        self.assertEqual(plot["ticks"][0], [reset_t, "0"])
+        print(f"{len(truth)} events since the reset, on the page as the node has them; the plots count from the "
+              f"reset: ticks {[label for _, label in plot['ticks']]}", file=sys.stderr)
+        return truth
+
+    def check_slip_to_roll(self, browser: Browser, node: Listener, reset_t: float,
+                           truth: List[Dict[str, Any]]) -> None:
+        """The bowler's slip -> roll dots since the reset: one at each of its slip_to_roll events, at its instant
+        and its v then, each between the last slipping and the first rolling state the node sent around it;
+        the first at the closed form's instant after the reset (docs/testing.md) and its v then. Under load the
+        pause may come after more than one."""
+        browser.choose("plot-body", "bowler")
+        browser.wait("the bowler's plots", "rbs.plotLast.body === 'bowler'", DEADLINE)
+        gripped = [e for e in truth if e["body"] == "bowler" and e["kind"] == "slip_to_roll"]
+        marks = browser.evaluate("rbs.plotLast.marks")
+        self.assertEqual([(m["t"], m["v"]) for m in marks], [(e["t"], e["state"]["v"]) for e in gripped])
+        self.assertEqual({m["name"] for m in marks}, {"slip \u2192 roll"})
         with node.lock:
             after = [m for m in node.states["bowler"] if m.t > reset_t]
         pairs = [(a, b) for a, b in zip(after, after[1:]) if a.mode == "slipping" and b.mode == "rolling"]
+        self.assertEqual(len(gripped), len(pairs), ([e["t"] for e in gripped], [(a.t, b.t) for a, b in pairs]))
+        self.assertGreater(len(pairs), 0)
+        for mark, (slipping, rolling) in zip(marks, pairs):
+            self.assertTrue(slipping.t < mark["t"] <= rolling.t, (slipping.t, mark, rolling.t))
         b = self.bodies["bowler"]
         g, phi, c, R = float(self.config.get("gravity", 9.8)), b["incline_angle"], b["inertia_factor"], b["radius"]
         rate = b["mu_d"] * g * math.cos(phi) * (1 + c) / c - g * math.sin(phi)  # -du/dt, u = v + omega R > 0
         slowing = g * math.sin(phi) - b["mu_d"] * g * math.cos(phi)  # dv/dt
         instant = (b["v0"] + b["omega0"] * R) / rate
-        marks = browser.evaluate(f"(rbs.marks.bowler || []).filter((m) => m.t > {reset_t!r})")
-        self.assertEqual(len(marks), len(pairs), (marks, [(a.t, b.t) for a, b in pairs]))
-        self.assertGreater(len(pairs), 0)
         self.assertAlmostEqual(marks[0]["t"], reset_t + instant, delta=1e-9)
         self.assertAlmostEqual(marks[0]["v"], b["v0"] + slowing * instant, delta=1e-9)
-        for mark, (slipping, rolling) in zip(marks, pairs):
-            self.assertTrue(slipping.t < mark["t"] <= rolling.t, (slipping.t, mark, rolling.t))
-            left = (slipping.v + slipping.omega * R) / rate
-            self.assertAlmostEqual(mark["t"], slipping.t + left, delta=1e-9)
-            self.assertAlmostEqual(mark["v"], slipping.v + slowing * left, delta=1e-9)
         print(f"slip -> roll marked at t = {[m['t'] for m in marks]} ({marks[0]['t'] - reset_t:.4f} s after the "
-              "reset)", file=sys.stderr)
+              "reset), the node's events", file=sys.stderr)
+
+    def check_replayed_marks(self, browser: Browser, node: Listener, bag: str) -> None:
+        """In a replay, the recording's events as the player plays them: the bowler's slip -> roll dots at the
+        bag's slip_to_roll events (their instants and speeds) of the plots' window, up to the state drawn."""
+        last = node.last("bowler").t
+        recorded = [(e["t"], e["state"]["v"]) for e in read_bag_events(bag)
+                    if e["body"] == "bowler" and e["kind"] == "slip_to_roll" and max(0.0, last - 10) <= e["t"] <= last]
+        self.assertTrue(recorded, "no slip -> roll of the bowler in the recording's first seconds")
+        browser.choose("plot-body", "bowler")
+        shown: List[Any] = []
+
+        def marked() -> bool:
+            plot = browser.evaluate("rbs.plotLast")
+            shown[:] = [(m["t"], m["v"]) for m in plot["marks"] if m["t"] <= last] if plot["body"] == "bowler" else []
+            return shown == recorded
+        try:
+            wait_for("the recording's slip -> roll marks", marked, DEADLINE)
+        except TimeoutError:
+            self.assertEqual(shown, recorded)
+        print(f"replay: slip -> roll marked at the recording's events, t = {[t for t, _ in shown]}", file=sys.stderr)
+
+    def check_late_view(self, truth: List[Dict[str, Any]]) -> None:
+        """A web view started now, long after the node: it reads the run's events from ~get_events, and its
+        page gets them all (the node is paused: no other comes)."""
+        port = free_port()
+        log = os.path.join(self.tmp, "web_late.log")
+        with open(log, "w") as out:
+            # The script itself: rosrun finds two of it (the source's and the devel space's relay).
+            late = subprocess.Popen([sys.executable, os.path.join(ROOT, "scripts", "web_view.py"), "__name:=web_late",
+                                     f"_port:={port}", "_node:=/sim", f"_web_root:={os.path.join(ROOT, 'web')}"],
+                                    env=dict(os.environ, PATH="/usr/bin:" + os.environ.get("PATH", "")),
+                                    stdout=out, stderr=subprocess.STDOUT)
+        try:
+            def listening() -> bool:
+                if late.poll() is not None:
+                    with open(log) as written:
+                        raise AssertionError(f"the late web view ended: {written.read()}")
+                try:
+                    socket.create_connection(("127.0.0.1", port), timeout=1.0).close()
+                    return True
+                except OSError:
+                    return False
+            wait_for("the late web view listening", listening, DEADLINE)
+            client = websocket.create_connection(f"ws://127.0.0.1:{port}/ws", timeout=DEADLINE,
+                                                 origin=f"http://127.0.0.1:{port}")
+            deadline = time.monotonic() + DEADLINE
+            got: List[Dict[str, Any]] = []
+            while sorted(map(event_key, got)) != sorted(map(event_key, truth)):
+                self.assertLess(time.monotonic(), deadline, f"the late view's events: {len(got)} of {len(truth)}")
+                message = self.read_until(client, "events")
+                got = message["events"] if message["all"] else got + message["events"]
+            client.close()
+        finally:
+            end(late, signal.SIGINT, 60)
+        print(f"a web view started late: its page got the run's {len(truth)} events", file=sys.stderr)
 
     def rod_k(self) -> float:
         config = yaml.safe_load(rospy.ServiceProxy("/sim/get_config", GetConfig)().yaml)
