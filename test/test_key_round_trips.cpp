@@ -269,8 +269,8 @@ void expectReconfigureRoundTrip(std::mt19937_64& random) {
 
 TEST_F(KeyRoundTrips, ReconfigureRequestKeepsEveryKey) {
   for (int draw = 0; draw < 300 && !HasFailure(); ++draw) {
-    expectReconfigureRoundTrip<RodConfig>(random_);
-    expectReconfigureRoundTrip<RollerConfig>(random_);
+    BodyTypes::forEach(
+        [&](auto type) { expectReconfigureRoundTrip<typename decltype(type)::Config>(random_); });
   }
 }
 
