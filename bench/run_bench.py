@@ -388,6 +388,14 @@ def recording(report: Report, ros: Ros, out: str, config: str, publish_rate: flo
     size = os.path.getsize(bag) / seconds / 1e3
     target = "<= 1500" if publish_rate >= 1000 else "<= 100"
     report.row("4 record", f"{label}: bag size per simulated second", [size], "kB/s", target)
+    # The events' share of what the bag holds: their messages' bytes against everything else's.
+    with rosbag.Bag(bag) as b:
+        sizes: Dict[str, int] = {}
+        for topic, raw, _ in b.read_messages(raw=True):
+            sizes[topic] = sizes.get(topic, 0) + len(raw[1])
+    events = sizes.get("/sim/events", 0)
+    report.row("4 record", f"{label}: /sim/events' bytes against the rest of the bag's messages",
+               [100.0 * events / max(1, sum(sizes.values()) - events)], "%", "<= 10")
 
 
 def many_bodies_config(out: str, bodies: int) -> str:
