@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace rigid_body_sim {
 
@@ -30,7 +29,7 @@ std::string toString(BlockMode mode) {
 
 bool Block::canStick(const BlockParams& params) { return std::tan(params.incline_angle) <= params.mu_s; }
 
-Block::Block(const BlockParams& params, const BlockInitial& initial) : initial_(initial) {
+Block::Block(const BlockParams& params, const BlockInitial& initial) : InclineBody(params, initial) {
   setParams(params);
   reset();
 }
@@ -43,30 +42,6 @@ void Block::setParams(const BlockParams& params) {
     mode_ = BlockMode::Sliding;
     pending_started_slipping_ = true;
   }
-}
-
-void Block::setInitial(const BlockInitial& initial) {
-  initial_ = initial;
-  reset();
-}
-
-void Block::reset() {
-  state_ = BlockMotion{initial_.x0, initial_.v0};
-  enterModeFromState();
-  laps_ = 0;
-  pending_started_slipping_ = false;
-}
-
-void Block::restartLap() {
-  state_ = BlockMotion{initial_.x0, initial_.v0};
-  enterModeFromState();
-  ++laps_;
-}
-
-void Block::setState(const BlockMotion& state) {
-  state_ = state;
-  enterModeFromState();
-  pending_started_slipping_ = false;
 }
 
 void Block::restore(const Progress& progress) {
@@ -113,8 +88,7 @@ void Block::advance(double h, double a) {
 
 Block::StepEvents Block::step(double dt) {
   StepEvents events;
-  events.started_slipping = std::exchange(pending_started_slipping_, false);
-  if (events.started_slipping) events.at_start = progress();
+  beginStep(events);
   if (!(dt > 0.0) || mode_ != BlockMode::Sliding) return events;  // a sticking or finished block stays
   double elapsed = 0.0;
   for (int pass = 0; pass < kMaxPasses; ++pass) {
@@ -123,24 +97,7 @@ Block::StepEvents Block::step(double dt) {
     // Friction decelerates it when a opposes v: it stops at -v / a, unless the slope's end comes first.
     const double to_stop = state_.v * a < 0.0 ? -state_.v / a : kNever;
     const double h = to_stop <= remaining ? to_stop : remaining;
-    const double x_after = state_.x + state_.v * h + 0.5 * a * h * h;  // as advance(h) computes it
-    // Only the first crossing: past the end it is off its slope, restarting at the step's end.
-    if (!events.left_at && (x_after > params_.incline_length || x_after < 0.0)) {
-      const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
-      events.left_at = elapsed + s;
-      // On the line, at the instant it passes it: a racer stops there and waits at rest.
-      Block on_line = *this;
-      on_line.advance(s, a);
-      on_line.state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
-      events.arrival_speed = on_line.state_.v;
-      events.at_left = on_line.progress();
-      if (hold_at_end_) {
-        state_ = on_line.state_;
-        state_.v = 0.0;
-        mode_ = BlockMode::Finished;
-        return events;
-      }
-    }
+    if (holdsAtEnd(events, elapsed, h, a)) return events;
     if (!(to_stop <= remaining)) {
       advance(remaining, a);
       break;
@@ -156,10 +113,7 @@ Block::StepEvents Block::step(double dt) {
     }
     // Stopped on its way uphill on a slope too steep to hold it: it slides back down.
   }
-  if (state_.x > params_.incline_length || state_.x < 0.0) {
-    restartLap();  // off either end of the slope: a new lap from the initial conditions
-    events.restarted = true;
-  }
+  endStep(events);
   return events;
 }
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace rigid_body_sim {
 
@@ -66,8 +65,7 @@ bool Roller::canRoll(const RollerParams& params) {
   return std::tan(params.incline_angle) <= criticalTangent(params.mu_s, params.inertia_factor);
 }
 
-Roller::Roller(const RollerParams& params, const RollerInitial& initial)
-    : params_(params), initial_(initial) {
+Roller::Roller(const RollerParams& params, const RollerInitial& initial) : InclineBody(params, initial) {
   cacheAccelerations();
   reset();
 }
@@ -81,30 +79,6 @@ void Roller::setParams(const RollerParams& params) {
     slip_sign_ = 1;  // gravity wins over static friction, so the contact point starts sliding downhill
     pending_started_slipping_ = true;
   }
-}
-
-void Roller::setInitial(const RollerInitial& initial) {
-  initial_ = initial;
-  reset();
-}
-
-void Roller::reset() {
-  state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
-  enterModeFromState();
-  laps_ = 0;
-  pending_started_slipping_ = false;
-}
-
-void Roller::restartLap() {
-  state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
-  enterModeFromState();
-  ++laps_;
-}
-
-void Roller::setState(const RollerMotion& state) {
-  state_ = state;
-  enterModeFromState();
-  pending_started_slipping_ = false;
 }
 
 void Roller::restore(const Progress& progress) {
@@ -190,8 +164,7 @@ constexpr int kMaxPasses = 3;
 
 Roller::StepEvents Roller::step(double dt) {
   StepEvents events;
-  events.started_slipping = std::exchange(pending_started_slipping_, false);
-  if (events.started_slipping) events.at_start = progress();
+  beginStep(events);
   if (!(dt > 0.0) || finished()) return events;  // time only runs forward; a finished racer waits
   double elapsed = 0.0;
   // Each pass either ends the step or handles one u = 0 instant. After such an instant the body rolls
@@ -209,25 +182,7 @@ Roller::StepEvents Roller::step(double dt) {
       if (slipDirection() * dudt < 0.0) to_zero = std::max(0.0, -slipSpeed() / dudt);
     }
     const double h = to_zero <= remaining ? to_zero : remaining;
-    const double x_after = state_.x + state_.v * h + 0.5 * a * h * h;  // as advance(h) computes it
-    // Only the first crossing: past the end it is off its slope, restarting at the step's end.
-    if (!events.left_at && (x_after > params_.incline_length || x_after < 0.0)) {
-      const double s = exitTime(state_.x, state_.v, a, h, params_.incline_length);
-      events.left_at = elapsed + s;
-      // On the line, at the instant it passes it: a racer stops there and waits at rest.
-      Roller on_line = *this;
-      on_line.advance(s, a, alpha);
-      on_line.state_.x = x_after > params_.incline_length ? params_.incline_length : 0.0;
-      events.arrival_speed = on_line.state_.v;
-      events.at_left = on_line.progress();
-      if (hold_at_end_) {
-        state_ = on_line.state_;
-        state_.v = 0.0;
-        state_.omega = 0.0;
-        mode_ = RollMode::Finished;
-        return events;
-      }
-    }
+    if (holdsAtEnd(events, elapsed, h, a, alpha)) return events;
     if (!(to_zero <= remaining)) {
       advance(remaining, a, alpha);
       break;
@@ -245,13 +200,7 @@ Roller::StepEvents Roller::step(double dt) {
       slip_sign_ = 1;
     }
   }
-  if (state_.x > params_.incline_length || state_.x < 0.0) {
-    // Off either end of the slope: start a new lap from the initial conditions.
-    state_ = RollerMotion{initial_.x0, initial_.v0, initial_.theta0, initial_.omega0};
-    enterModeFromState();
-    ++laps_;
-    events.restarted = true;
-  }
+  endStep(events);
   return events;
 }
 

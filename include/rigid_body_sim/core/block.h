@@ -11,22 +11,16 @@
 #include <optional>
 #include <string>
 
-#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/incline.h"
+#include "rigid_body_sim/core/incline_body.h"
 
 namespace rigid_body_sim {
 
 enum class BlockMode { Sticking, Sliding, Finished };
 std::string toString(BlockMode mode);  // sticking | sliding | finished
 
-struct BlockParams {
-  double size = 0.2;                 // m, the edge of the cube drawn (the physics is a point's)
-  double mass = 1.0;                 // kg
-  double incline_angle = 0.349;      // rad, 0 <= phi < pi/2
-  double incline_length = 5.0;       // m of slope; the centre runs over x in [0, incline_length]
-  double mu_s = 0.3;                 // static friction coefficient
-  double mu_d = 0.2;                 // kinetic friction coefficient, mu_d <= mu_s
-  double gravity = kDefaultGravity;  // m/s^2
+struct BlockParams : InclineParams {
+  double size = 0.2;  // m, the edge of the cube drawn (the physics is a point's)
 };
 
 struct BlockInitial {
@@ -47,7 +41,9 @@ struct BlockRun {
 };
 BlockRun closedFormRun(const BlockParams& params, const BlockInitial& initial);
 
-class Block {
+// Its lap and restart lifecycle (setInitial, reset, restartLap, setState, setHoldAtEnd, finished, the
+// accessors): incline_body.h.
+class Block : public InclineBody<Block, BlockParams, BlockInitial, BlockMotion, BlockMode> {
  public:
   Block(const BlockParams& params, const BlockInitial& initial);
 
@@ -67,25 +63,9 @@ class Block {
   // New parameters apply from the next step; a sticking block that static friction no longer holds starts
   // sliding downhill. The state is kept.
   void setParams(const BlockParams& params);
-  void setInitial(const BlockInitial& initial);  // restarts from it
-  void reset();                                  // back to the initial conditions
-  // Moves it to `state` now (at rest: sticking or sliding as at a start); initial conditions and laps kept.
-  void setState(const BlockMotion& state);
-
-  // In a race: a centre that passes an end of the slope stops there, at rest (mode finished), until
-  // restartLap().
-  void setHoldAtEnd(bool hold) { hold_at_end_ = hold; }
-  bool finished() const { return mode_ == BlockMode::Finished; }
-  void restartLap();
 
   Progress progress() const { return {state_, mode_, laps_, pending_started_slipping_}; }
   void restore(const Progress& progress);
-
-  const BlockParams& params() const { return params_; }
-  const BlockInitial& initial() const { return initial_; }
-  const BlockMotion& state() const { return state_; }
-  BlockMode mode() const { return mode_; }
-  int laps() const { return laps_; }
 
   double frictionForce() const;  // on the block, along slope +x (N)
   double normalForce() const;    // on the block, along slope +y (N)
@@ -97,18 +77,15 @@ class Block {
   static bool canStick(const BlockParams& params);
 
  private:
+  friend InclineBody;
+  static BlockMotion startingMotion(const BlockInitial& initial) { return {initial.x0, initial.v0}; }
+  static void stop(BlockMotion& motion) { motion.v = 0.0; }
+  // At rest: sticking where static friction holds it, else sliding.
   void enterModeFromState();
   void advance(double h, double a);
 
-  BlockParams params_;
   double sin_angle_ = 0.0;
   double cos_angle_ = 1.0;
-  BlockInitial initial_;
-  BlockMotion state_;
-  BlockMode mode_ = BlockMode::Sticking;
-  int laps_ = 0;
-  bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
-  bool hold_at_end_ = false;
 };
 
 }  // namespace rigid_body_sim

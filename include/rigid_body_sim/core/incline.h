@@ -1,10 +1,23 @@
-// What the bodies on an incline (the roller, the block) share: the events of a step and the instant a
-// centre that moves at constant acceleration passes an end of its slope.
+// What the bodies on an incline (the roller, the block) share: their common parameters, the events of a step
+// and the instant a centre that moves at constant acceleration passes an end of its slope.
 #pragma once
 
 #include <optional>
 
+#include "rigid_body_sim/core/constants.h"
+
 namespace rigid_body_sim {
+
+// The parameters every body on an incline has (core/types/key_builders.h, inclineKeys): the base of
+// RollerParams and BlockParams.
+struct InclineParams {
+  double mass = 1.0;                 // kg
+  double incline_angle = 0.349;      // rad, 0 <= phi < pi/2
+  double incline_length = 5.0;       // m of slope; the centre runs over x in [0, incline_length]
+  double mu_s = 0.3;                 // static friction coefficient
+  double mu_d = 0.2;                 // kinetic friction coefficient, mu_d <= mu_s
+  double gravity = kDefaultGravity;  // m/s^2
+};
 
 // What happened inside one step of a body on an incline, with the model's progress at each instant (from
 // which the events' state fields are read: core/types/incline_events.h).

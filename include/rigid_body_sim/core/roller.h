@@ -12,8 +12,8 @@
 #include <optional>
 #include <string>
 
-#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/incline.h"
+#include "rigid_body_sim/core/incline_body.h"
 
 namespace rigid_body_sim {
 
@@ -37,16 +37,10 @@ double criticalAngle(double mu_s, double inertia_factor);
 enum class RollMode { Rolling, Slipping, Finished };
 std::string toString(RollMode mode);
 
-struct RollerParams {
+struct RollerParams : InclineParams {
   Shape shape = Shape::Sphere;
-  double inertia_factor = 0.4;       // c; must equal inertiaFactorOf(shape) unless shape is Custom
-  double radius = 0.1;               // m
-  double mass = 1.0;                 // kg
-  double incline_angle = 0.349;      // rad, 0 <= phi < pi/2
-  double incline_length = 5.0;       // m of slope; the centre runs over x in [0, incline_length]
-  double mu_s = 0.3;                 // static friction coefficient
-  double mu_d = 0.2;                 // kinetic friction coefficient, mu_d <= mu_s
-  double gravity = kDefaultGravity;  // m/s^2
+  double inertia_factor = 0.4;  // c; must equal inertiaFactorOf(shape) unless shape is Custom
+  double radius = 0.1;          // m
 };
 
 struct RollerInitial {
@@ -71,7 +65,9 @@ struct RollerRun {
 };
 RollerRun closedFormRun(const RollerParams& params, const RollerInitial& initial);
 
-class Roller {
+// Its lap and restart lifecycle (setInitial, reset, restartLap, setState, setHoldAtEnd, finished, the
+// accessors): incline_body.h.
+class Roller : public InclineBody<Roller, RollerParams, RollerInitial, RollerMotion, RollMode> {
  public:
   Roller(const RollerParams& params, const RollerInitial& initial);
 
@@ -94,29 +90,9 @@ class Roller {
   // New parameters apply from the next step; a rolling body whose static friction no longer holds
   // starts slipping forward. The state is kept.
   void setParams(const RollerParams& params);
-  // Restarts from new initial conditions.
-  void setInitial(const RollerInitial& initial);
-  // Back to the initial conditions.
-  void reset();
-  // Moves it to `state` now, its mode following from v and omega as at a start; the initial conditions and
-  // the lap count are kept.
-  void setState(const RollerMotion& state);
-
-  // In a race: a centre that passes an end of the slope stops there, at rest (mode Finished; the step's
-  // events carry its arrival speed), instead of restarting, until restartLap().
-  void setHoldAtEnd(bool hold) { hold_at_end_ = hold; }
-  bool finished() const { return mode_ == RollMode::Finished; }
-  // A new lap from the initial conditions, as at the end of the slope.
-  void restartLap();
 
   Progress progress() const { return {state_, mode_, slip_sign_, laps_, pending_started_slipping_}; }
   void restore(const Progress& progress);
-
-  const RollerParams& params() const { return params_; }
-  const RollerInitial& initial() const { return initial_; }
-  const RollerMotion& state() const { return state_; }
-  RollMode mode() const { return mode_; }
-  int laps() const { return laps_; }
 
   double slipSpeed() const;      // u = v + omega R
   double frictionForce() const;  // on the body, along slope +x (N)
@@ -130,13 +106,20 @@ class Roller {
   static bool canRoll(const RollerParams& params);
 
  private:
+  friend InclineBody;
+  static RollerMotion startingMotion(const RollerInitial& initial) {
+    return {initial.x0, initial.v0, initial.theta0, initial.omega0};
+  }
+  static void stop(RollerMotion& motion) {
+    motion.v = 0.0;
+    motion.omega = 0.0;
+  }
   // +1 when the contact point slides downhill (u > 0), -1 for topspin (u < 0); unused while rolling.
   int slipDirection() const;
   void enterModeFromState();
   // Advances by h at the constant accelerations a and alpha of the current mode.
   void advance(double h, double a, double alpha);
 
-  RollerParams params_;
   // sin and cos of params_.incline_angle, and the constant accelerations of each mode (0: rolling,
   // 1: slipping with u > 0, 2: with u < 0, 3: finished, at rest), computed when the parameters change rather
   // than several times a step (the same expressions, so results are unchanged; see bench/bench_core.cpp).
@@ -152,13 +135,7 @@ class Roller {
   double sin_angle_ = 0.0;
   double cos_angle_ = 1.0;
   ModeAccelerations accelerations_[4];
-  RollerInitial initial_;
-  RollerMotion state_;
-  RollMode mode_ = RollMode::Rolling;
   int slip_sign_ = 1;
-  int laps_ = 0;
-  bool pending_started_slipping_ = false;  // set by setParams, reported by the next step
-  bool hold_at_end_ = false;
 };
 
 using RollerStepEvents = Roller::StepEvents;
