@@ -101,7 +101,7 @@ World::World(const WorldConfig& config, std::vector<std::string> reserved_names)
   bodies_.reserve(config.bodies.size());
   for (auto& body : config_.bodies) {
     body = withGravity(body, config.gravity);
-    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race)});
+    bodies_.push_back(Body{body.name, makeModel(body, config.gravity, config.race), std::nullopt, 0.0, true});
   }
 }
 
@@ -163,7 +163,8 @@ void World::apply(const WorldCommand& command) {
       WorldConfig would_be = config_;
       would_be.bodies.push_back(wanted);
       validateWouldBe(would_be);
-      bodies_.push_back(Body{wanted.name, makeModel(wanted, config_.gravity, config_.race)});
+      bodies_.push_back(
+          Body{wanted.name, makeModel(wanted, config_.gravity, config_.race), std::nullopt, time(), true});
       config_.bodies.push_back(wanted);
       // A racer that joins starts with the others.
       const bool racer = std::visit([](const auto& model) { return races(model); }, bodies_.back().model);
