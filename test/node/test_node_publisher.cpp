@@ -1,9 +1,9 @@
 // The node's topics as a sink of its Session (ros/node_publisher.h), under rostest's master (publisher.test)
 // and with no sim_node: this test drives a Session of demo.yaml as the node's stepping thread does, with the
 // publisher and, beside it, the bag of `simulate --bag` (bagOpener, the same marker options), stamps in
-// simulated time. Every state message, /tf, ~commands and ~scene arrive byte for byte as that bag holds
-// them, ~markers too until a reset, which sends a DELETEALL and starts the trails afresh; a spawned body's
-// state topic comes and a deleted one's goes; /clock only goes forward, to the end of the run.
+// simulated time. Every state message, /tf, ~commands, ~events and ~scene arrive byte for byte as that bag
+// holds them, ~markers too until a reset, which sends a DELETEALL and starts the trails afresh; a spawned
+// body's state topic comes and a deleted one's goes; /clock only goes forward, to the end of the run.
 #include <mutex>
 #include <type_traits>
 
@@ -14,6 +14,7 @@
 #include "bag_messages.h"
 #include "node_test_util.h"
 #include "rigid_body_sim/Command.h"
+#include "rigid_body_sim/Event.h"
 #include "rigid_body_sim/core/node_interface.h"
 #include "rigid_body_sim/ros/bag_recorder.h"
 #include "rigid_body_sim/ros/node_publisher.h"
@@ -36,9 +37,10 @@ class TopicLog {
     subscribers_[topic] =
         nh.subscribe<Message>(topic, 100000, [this, topic](const typename Message::ConstPtr& m) {
           Message message = *m;
-          // roscpp numbers the states it publishes (header.seq); a bag's are as written. ~commands' seq is
-          // the command's index (roscpp's count here too): compared as it is.
-          if constexpr (std::is_same_v<Message, RodState> || std::is_same_v<Message, RollerState>)
+          // roscpp numbers the states and events it publishes (header.seq); a bag's are as written.
+          // ~commands' seq is the command's index (roscpp's count here too): compared as it is.
+          if constexpr (std::is_same_v<Message, RodState> || std::is_same_v<Message, RollerState> ||
+                        std::is_same_v<Message, rigid_body_sim::Event>)
             message.header.seq = 0;
           std::lock_guard<std::mutex> lock(mutex_);
           received_[topic].push_back(test::bytesOf(message));
@@ -125,6 +127,7 @@ TEST(NodePublisher, PublishesWhatSimulatesBagHolds) {
   add(MarkerArray(), "/sim/markers");
   add(MarkerArray(), "/sim/scene");
   add(rigid_body_sim::Command(), "/sim/commands");
+  add(rigid_body_sim::Event(), "/sim/events");
   add(rosgraph_msgs::Clock(), "/clock");
   ASSERT_TRUE(waitUntil([&] { return publisher.subscribed() && publisher.markersSubscribed(); }));
   ASSERT_TRUE(log.waitCount("/sim/commands", 1)) << "the config, latched";
@@ -174,6 +177,19 @@ TEST(NodePublisher, PublishesWhatSimulatesBagHolds) {
     EXPECT_TRUE(got == want) << topic << ": " << got.size() << " messages, " << want.size() << " in the bag, "
                              << same << " equal before the first difference";
   }
+
+  // ~get_events: the run's events since the reset, the bag's from its restarts on.
+  std::vector<std::vector<std::uint8_t>> since_reset;
+  for (const auto& message : recorded)
+    if (message.topic == "/sim/events" && message.time >= simStamp(reset_t))
+      since_reset.push_back(message.bytes);
+  std::vector<std::vector<std::uint8_t>> kept;
+  for (const auto& event : publisher.runEvents())
+    kept.push_back(test::bytesOf(toEventMsg(event, simStamp(event.t))));
+  EXPECT_EQ(kept.size(), since_reset.size());
+  EXPECT_TRUE(kept == since_reset) << "the run's events since the reset";
+  ASSERT_FALSE(publisher.runEvents().empty());
+  EXPECT_EQ(findValue(publisher.runEvents().front().values, "cause")->text, "reset");
 
   // ~markers: as the bag until the reset; then a DELETEALL and trails from the reset on.
   std::vector<BagMessage> before_reset;
