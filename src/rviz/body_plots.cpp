@@ -8,6 +8,7 @@
 
 #include <QDir>
 #include <QFileDialog>
+#include <QGraphicsRectItem>
 #include <QGridLayout>
 #include <QGuiApplication>
 #include <QHBoxLayout>
@@ -20,7 +21,8 @@
 
 #include <dynamic_reconfigure/Config.h>
 
-#include "rigid_body_sim/core/constants.h"
+#include "rigid_body_sim/Command.h"
+#include "rigid_body_sim/GetEvents.h"
 #include "rigid_body_sim/core/parameters.h"
 #include "rigid_body_sim/rviz/axis_ticks.h"
 #include "rigid_body_sim/rviz/fixed_text.h"
@@ -52,15 +54,34 @@ constexpr double kTimeTick = 2;  // s between the time axis's ticks, anchored at
 const BodyPlots::Style kDocked{14, 12, 12, 12, 3, 14, QSize(0, 260)};
 const BodyPlots::Style kProjector{24, 20, 18, 18, 4, 18, QSize(600, 300)};
 constexpr int kGridColumns = 2;
-// A restart moves a body farther than its speed can in the time between two states; this much farther (m)
-// is taken as one, above what a mode change or a bounce between two states can add.
-constexpr double kJumpSlack = 0.1;
+constexpr std::uint32_t kEventQueue = 10000;  // events between two of rviz's spins: none dropped
+constexpr double kNoteAside = 14;             // px from a mark's centre to its note's side
+constexpr double kNoteBelow = 10;             // px from a mark's centre to its note's top (or bottom)
+constexpr double kNoteGap = 4;                // px between two notes
+constexpr double kNotePad = 2;                // px of a note's ground around its text
+constexpr double kNoteZ = 100;                // above every series and the legend
+constexpr int kNoteDarker = 130;              // a note's text: its marks' colour, this much darker (%)
+const QColor kNoteGround(255, 255, 255, 215);
+// A chart's lines in turn, and its tracks of marks in turn: a red disc, then a green square.
 const QColor kColours[] = {QColor(31, 119, 180), QColor(255, 127, 14), QColor(214, 39, 40)};
+const QColor kMarkColours[] = {QColor(214, 39, 40), QColor(44, 160, 44)};
+const QScatterSeries::MarkerShape kMarkShapes[] = {QScatterSeries::MarkerShapeCircle,
+                                                   QScatterSeries::MarkerShapeRectangle};
 const char* const kPngVariable = "RBS_PLOTS_PNG";
 
 QFont pixels(QFont font, int px) {
   font.setPixelSize(px);
   return font;
+}
+
+// A restart with cause reset or config begins a run: the node's ~get_events forgets what came before it.
+bool startsRun(const Event& event) {
+  const auto cause = eventText(event.values, "cause");
+  return eventRole(event) == EventRole::Restart && cause && (*cause == "reset" || *cause == "config");
+}
+
+bool sameEvent(const Event& a, const Event& b) {
+  return a.t == b.t && a.body == b.body && a.type == b.type && a.kind == b.kind && a.values == b.values;
 }
 
 }  // namespace
@@ -129,28 +150,47 @@ BodyPlots::BodyPlots(CallQueue& calls, QWidget* parent) : QWidget(parent), calls
 void BodyPlots::setNode(const std::string& ns) {
   if (ns == ns_) return;
   ns_ = ns;
-  origin_ = 0;
-  gravity_ = 0;
-  commands_ = ros::NodeHandle().subscribe<Command>(ns_ + "/commands", 100,
-                                                   [this](const Command::ConstPtr& c) { onCommand(*c); });
-  // The world's g: sim.launch loads the config's keys there, and a key it lacks takes its default.
-  const std::string name = ns_ + "/gravity";
-  const auto ask = [name] {
-    double g = kDefaultGravity;
-    ros::param::get(name, g);
-    return g;
-  };
-  const auto got = [this, ns](const double& g) {
-    if (ns == ns_ && gravity_ == 0) gravity_ = g;  // a config command's, if one came first, is newer
-  };
-  calls_.post<double>(this, ask, got);
+  ++found_;  // an answer of the node before is not this one's
+  event_subscriber_ = ros::NodeHandle().subscribe<Event>(
+      ns_ + "/events", kEventQueue, [this](const Event::ConstPtr& e) { addEvents({*e}); });
+  // A reset or a new config is on ~commands too, at its restarts' instant: a recording made before the node
+  // had events says it there alone. (A replay's player waits for a subscriber of each topic it plays.)
+  command_subscriber_ =
+      ros::NodeHandle().subscribe<Command>(ns_ + "/commands", 100, [this](const Command::ConstPtr& command) {
+        if ((command->kind != "reset" && command->kind != "config") || command->t <= origin_) return;
+        startRun(command->t);
+        placeEvents();
+      });
   setBodies({});
+}
+
+// What the node kept of its run (since its start, or its last reset): what came before the panel found it.
+// The topic brings what comes after; an event both bring is kept once.
+void BodyPlots::fetchEvents() {
+  const std::string name = ns_ + "/get_events";
+  const std::uint64_t found = ++found_;
+  using Answer = std::optional<std::vector<Event>>;
+  const auto ask = [name]() -> Answer {
+    GetEvents srv;
+    if (!CallQueue::services().call(name, srv)) return std::nullopt;  // a replay: no node
+    return srv.response.events;
+  };
+  const auto got = [this, found](const Answer& events) {
+    if (found == found_ && events) addEvents(*events);  // the node not lost or found again since
+  };
+  calls_.post<Answer>(this, ask, got);
 }
 
 // The chooser lists the bodies in name order; the chosen one stays while it exists.
 void BodyPlots::setBodies(const std::map<std::string, std::string>& bodies) {
   if (bodies == bodies_) return;
+  const bool found = bodies_.empty() && !bodies.empty();  // the node found (a new one, or back)
   bodies_ = bodies;
+  if (found) {
+    events_.clear();
+    origin_ = newest_ = 0;
+    fetchEvents();
+  }
   const QString chosen = QString::fromStdString(body_);
   QSignalBlocker block(choice_);
   choice_->clear();
@@ -185,6 +225,7 @@ void BodyPlots::select(const std::string& body) {
       [this](const dynamic_reconfigure::Config::ConstPtr& c) { type_->setParameters(*c); });
   const auto taken = [this](double t) { return take(t); };
   state_ = type_->plot(nh, server + "/state", taken, *this);
+  placeEvents();
 }
 
 // The charts of the chosen body's type, then its energy.
@@ -225,21 +266,41 @@ BodyPlots::Chart BodyPlots::makeChart(const QString& title, const QString& y_tit
 }
 
 void BodyPlots::addTrack(Chart& chart, const TrackSpec& spec) {
-  QXYSeries* series = spec.marks ? static_cast<QXYSeries*>(new QScatterSeries()) : new QLineSeries();
+  const auto marks = static_cast<std::size_t>(
+      std::count_if(chart.tracks.begin(), chart.tracks.end(), [](const Track& t) { return t.note_item; }));
+  const std::size_t lines = chart.tracks.size() - marks;
+  QXYSeries* series;
+  QPen pen;
+  if (spec.marks) {
+    auto* scatter = new QScatterSeries();
+    scatter->setMarkerShape(kMarkShapes[marks % 2]);
+    series = scatter;
+    pen = QPen(kMarkColours[marks % 2]);
+  } else {
+    series = new QLineSeries();
+    pen = QPen(kColours[lines % 3]);
+    if (lines == 1) pen.setStyle(Qt::DashLine);  // the second line shows where they coincide
+  }
   series->setName(spec.name);
-  QPen pen(kColours[chart.tracks.size() % 3]);
-  if (chart.tracks.size() == 1) pen.setStyle(Qt::DashLine);  // the second line shows where they coincide
   series->setPen(pen);
   series->setColor(pen.color());
   chart.view->chart()->addSeries(series);
   series->attachAxis(chart.x);
   series->attachAxis(chart.y);
-  chart.tracks.push_back({spec.key, {series}, {}, {}, nullptr});
+  chart.tracks.push_back({spec.key, {series}, {}, nullptr});
   if (!spec.marks) return;
-  auto* note = new QGraphicsSimpleTextItem(chart.view->chart());  // beside the last mark
-  note->hide();
+  // Its note beside its last mark, in its colour on a light ground over the lines, above the series.
+  auto* ground = new QGraphicsRectItem(chart.view->chart());
+  ground->setBrush(kNoteGround);
+  ground->setPen(Qt::NoPen);
+  ground->setZValue(kNoteZ);
+  ground->hide();
+  auto* note = new QGraphicsSimpleTextItem(ground);
+  note->setBrush(pen.color().darker(kNoteDarker));
+  note->setPos(kNotePad, kNotePad);
+  chart.tracks.back().note_ground = ground;
   chart.tracks.back().note_item = note;
-  connect(chart.view->chart(), &QChart::plotAreaChanged, this, [this] { placeNotes(); });
+  if (marks == 0) connect(chart.view->chart(), &QChart::plotAreaChanged, this, [this] { placeNotes(); });
 }
 
 // Fonts, pens and sizes for where the chart is: the panel's tab or the projector window.
@@ -338,92 +399,117 @@ void BodyPlots::energies(double t, double total, std::optional<double> kinetic) 
 bool BodyPlots::recording() const { return isVisible() || window_->isVisible(); }
 
 bool BodyPlots::take(double t) {
-  if (!recording() || charts_.empty() || t <= origin_) return false;
-  trim(t);
-  return true;
+  if (t <= origin_) return false;  // from before the run's start (a reset's)
+  newest_ = std::max(newest_, t);
+  trim();
+  return recording() && !charts_.empty();
 }
 
-// Whether the body moved farther since its last state than its speed could take it: a restart (a lap).
-bool BodyPlots::restarted(double t, double x, double v) {
-  const bool jumped = have_last_ && std::abs(x - last_x_) >
-                                        std::max(std::abs(v), std::abs(last_v_)) * (t - last_t_) + kJumpSlack;
-  have_last_ = true;
-  last_t_ = t;
-  last_x_ = x;
-  last_v_ = v;
-  if (jumped) ++line_;
-  return jumped;
-}
-
-// A reset or a new config (anyone's) puts the bodies back at their start: what came up to it goes (a paused
-// node's last state has its t), and the t axis counts from it. t never goes back, so the states after it
-// stay; an old one (the latched topic's last command) takes nothing but gives the axis its start.
-void BodyPlots::onCommand(const Command& command) {
-  if (command.kind != "reset" && command.kind != "config") return;
-  origin_ = std::max(origin_, command.t);
-  // A config's world has its g on a line of its own (config_writer writes every world key).
-  const std::size_t at = command.yaml.find("gravity:");
-  if (command.kind == "config" && at != std::string::npos && (at == 0 || command.yaml[at - 1] == '\n'))
-    gravity_ = std::strtod(command.yaml.c_str() + at + 8, nullptr);
-  for (auto& chart : charts_) {
-    for (auto& track : chart.tracks) {
-      while (!track.points.empty() && track.points.front().t <= command.t) track.points.pop_front();
+// Each event once, in time order. One of the chosen body marks or restarts it; a restart with cause reset or
+// config (every body's, at one instant) begins a run.
+void BodyPlots::addEvents(const std::vector<Event>& events) {
+  bool placed = false;
+  for (const Event& event : events) {
+    if (event.t < origin_) continue;  // of the run before (a late arrival)
+    const auto after = std::upper_bound(events_.begin(), events_.end(), event.t,
+                                        [](double t, const Event& e) { return t < e.t; });
+    bool seen = false;
+    for (auto at = after; at != events_.begin() && std::prev(at)->t == event.t; --at)
+      seen = seen || sameEvent(*std::prev(at), event);
+    if (seen) continue;
+    events_.insert(after, event);
+    newest_ = std::max(newest_, event.t);
+    placed = placed || event.body == body_;
+    if (startsRun(event) && event.t > origin_) {
+      startRun(event.t);
+      placed = true;
     }
   }
-  forget();
+  trim();
+  if (placed) placeEvents();
+}
+
+// Its points go (a paused node's last state has the reset's t), and so do the events before it. t never goes
+// back, so the states after it stay; a late one from before takes nothing (take).
+void BodyPlots::startRun(double t) {
+  origin_ = t;
+  for (auto& chart : charts_) {
+    for (auto& track : chart.tracks) {
+      while (!track.points.empty() && track.points.front().t <= t) track.points.pop_front();
+    }
+  }
+  const auto first =
+      std::lower_bound(events_.begin(), events_.end(), t, [](const Event& e, double at) { return e.t < at; });
+  events_.erase(events_.begin(), first);
+  dirty_ = true;
+}
+
+// The chosen body's type marks what it draws of its events; its restarts are where a new line starts.
+void BodyPlots::placeEvents() {
+  for (auto& chart : charts_) {
+    for (auto& track : chart.tracks) {
+      if (track.note_item) track.points.clear();
+    }
+  }
+  restarts_.clear();
+  dirty_ = true;
+  if (!type_ || charts_.empty()) return;  // no body, or its charts not built yet
+  for (const Event& event : events_) {
+    if (event.body != body_) continue;
+    if (eventRole(event) == EventRole::Restart) restarts_.push_back(event.t);
+    type_->plotEvent(event, *this);
+  }
 }
 
 void BodyPlots::append(std::size_t chart, std::size_t track, double t, double value) {
-  charts_.at(chart).tracks.at(track).points.push_back({t, value, line_});
+  charts_.at(chart).tracks.at(track).points.push_back({t, value});
   dirty_ = true;
 }
 
 void BodyPlots::mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) {
-  append(chart, track, t, value);
-  charts_[chart].tracks[track].note = note;
+  charts_.at(chart).tracks.at(track).points.push_back({t, value, note});
+  dirty_ = true;
 }
 
-// Only the last kPlotWindow seconds are kept.
-void BodyPlots::trim(double t) {
+// Only the last kPlotWindow seconds are kept, of the points and of the events.
+void BodyPlots::trim() {
+  const double cutoff = newest_ - kPlotWindow;
   for (auto& chart : charts_) {
     for (auto& track : chart.tracks) {
-      while (!track.points.empty() && track.points.front().t < t - kPlotWindow) track.points.pop_front();
-      if (track.points.empty()) track.note.clear();  // its mark went out of the window
+      while (!track.points.empty() && track.points.front().t < cutoff) track.points.pop_front();
     }
   }
+  const auto first = std::lower_bound(events_.begin(), events_.end(), cutoff,
+                                      [](const Event& e, double at) { return e.t < at; });
+  events_.erase(events_.begin(), first);
+  while (!restarts_.empty() && restarts_.front() < cutoff) restarts_.erase(restarts_.begin());
 }
 
+// The lines start afresh; the marks of the window come back from the kept events.
 void BodyPlots::clear() {
   for (auto& chart : charts_) {
     for (auto& track : chart.tracks) track.points.clear();
   }
-  forget();
+  placeEvents();
 }
 
-// No line under way, no note, no phase of the body's motion.
-void BodyPlots::forget() {
-  for (auto& chart : charts_) {
-    for (auto& track : chart.tracks) track.note.clear();
-  }
-  have_last_ = false;
-  if (type_) type_->forget();
-  dirty_ = true;
-}
-
-// Shown again after being hidden: nothing was recorded meanwhile, so the charts start afresh.
+// Shown again after being hidden: nothing was recorded meanwhile, so the lines start afresh.
 void BodyPlots::showEvent(QShowEvent* event) {
   QWidget::showEvent(event);
   if (!window_->isVisible()) clear();
 }
 
-// A line series per line (the points between two restarts), all with the first one's pen and one legend
-// entry; a scatter series takes every point.
+// A line series per line (the points between two of the body's restarts: a state at a restart's instant is
+// the new line's), all with the first one's pen and one legend entry; a scatter series takes every point.
 void BodyPlots::drawTrack(Chart& chart, Track& track) {
   std::vector<QVector<QPointF>> lines(1);
   const bool scatter = qobject_cast<QScatterSeries*>(track.series.front()) != nullptr;
   for (std::size_t i = 0; i < track.points.size(); ++i) {
     const Point& p = track.points[i];
-    if (!scatter && i > 0 && p.line != track.points[i - 1].line) lines.emplace_back();
+    if (!scatter && i > 0) {
+      const auto restart = std::upper_bound(restarts_.begin(), restarts_.end(), track.points[i - 1].t);
+      if (restart != restarts_.end() && *restart <= p.t) lines.emplace_back();
+    }
     lines.back().append(QPointF(p.t - origin_, p.value));
   }
   while (track.series.size() < lines.size()) {
@@ -474,23 +560,41 @@ void BodyPlots::redraw() {
   placeNotes();
 }
 
-// Each note beside its last mark (to its left when the mark is in the right half of the chart).
+// Each note beside its track's last mark: to its right, or to its left when the mark is in the right half of
+// the chart; under it, or over it when the mark is in the lower half; moved on that way clear of the notes
+// placed before it on its chart, and sideways into the plot area where it fits.
 void BodyPlots::placeNotes() {
   for (const Chart& chart : charts_) {
+    QChart* drawn = chart.view->chart();
+    const QRectF area = drawn->plotArea();
+    std::vector<QRectF> placed;
     for (const Track& marks : chart.tracks) {
       if (!marks.note_item) continue;
-      if (marks.note.isEmpty() || marks.points.empty()) {
-        marks.note_item->hide();
+      if (marks.points.empty() || marks.points.back().note.isEmpty()) {
+        marks.note_ground->hide();
         continue;
       }
-      QChart* drawn = chart.view->chart();
       const Point& mark = marks.points.back();
       const QPointF at = drawn->mapToPosition(QPointF(mark.t - origin_, mark.value), marks.series.front());
-      marks.note_item->setText(marks.note);
-      const QRectF box = marks.note_item->boundingRect();
-      const bool right_half = at.x() > drawn->plotArea().center().x();
-      marks.note_item->setPos(right_half ? at.x() - box.width() - 14 : at.x() + 14, at.y() + 10);
-      marks.note_item->show();
+      marks.note_item->setText(mark.note);
+      QRectF box = marks.note_item->boundingRect().adjusted(0, 0, 2 * kNotePad, 2 * kNotePad);
+      const bool left = at.x() > area.center().x(), up = at.y() > area.center().y();
+      box.moveLeft(left ? at.x() - box.width() - kNoteAside : at.x() + kNoteAside);
+      if (box.width() <= area.width())
+        box.moveLeft(std::clamp(box.left(), area.left(), area.right() - box.width()));
+      box.moveTop(up ? at.y() - kNoteBelow - box.height() : at.y() + kNoteBelow);
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (const QRectF& other : placed) {
+          if (!box.intersects(other)) continue;
+          box.moveTop(up ? other.top() - kNoteGap - box.height() : other.bottom() + kNoteGap);
+          moved = true;
+        }
+      }
+      placed.push_back(box);
+      marks.note_ground->setRect(0, 0, box.width(), box.height());
+      marks.note_ground->setPos(box.topLeft());
+      marks.note_ground->show();
     }
   }
 }
@@ -515,8 +619,10 @@ std::string BodyPlots::layoutLines() const {
       const auto drawn = [](const QXYSeries* s) { return s->count() > 0; };
       out << "plot." << track.key << ".lines 0 0 0 0 1 "
           << std::count_if(track.series.begin(), track.series.end(), drawn) << '\n';
-      if (track.note_item)
-        out << "plot." << track.key << ".note 0 0 0 0 1 " << track.note.toStdString() << '\n';
+      if (track.note_item) {
+        out << "plot." << track.key << ".note 0 0 0 0 1 "
+            << (track.points.empty() ? std::string() : track.points.back().note.toStdString()) << '\n';
+      }
     }
   }
   return out.str();

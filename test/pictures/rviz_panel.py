@@ -17,7 +17,11 @@ rviz/sim.rviz on config/demo.yaml, under Xvfb (test/pictures/rviz_screenshot.sh 
 - Spawn with a typed name and a chosen shape adds that body to the node's world (~get_config) and its
   section to the panel; a spawn under a taken name is refused and adds nothing; the new body's Delete
   takes it out of the world and its section out of the panel; a block spawned from the same list shows its
-  motion and its critical angle atan(mu_s) with its verdict.
+  motion and its critical angle atan(mu_s) with its verdict;
+- the Plots tab: the last point of each series is the test's own state; after a Reset the bowler's
+  slip-to-roll and finish marks are the node's events (~get_events), at their instants and speeds, with
+  their notes (the instant since the Reset; the lap time and the closed form's), the first slip-to-roll at
+  the closed form's instant to rounding; its lines part at its restarts.
 Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every check passes, 1 otherwise;
 writes OUT (a screenshot at the end) and OUT's stem + ".txt" (the findings)."""
 import argparse
@@ -210,7 +214,7 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     from dynamic_reconfigure.msg import Config as ReconfigureConfig
     from rigid_body_sim.msg import RodState, RollerState
     from std_msgs.msg import Bool
-    from rigid_body_sim.srv import GetConfig, Step
+    from rigid_body_sim.srv import GetConfig, GetEvents, Step
     from rosgraph_msgs.msg import Log
 
     start = time.monotonic()
@@ -416,17 +420,19 @@ def run(args: argparse.Namespace, panel: Panel, launch: Any, findings: Findings)
     wait("the panel to report the crate's delete", lambda: panel.text("status") == "deleted 'crate'")
 
     # --- the Plots tab: the rod's ends after a Step, then the bowler from a Reset to past its slip-to-roll
-    check_plots(Plots(panel, wait, paused, probe, rods, bowlers), config, world_bodies()["bowler"], findings)
+    get_events = rospy.ServiceProxy("/sim/get_events", GetEvents)
+    check_plots(Plots(panel, wait, paused, probe, rods, bowlers, lambda: list(get_events().events)), config,
+                world_bodies()["bowler"], findings)
 
 
 class Plots:
     """The Plots tab's series as the panel writes them ("plot.<series>": count, then the last t and value),
-    the test's own states, and the waits and clicks of run()."""
+    the test's own states, the node's events of the run (~get_events), and the waits and clicks of run()."""
 
     def __init__(self, panel: Panel, wait: Callable[..., None], paused: Callable[[], bool], probe: List[Any],
-                 rods: List[Any], bowlers: List[Any]) -> None:
+                 rods: List[Any], bowlers: List[Any], events: Callable[[], List[Any]]) -> None:
         self.panel, self.wait, self.paused, self.probe = panel, wait, paused, probe
-        self.rods, self.bowlers = rods, bowlers
+        self.rods, self.bowlers, self.events = rods, bowlers, events
 
     def last(self, series: str) -> Tuple[int, float, float]:
         parts = self.panel.text(f"plot.{series}").split()
@@ -448,9 +454,9 @@ class Plots:
 
 
 def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], findings: Findings) -> None:
-    """The last point of each series is the test's own state at that t, with the same values; the
-    slip-to-roll marks are the bowler's mode changes in its states after a Reset, the first at the closed
-    form's time."""
+    """The last point of each series is the test's own state at that t, with the same values; after a Reset
+    the bowler's marks are its events (the node's ~get_events), the first slip-to-roll at the closed form's
+    instant."""
     panel = plots.panel
     panel.click("tab.Plots")
     plots.wait("the Plots tab", lambda: panel.in_sight("plot_body"))
@@ -472,7 +478,9 @@ def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], fi
     panel.click("reset")
     plots.wait("Reset done", lambda: panel.text("status") == "reset")
     panel.click("run")
-    plots.wait("the slip-to-roll mark", lambda: plots.last("slip_to_roll")[0] > 0)
+    # The marks of the laps before the Reset go with it: wait for those after it.
+    plots.wait("the slip-to-roll mark after the Reset", lambda: plots.last("slip_to_roll")[1] > t_reset)
+    plots.wait("the finish mark after the Reset", lambda: plots.last("finished")[1] > t_reset)
     t_end = plots.pause()
     plots.wait("the plot at the paused t", lambda: plots.last("friction")[1] == t_end)
     states = [m for m in plots.bowlers if t_reset < m.t <= t_end]
@@ -485,17 +493,69 @@ def check_plots(plots: Plots, config: Dict[str, Any], bowler: Dict[str, Any], fi
     findings.check(f"Plots, bowler: {len(states)} states since the Reset at t = {t_reset:.3f} s; each series "
                    f"has them all, and its last point is the state's at t = {t_end:.3f} s: {got}",
                    all(got[s][0] == len(states) and got[s][1] == t_end and same(s, got[s][2], want[s]) for s in want))
-    rolls = [b.t for a, b in zip(states, states[1:]) if a.mode == "slipping" and b.mode == "rolling"]
-    mark = plots.last("slip_to_roll")
+
+    # The node's events since the Reset (its run, paused at t_end): the marks are theirs.
+    run = [e for e in plots.events() if e.body == "bowler"]
+    resets = [e.t for e in run if e.kind == "lap_restarted" and event_value(e.values, "cause") == "reset"]
+    findings.check(f"  the node's run begins with the bowler's restart of cause reset at t = {t_reset:.3f} s "
+                   f"({resets})", resets == [t_reset])
     closed = closed_form_slip_to_roll(bowler, float(config["gravity"]))
-    period = 1 / float(config["publish_rate"]) + 1 / float(config["rate"])
-    # The bowler grips again every 1.75 s: a pause that comes late (a loaded machine) finds more than one mark.
-    findings.check(f"  the slip-to-roll marks ({mark[0]}, the last at t = {mark[1]:.3f} s) are the states' mode "
-                   f"changes {rolls}", rolls != [] and mark[0] == len(rolls) and mark[1] == rolls[-1]
-                   and mark[2] == next(m.v for m in states if m.t == mark[1]))
-    first = rolls[0] if rolls else math.nan
-    findings.check(f"  the first {first - t_reset:.3f} s after the Reset: the closed form's {closed:.4f} s, to the "
-                   f"next state ({period:.3f} s)", closed <= first - t_reset <= closed + period)
+    slips = [e for e in run if e.kind == "slip_to_roll"]
+    finishes = [e for e in run if e.kind == "finished"]
+    if not (slips and finishes):
+        findings.check(f"  a slip-to-roll and a finish since the Reset ({len(slips)}, {len(finishes)})", False)
+        return
+    plots.wait("the panel's marks up to the node's last events", lambda: plots.last("slip_to_roll")[1] >= slips[-1].t
+               and plots.last("finished")[1] >= finishes[-1].t)
+    check_marks(plots.panel, "slip_to_roll", slips, [f"slip \u2192 roll at {e.t - t_reset:.3f} s" for e in slips],
+                findings)
+    first = slips[0].t - t_reset
+    findings.check(f"  the first slip-to-roll {first:.9f} s after the Reset: the closed form's {closed:.9f} s to "
+                   f"rounding (1e-9 s)", abs(first - closed) <= 1e-9)
+    check_marks(plots.panel, "finished", finishes, [finish_note(e) for e in finishes], findings)
+    lap, closed_lap = event_value(finishes[0].values, "lap_time"), event_value(finishes[0].values, "closed_form")
+    findings.check(f"  the first finish after the Reset: lap time {lap!r} s, its closed form {closed_lap!r} s, to "
+                   f"rounding (1e-9 s)", closed_lap is not None and abs(lap - closed_lap) <= 1e-9)
+    # Its lines part where it restarts (off the end of its lane): one more line per restart among the states.
+    restarts = [e.t for e in run if e.kind == "lap_restarted" and states[0].t < e.t <= t_end]
+    lines = {series: plots.panel.text(f"plot.{series}.lines") for series in ("v", "friction", "energy")}
+    findings.check(f"  its lines part at its restarts {restarts}: lines drawn {lines}",
+                   all(n == str(1 + len(restarts)) for n in lines.values()))
+
+
+def event_value(fields: List[Any], name: str) -> Any:
+    """The number (or the text, for a text) of an event's field named `name`; None if it has none."""
+    for field in fields:
+        if field.name == name:
+            return field.text if field.text else field.number
+    return None
+
+
+def ordinal(place: int) -> str:
+    """1st, 2nd, 3rd, 4th ... 11th, 12th, 13th ... 21st."""
+    teen = place % 100 // 10 == 1
+    return f"{place}" + ("th" if teen else {1: "st", 2: "nd", 3: "rd"}.get(place % 10, "th"))
+
+
+def finish_note(event: Any) -> str:
+    """A finish's note from its values: its place in a race, its lap time, then its closed form's."""
+    place, lap = event_value(event.values, "place"), event_value(event.values, "lap_time")
+    closed = event_value(event.values, "closed_form")
+    note = (ordinal(int(place)) if place is not None else "finished") + f" in {lap:.4f} s"
+    return note + (f" (closed form {closed:.4f} s)" if closed is not None else "")
+
+
+def check_marks(panel: Panel, series: str, events: List[Any], notes: List[str], findings: Findings) -> None:
+    """A track of marks as the panel writes it: as many as `events`, the last at the last one's instant and
+    speed (its state's v, to the bit), its note the last of `notes`."""
+    parts = panel.text(f"plot.{series}").split()
+    count, t, v = (int(parts[0]), float(parts[1]), float(parts[2])) if len(parts) == 3 else (0, math.nan, math.nan)
+    note = panel.text(f"plot.{series}.note")
+    last = events[-1]
+    want_v = event_value(last.state, "v")
+    findings.check(f"  {series} marks: {count}, the last at t = {t!r} s, v = {v!r} m/s, {note!r}; the node's "
+                   f"events: {len(events)}, the last at {last.t!r} s, v = {want_v!r} m/s, {notes[-1]!r}",
+                   count == len(events) and t == last.t and v == want_v and note == notes[-1])
 
 
 def same(series: str, plotted: float, want: float) -> bool:

@@ -5,10 +5,13 @@ then on config/race_below.yaml's sphere.
 - Projector view opens a window of the screen's size with every chart of the body, each at least 600 x 300 px,
   its title, axis titles and tick labels at least 14 px; the y ticks distinct numbers, none "-0";
 - after a Reset (~reset) every chart's t axis starts at 0 again, its points only the states since;
-- the slip-to-roll note gives the mark's time since the Reset and the closed form's, the closed form's instant
-  from the bowler's initial conditions (rviz_panel.py's closed_form_slip_to_roll) to the millisecond shown;
+- the slip-to-roll and finish marks are the node's events (~get_events) at their instants and speeds, with
+  their notes (the instant since the Reset; the lap time beside the closed form's); the first slip-to-roll
+  at the closed form's instant from the bowler's initial conditions (rviz_panel.py's
+  closed_form_slip_to_roll) to rounding;
 - Save PNG writes the charts (to RBS_PLOTS_PNG) as a PNG of the size the charts have in the window;
-- in a race, each new lap starts a new line of each series: as many lines as the laps in its points.
+- in a race, each new lap starts a new line of each series, at the racer's restarts (its events: where its
+  states jump back), and its finishes are marked with their places and times.
 Widgets are found through the panel's RBS_PANEL_LAYOUT file. Exit 0 when every check passes, 1 otherwise;
 writes OUT (the window at the end, the bowler), OUT's stem + "_race.png" (the race), OUT's stem + "_saved.png"
 (Save PNG's) and OUT's stem + ".txt" (the findings). Each launch runs in a process of its own."""
@@ -24,14 +27,15 @@ from typing import Any, Dict, List, Tuple
 from rigid_body_sim.sim_tools import load_config
 
 import rviz_screenshot as shot
-from rviz_panel import HERE, Findings, Panel, closed_form_slip_to_roll, run_launched, xdotool
+from rviz_panel import (HERE, Findings, Panel, check_marks, closed_form_slip_to_roll, event_value, finish_note,
+                        run_launched, xdotool)
 
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
 
 MIN_CHART = (600, 300)  # px, each chart in the projector window
 MIN_TEXT_PX = 14
 NEGATIVE_ZERO = re.compile(r"-0(\.0*)?")
-NOTE = re.compile(r"slip \u2192 roll at (\S+) s \(closed form (\S+) s\)")
+PLOT_WINDOW = 10.0  # simulated s the charts keep (kPlotWindow)
 
 
 class Charts:
@@ -131,6 +135,12 @@ class Session:
                   shot.subscribed(master, "/rviz_plots_test", [f"/sim/{body}/state"]), 90.0)
         self.wait("the panel (its layout file)", lambda: "pause" in self.panel.widgets(), 90.0)
 
+    def events(self, body: str) -> List[Any]:
+        """The body's events of the node's run (since its start or its last reset), from ~get_events."""
+        import rospy
+        from rigid_body_sim.srv import GetEvents
+        return [e for e in rospy.ServiceProxy("/sim/get_events", GetEvents)().events if e.body == body]
+
     def call(self, service: str) -> Any:
         import rospy
         from std_srvs.srv import Empty
@@ -204,8 +214,8 @@ def check_bowler(session: Session, config: Dict[str, Any], findings: Findings) -
     session.call("reset")
     session.call("unpause")
     session.wait("the slip-to-roll mark after the Reset", lambda: session.charts.last("slip_to_roll")[1] > t_reset)
-    # A second of rolling after it: the picture shows both phases (the lap ends 1.2 s after the mark).
-    session.wait("1 s past it", lambda: session.charts.last("v")[1] > session.charts.last("slip_to_roll")[1] + 1)
+    # Its lap's end, 1.2 s after it: the picture shows both phases and the finish.
+    session.wait("the finish mark after the Reset", lambda: session.charts.last("finished")[1] > t_reset)
     t_end = session.pause("friction")
     after = [c["x"] for c in session.charts.charts()]
     since = t_end - t_reset
@@ -215,14 +225,21 @@ def check_bowler(session: Session, config: Dict[str, Any], findings: Findings) -
     counts = {series: session.charts.last(series)[0] for series in ("v", "minus_omega_r", "friction", "energy")}
     findings.check(f"  each series holds the {len(states)} states since the Reset, none before: {counts}",
                    all(count == len(states) for count in counts.values()))
-    mark = session.charts.last("slip_to_roll")
-    note = session.panel.text("plot.slip_to_roll.note")
-    found = NOTE.fullmatch(note)
-    closed = closed_form_slip_to_roll(config["bodies"]["bowler"], float(config["gravity"]))
-    findings.check(f"slip-to-roll note: {note!r}; the mark at {mark[1] - t_reset:.3f} s since the Reset, "
-                   f"the closed form {closed:.4f} s",
-                   found is not None and found.group(1) == f"{mark[1] - t_reset:.3f}"
-                   and found.group(2) == f"{closed:.3f}")
+    run = session.events("bowler")  # since the Reset
+    slips = [e for e in run if e.kind == "slip_to_roll"]
+    finishes = [e for e in run if e.kind == "finished"]
+    if slips and finishes:
+        session.wait("the marks up to the node's last events", lambda: session.charts.last("slip_to_roll")[1]
+                     >= slips[-1].t and session.charts.last("finished")[1] >= finishes[-1].t)
+        check_marks(session.panel, "slip_to_roll", slips,
+                    [f"slip \u2192 roll at {e.t - t_reset:.3f} s" for e in slips], findings)
+        closed = closed_form_slip_to_roll(config["bodies"]["bowler"], float(config["gravity"]))
+        first = slips[0].t - t_reset
+        findings.check(f"  the first {first:.9f} s after the Reset: the closed form's {closed:.9f} s to rounding "
+                       f"(1e-9 s)", abs(first - closed) <= 1e-9)
+        check_marks(session.panel, "finished", finishes, [finish_note(e) for e in finishes], findings)
+    else:
+        findings.check(f"a slip-to-roll and a finish since the Reset ({len(slips)}, {len(finishes)})", False)
     check_window(session, findings)  # the ticks of a slipping-then-rolling run
     # Save PNG: the charts as the window shows them.
     path = os.environ["RBS_PLOTS_PNG"]
@@ -243,10 +260,22 @@ def check_race(session: Session, config: Dict[str, Any], findings: Findings) -> 
     t_end = session.pause("v")
     count = session.charts.last("v")[0]
     plotted = [m for m in session.states if m.t <= t_end][-count:]
-    laps = 1 + sum(1 for a, b in zip(plotted, plotted[1:]) if b.x < a.x - 1.0)
+    run = session.events("sphere")
+    restarts = [e.t for e in run if e.kind == "lap_restarted" and plotted[0].t < e.t <= t_end]
+    jumps = sum(1 for a, b in zip(plotted, plotted[1:]) if b.x < a.x - 1.0)
     lines = {series: session.charts.lines(series) for series in ("v", "minus_omega_r", "friction", "energy")}
-    findings.check(f"race: {laps} laps in the {count} states plotted up to t = {t_end:.3f} s; lines drawn {lines}",
-                   laps >= 2 and all(n == laps for n in lines.values()))
+    findings.check(f"race: {len(restarts)} restarts {restarts} among the {count} states plotted up to t = "
+                   f"{t_end:.3f} s ({jumps} jumps back); lines drawn {lines}",
+                   bool(restarts) and jumps == len(restarts) and all(n == 1 + len(restarts) for n in lines.values()))
+    finishes = [e for e in run if e.kind == "finished" and e.t >= t_end - PLOT_WINDOW]
+    if finishes:
+        session.wait("the finish marks up to the node's last", lambda: session.charts.last("finished")[1]
+                     >= finishes[-1].t)
+        check_marks(session.panel, "finished", finishes, [finish_note(e) for e in finishes], findings)
+        place = event_value(finishes[-1].values, "place")
+        findings.check(f"  a racer's finish gives its place: {place}", place is not None)
+    else:
+        findings.check("a finish of the sphere in the window", False)
     findings.check(f"  the t axis counts from the start: {session.charts.charts()[0]['x']}",
                    session.charts.charts()[0]["x"][1] >= t_end - 0.1)
 

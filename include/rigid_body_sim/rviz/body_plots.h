@@ -1,19 +1,22 @@
 // The SimPanel's Plots tab: live charts (QtCharts) of ONE body, chosen in a combo box, over the last
 // kPlotWindow simulated seconds, from the body's state topic: the charts of its type (rviz/body_type_rviz.h;
-// a roller's speeds with each slip-to-roll instant marked beside the closed form's, a rod's ends, a block's
-// speed) and, for every body, its energy: the total (the state's `energy`), the kinetic (the core's, from
-// the state and the body's parameters) and the potential (their difference). The parameters come from the
-// body's reconfigure server, g from the node's ~gravity parameter or a newer config command.
-// Time: the t axis is simulated time since the last reset or config (the node's ~commands), whose points go:
-// the node's t goes on through a reset, a user's charts start afresh at 0. A body restarted within a run (a
-// lap: the end of its slope or floor, a race's new lap) jumps back: a new line starts there, never a segment
-// across the jump. Nothing is recorded or drawn while neither the tab nor the projector window shows (the
-// charts start afresh when one shows again), and nothing comes while the node is paused.
-// The projector window (the tab's "Projector view") holds the same charts, all at once, in a grid with fonts
-// in pixels (legible from the back of a room), and saves them as one PNG ("Save PNG": a file dialog, or the
-// file RBS_PLOTS_PNG names, for tests); closing it puts the charts back in the tab.
+// a roller's speeds, a rod's ends, a block's speed) and, for every body, its energy: the total (the state's
+// `energy`), the kinetic (the core's, from the state and the body's parameters) and the potential (their
+// difference). The parameters come from the body's reconfigure server.
+// Events: the node's ~events (and ~get_events when the panel finds the node, for what came before), kept for
+// the window. The body's type marks its own (a roller's slip-to-roll instants and finishes, each with its
+// note) at their instants; a restart of the body (its lap, a race's new lap, a reset) starts a new line
+// there, never a segment across it; a restart with cause reset or config (also on ~commands, for a recording
+// without events) begins a run: the t axis counts from it, and what came before goes (the node's t goes on
+// through a reset, a user's charts start afresh at 0). Nothing of the states is recorded or drawn while
+// neither the tab nor the projector window shows (the lines start afresh when one shows again; the marks of
+// the window come back from the kept events), and nothing comes while the node is paused. The projector
+// window (the tab's "Projector view") holds the same charts, all at once, in a grid with fonts in pixels
+// (legible from the back of a room), and saves them as one PNG ("Save PNG": a file dialog, or the file
+// RBS_PLOTS_PNG names, for tests); closing it puts the charts back in the tab.
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <memory>
@@ -25,6 +28,7 @@
 #include <QChart>
 #include <QChartView>
 #include <QComboBox>
+#include <QGraphicsRectItem>
 #include <QGraphicsSimpleTextItem>
 #include <QLabel>
 #include <QLineSeries>
@@ -38,7 +42,7 @@
 #include <dynamic_reconfigure/Config.h>
 #include <ros/ros.h>
 
-#include "rigid_body_sim/Command.h"
+#include "rigid_body_sim/Event.h"
 #include "rigid_body_sim/rviz/body_type_rviz.h"
 #include "rigid_body_sim/rviz/call_queue.h"
 
@@ -64,8 +68,10 @@ class BodyPlots : public QWidget, private PlotSink {
 
   explicit BodyPlots(CallQueue& calls, QWidget* parent = nullptr);
 
-  void setNode(const std::string& ns);                               // the node's namespace (its ~commands)
-  void setBodies(const std::map<std::string, std::string>& bodies);  // name -> state message type
+  void setNode(const std::string& ns);  // the node's namespace (its ~events, ~commands)
+  // The node's bodies: name -> state message type. Found again after none (the node found, or back): the
+  // run's events so far (~get_events).
+  void setBodies(const std::map<std::string, std::string>& bodies);
   void clear();
   // The body to show once it is there (an rviz config's "Plot Body"), and the one shown.
   void prefer(const std::string& body);
@@ -86,13 +92,13 @@ class BodyPlots : public QWidget, private PlotSink {
   struct Point {
     double t;
     double value;
-    int line;  // a new one after each restart within the run (a lap)
+    QString note = {};  // a mark's
   };
   struct Track {
     std::string key;                 // plot.<key> in the layout lines
     std::vector<QXYSeries*> series;  // a line series per line drawn, the first with the legend entry
     std::deque<Point> points;
-    QString note;  // marks': the last one's, beside it
+    QGraphicsRectItem* note_ground = nullptr;  // marks': the ground of the last one's note, beside it
     QGraphicsSimpleTextItem* note_item = nullptr;
   };
   struct Chart {
@@ -107,18 +113,18 @@ class BodyPlots : public QWidget, private PlotSink {
   void addTrack(Chart& chart, const TrackSpec& spec);
   void place();  // the charts in the projector window while it is open, else in the tab
   void style(Chart& chart, const Style& style);
-  void onCommand(const Command& command);
+  void fetchEvents();  // ~get_events: the run's events so far
+  void addEvents(const std::vector<Event>& events);
+  void startRun(double t);  // a reset or a new config at t: the t axis counts from it
+  void placeEvents();       // the chosen body's marks and restarts, from the kept events
   bool recording() const;
-  void forget();
   bool take(double t);  // whether a state at t is drawn; drops what is older than the window
-  // PlotSink: what the body's type draws of each state.
-  bool restarted(double t, double x, double v) override;
+  // PlotSink: what the body's type draws of each state and event.
   void append(std::size_t chart, std::size_t track, double t, double value) override;
   void mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) override;
   void energies(double t, double total, std::optional<double> kinetic) override;
   double origin() const override { return origin_; }
-  double gravity() const override { return gravity_; }
-  void trim(double t);
+  void trim();  // what is older than the window goes: points and kept events
   void redraw();
   void drawTrack(Chart& chart, Track& track);
   void placeNotes();
@@ -137,14 +143,14 @@ class BodyPlots : public QWidget, private PlotSink {
   QLabel* saved_;                       // where the PNG went
   std::unique_ptr<RvizBodyType> type_;  // the chosen body's
   std::vector<Chart> charts_;           // its type's, then the energy
-  double gravity_ = 0;                  // the world's; 0 until known (no closed form then)
+  std::vector<Event> events_;           // every body's of the run in the window, in time order, each once
+  std::vector<double> restarts_;        // the chosen body's restarts among them: where a new line starts
   double origin_ = 0;                   // t of the last reset or config: the t axis starts there
-  int line_ = 0;
-  bool have_last_ = false;  // the body's last state (t, x, v), to see a restart
-  double last_t_ = 0, last_x_ = 0, last_v_ = 0;
+  double newest_ = 0;                   // the latest t of a state or event: the window ends there
+  std::uint64_t found_ = 0;             // how many times the node was found (a get_events answer's)
   bool dirty_ = false;
   QTimer redraw_timer_;
-  ros::Subscriber state_, parameters_, commands_;
+  ros::Subscriber state_, parameters_, event_subscriber_, command_subscriber_;
 };
 
 }  // namespace rigid_body_sim

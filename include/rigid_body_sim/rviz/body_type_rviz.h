@@ -1,6 +1,7 @@
 // What each body type shows in the rviz panel, as its own file (src/rviz/types/<type>_rviz.cpp) defines it:
 // its charts on the Plots tab beside the energy chart every body has, what each of its states adds to them,
-// and the line its section shows. BodyPlots and BodySection show every body from these alone.
+// what each of its events (the node's ~events) marks on them, and the line its section shows. BodyPlots and
+// BodySection show every body from these alone: only a type's own file names its event kinds.
 #pragma once
 
 #include <cstddef>
@@ -15,12 +16,14 @@
 #include <dynamic_reconfigure/Config.h>
 #include <ros/ros.h>
 
+#include "rigid_body_sim/Event.h"
+#include "rigid_body_sim/core/event.h"
 #include "rigid_body_sim/ros/body_types_ros.h"
 
 namespace rigid_body_sim {
 
-// A line on a chart (plot.<key> in the panel's layout lines), or marks at instants with a note beside the
-// last one (plot.<key>.note).
+// A line on a chart (plot.<key> in the panel's layout lines), or marks at events' instants, each with its
+// note, the last one's shown beside it (plot.<key>.note).
 struct TrackSpec {
   std::string key;
   QString name;  // the legend's
@@ -33,21 +36,18 @@ struct ChartSpec {
   std::vector<TrackSpec> tracks;
 };
 
-// Where a body type's states go on the Plots tab: the charts its type lists (by their index and their
-// tracks'), then the energy chart every body has.
+// Where a body type's states and events go on the Plots tab: the charts its type lists (by their index and
+// their tracks'), then the energy chart every body has.
 class PlotSink {
  public:
   virtual ~PlotSink() = default;
-  // Whether the body moved farther since its last state than its speed could take it: a restart (a lap),
-  // where a new line begins.
-  virtual bool restarted(double t, double x, double v) = 0;
   virtual void append(std::size_t chart, std::size_t track, double t, double value) = 0;
+  // A mark at an event's instant t (a track of marks), with its note.
   virtual void mark(std::size_t chart, std::size_t track, double t, double value, const QString& note) = 0;
   // The energy chart: the total (the state's), the kinetic (none while the body's parameters are not
   // known, as in a replay) and the potential, what remains of the total.
   virtual void energies(double t, double total, std::optional<double> kinetic) = 0;
-  virtual double origin() const = 0;   // t of the last reset or config: the charts' t axis starts there
-  virtual double gravity() const = 0;  // the world's g; 0 while not known
+  virtual double origin() const = 0;  // t of the last reset or config: the charts' t axis starts there
 };
 
 // One body's face in the panel, by its type.
@@ -68,8 +68,9 @@ class RvizBodyType {
   virtual void setParameters(const dynamic_reconfigure::Config& config) = 0;
   // Its critical angle from its parameters, if it has one.
   virtual std::optional<Verdict> critical() const { return std::nullopt; }
-  // The charts start afresh (a reset, another body): no phase of its motion is under way.
-  virtual void forget() {}
+  // What an event of its body marks on its charts (sink.mark), by the event's kind; nothing for a kind it
+  // does not draw.
+  virtual void plotEvent(const Event& /*event*/, PlotSink& /*sink*/) const {}
   // Its states on `topic`: those `take` lets through to `sink` (a queue for every state between two of
   // rviz's spins), or the newest one's t and the line its section shows.
   virtual ros::Subscriber plot(ros::NodeHandle& nh, const std::string& topic,
@@ -130,5 +131,17 @@ inline std::optional<double> parameterOf(const dynamic_reconfigure::Config& conf
 
 // "E = 1.234 J (potential 0 with its centre <zero>)": every section's energy.
 QString energyText(double energy, const QString& zero);
+
+// What the world does with an event of this kind (core/event.h: a finish, a restart, or neither), from its
+// type's kinds; None for a type or kind it does not know.
+EventRole eventRole(const Event& event);
+
+// The number or the text named `name` among an event's fields (its state or its values), if it has one.
+std::optional<double> eventNumber(const std::vector<EventField>& fields, const std::string& name);
+std::optional<std::string> eventText(const std::vector<EventField>& fields, const std::string& name);
+
+// A finish's note from its values: "finished in 1.7492 s", in a race its place first ("2nd in 1.7492 s"),
+// then the closed form's time when the event gives it ("(closed form 1.7492 s)").
+QString finishNote(const Event& event);
 
 }  // namespace rigid_body_sim

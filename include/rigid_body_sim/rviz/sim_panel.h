@@ -4,7 +4,7 @@
 // serves. The node's name (sim: relative to rviz's namespace, as sim.launch's ns:= puts both in one) is a
 // setting saved in the .rviz file. During a replay of a recording (rosbag play of the node's topics, no node)
 // the panel follows the played states read-only, Pause / Run drive the player, and the end of the
-// recording is shown. A second tab, Plots (BodyPlots), charts one chosen body's states.
+// recording is shown. A second tab, Plots (BodyPlots), charts one chosen body's states and marks its events.
 #pragma once
 
 #include <cstdint>

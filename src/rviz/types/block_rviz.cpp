@@ -1,4 +1,5 @@
-// The block in the panel: its speed along the slope and the friction on it.
+// The block in the panel: its speed along the slope, each instant it came to rest and each finish marked
+// there from its event, and the friction on it.
 #include <cmath>
 #include <optional>
 
@@ -12,7 +13,9 @@ namespace {
 class BlockRviz : public RvizBodyTypeOf<BlockType> {
  public:
   std::vector<ChartSpec> charts() const override {
-    return {{"speed along the slope", "speed (m/s)", {{"v", "v"}}},
+    return {{"speed along the slope",
+             "speed (m/s)",
+             {{"v", "v"}, {"came_to_rest", "came to rest", true}, {"finished", "finished", true}}},
             {"friction on the block, along the slope", "F (N)", {{"friction", "friction"}}}};
   }
   QString potentialZero() const override { return "at the slope's top"; }
@@ -35,9 +38,20 @@ class BlockRviz : public RvizBodyTypeOf<BlockType> {
                    "a block at rest stays while tan(slope) <= mu_s"};
   }
 
+  // On the speed chart at v then: each instant it came to rest (since the reset, as the t axis counts) and
+  // each finish (its lap time, place and closed form).
+  void plotEvent(const Event& event, PlotSink& sink) const override {
+    const auto v = eventNumber(event.state, "v");
+    if (!v) return;
+    if (event.kind == BlockType::kEventKinds[kGripped].name) {
+      sink.mark(0, 1, event.t, *v, QString("came to rest at %1 s").arg(fixed(event.t - sink.origin(), 3)));
+    } else if (event.kind == BlockType::kEventKinds[kFinished].name) {
+      sink.mark(0, 2, event.t, *v, finishNote(event));
+    }
+  }
+
  protected:
   void plotState(const BlockState& state, PlotSink& sink) override {
-    sink.restarted(state.t, state.x, state.v);
     sink.append(0, 0, state.t, state.v);
     sink.append(1, 0, state.t, state.friction);
     const BlockInitial now{state.x, state.v};

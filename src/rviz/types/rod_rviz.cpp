@@ -1,4 +1,5 @@
-// The rod in the panel: the height of each end (where the floor's springs push) and whether one is down.
+// The rod in the panel: the height of each end (where the floor's springs push) and whether one is down. Its
+// events (an end's contact, a restart) mark nothing: a bounce shows in the heights.
 #include <cmath>
 
 #include "rigid_body_sim/core/rod.h"
@@ -25,7 +26,6 @@ class RodRviz : public RvizBodyTypeOf<RodType> {
 
  protected:
   void plotState(const RodState& state, PlotSink& sink) override {
-    sink.restarted(state.t, state.x, state.vx);
     if (!known_) {
       sink.energies(state.t, state.energy, std::nullopt);
       return;

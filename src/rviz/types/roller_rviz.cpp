@@ -1,5 +1,5 @@
-// A roller in the panel: v and -omega R on one chart (equal while it rolls), each slip-to-roll instant
-// marked beside the closed form's, and the friction force.
+// A roller in the panel: v and -omega R on one chart (equal while it rolls), each slip-to-roll instant and
+// each finish marked there from its event, and the friction force.
 #include <optional>
 
 #include "rigid_body_sim/core/roller.h"
@@ -14,7 +14,10 @@ class RollerRviz : public RvizBodyTypeOf<RollerType> {
   std::vector<ChartSpec> charts() const override {
     return {{"speeds (equal while rolling)",
              "speed (m/s)",
-             {{"v", "v"}, {"minus_omega_r", "\u2212\u03c9R"}, {"slip_to_roll", "slip \u2192 roll", true}}},
+             {{"v", "v"},
+              {"minus_omega_r", "\u2212\u03c9R"},
+              {"slip_to_roll", "slip \u2192 roll", true},
+              {"finished", "finished", true}}},
             {"friction on the body, along the slope", "F (N)", {{"friction", "friction"}}}};
   }
   QString potentialZero() const override { return "at the slope's top"; }
@@ -44,18 +47,24 @@ class RollerRviz : public RvizBodyTypeOf<RollerType> {
                                                  : "slips (slope " + slope + " above it)"),
                    "rolling holds while tan(slope) <= mu_s (1 + c) / c, with c = I / (M R^2)"};
   }
-  void forget() override {
-    last_mode_.clear();
-    closed_roll_.reset();
+  // On the speeds chart at v then: each slip-to-roll instant (since the reset, as the t axis counts) and
+  // each finish (its lap time, place and closed form).
+  void plotEvent(const Event& event, PlotSink& sink) const override {
+    const auto v = eventNumber(event.state, "v");
+    if (!v) return;
+    if (event.kind == RollerType::kEventKinds[kGripped].name) {
+      sink.mark(0, 2, event.t, *v,
+                QString("slip \u2192 roll at %1 s").arg(fixed(event.t - sink.origin(), 3)));
+    } else if (event.kind == RollerType::kEventKinds[kFinished].name) {
+      sink.mark(0, 3, event.t, *v, finishNote(event));
+    }
   }
 
  protected:
   // Rolling means v = -omega R (RollerState.msg): v and -omega R coincide then.
   void plotState(const RollerState& state, PlotSink& sink) override {
-    const bool restart = sink.restarted(state.t, state.x, state.v);
     sink.append(0, 0, state.t, state.v);
     if (known_) sink.append(0, 1, state.t, -state.omega * params_.radius);
-    slipToRoll(state, restart, sink);
     sink.append(1, 0, state.t, state.friction);
     const RollerInitial now{state.x, state.v, state.theta, state.omega};
     sink.energies(state.t, state.energy,
@@ -66,33 +75,8 @@ class RollerRviz : public RvizBodyTypeOf<RollerType> {
   }
 
  private:
-  // A slipping phase that begins (the first state, a restart, a rolling body that starts slipping) takes
-  // the closed form's instant of its end from that state; the first rolling state after it is marked, the
-  // two times beside the mark, since the reset as the t axis counts.
-  void slipToRoll(const RollerState& state, bool restart, PlotSink& sink) {
-    const bool slipping = state.mode == RollerState::MODE_SLIPPING;
-    if (slipping && (restart || last_mode_ != RollerState::MODE_SLIPPING)) {
-      closed_roll_.reset();
-      if (known_ && sink.gravity() > 0) {
-        RollerParams params = params_;
-        params.gravity = sink.gravity();
-        const RollerRun run =
-            closedFormRun(params, RollerInitial{state.x, state.v, state.theta, state.omega});
-        if (run.slip_to_roll) closed_roll_ = state.t + *run.slip_to_roll;
-      }
-    }
-    if (!restart && last_mode_ == RollerState::MODE_SLIPPING && state.mode == RollerState::MODE_ROLLING) {
-      QString note = QString("slip \u2192 roll at %1 s").arg(fixed(state.t - sink.origin(), 3));
-      if (closed_roll_) note += QString(" (closed form %1 s)").arg(fixed(*closed_roll_ - sink.origin(), 3));
-      sink.mark(0, 2, state.t, state.v, note);
-    }
-    last_mode_ = state.mode;
-  }
-
   RollerParams params_;
   bool known_ = false;
-  std::string last_mode_;
-  std::optional<double> closed_roll_;  // the closed form's slip-to-roll t of the slipping phase under way
 };
 
 }  // namespace
