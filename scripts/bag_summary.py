@@ -1,41 +1,20 @@
 #!/usr/bin/env python3
-"""Summary of a rigid_body_sim recording: messages per topic, slip-to-roll times, the rod's bounces and
-energy drift. The config gives each rod's length."""
+"""Summary of a rigid_body_sim recording: messages per topic; per body its states' span and energy, then a line
+per kind of its events (the bag's /sim/events) with their exact instants and what each adds: finish times and
+places, slip-to-roll, came to rest, a rod's contacts. Every body the bag holds is summarised, one spawned while
+it ran too; the config (optional) orders them and names those it has that the bag does not."""
 import argparse
 import sys
-from typing import Any, Callable, Dict, List, Tuple
+from typing import Any, Dict, List, Tuple
 
 import rosbag
 import yaml
-from rigid_body_sim.sim_tools import (BlockSpec, RodSpec, RollerSpec, body_of_state_topic, body_spec, load_config,
-                                      rod_end_below_floor)
+from rigid_body_sim import runs
+from rigid_body_sim.sim_tools import Event, body_of_state_topic, event_lines, events_namespace, load_config
 
 
-def roller_line(msgs: List[Any], _: RollerSpec) -> str:
-    rolls = [b.t for a, b in zip(msgs, msgs[1:]) if a.mode == "slipping" and b.mode == "rolling"]
-    sampling = f"sampled every {msgs[1].t - msgs[0].t:g} s" if len(msgs) > 1 else "a single sample"
-    return (", slip-to-roll seen at t = " + (", ".join(f"{t:g}" for t in rolls) or "never") +
-            f" ({sampling}); final mode {msgs[-1].mode}")
-
-
-def rod_line(msgs: List[Any], rod: RodSpec) -> str:
-    contacts = [rod_end_below_floor(m.y, m.theta, rod.length) for m in msgs]
-    bounces = sum(1 for a, b in zip(contacts, contacts[1:]) if b and not a)
-    drift = max(abs(m.energy - msgs[0].energy) for m in msgs) / abs(msgs[0].energy)
-    return f", {bounces} bounces seen, largest energy swing {100 * drift:.2f} %"
-
-
-def block_line(msgs: List[Any], _: BlockSpec) -> str:
-    return f"; final mode {msgs[-1].mode}"
-
-
-# What each body type's line adds, by its `type`.
-LINES: Dict[str, Callable[[List[Any], Any], str]] = {RodSpec.TYPE: rod_line, RollerSpec.TYPE: roller_line,
-                                                     BlockSpec.TYPE: block_line}
-
-
-def read_bag(path: str) -> Tuple[Dict[str, int], Dict[str, List[Any]]]:
-    """Messages per topic, and each body's states in order."""
+def read_bag(path: str) -> Tuple[Dict[str, int], Dict[str, List[Any]], List[Event]]:
+    """Messages per topic, each body's states in order, and the events."""
     counts: Dict[str, int] = {}
     states: Dict[str, List[Any]] = {}
     with rosbag.Bag(path) as bag:
@@ -44,7 +23,19 @@ def read_bag(path: str) -> Tuple[Dict[str, int], Dict[str, List[Any]]]:
             body = body_of_state_topic(topic)
             if body is not None:
                 states.setdefault(body, []).append(msg)
-    return counts, states
+    return counts, states, runs.read_bag_events(path, events_namespace(counts))
+
+
+def states_line(msgs: List[Any]) -> str:
+    """The span of a body's states, its energy first and last, and the texts of its last state (a mode)."""
+    if not msgs:
+        return "no states"
+    sampling = f"{len(msgs)} samples every {msgs[1].t - msgs[0].t:g} s" if len(msgs) > 1 else "a single sample"
+    energies = [m.energy for m in msgs]
+    texts = [f"final {name} {getattr(msgs[-1], name)}" for name, kind in zip(msgs[-1].__slots__, msgs[-1]._slot_types)
+             if kind == "string"]
+    return "; ".join([f"t {msgs[0].t:g} .. {msgs[-1].t:g} s ({sampling}), energy {energies[0]:.6g} -> "
+                      f"{energies[-1]:.6g} J (min {min(energies):.6g}, max {max(energies):.6g})", *texts])
 
 
 def reason(error: Exception) -> str:
@@ -55,26 +46,36 @@ def reason(error: Exception) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("bag", help="a bag of sim_node (sim.launch record:=true) or of simulate --bag")
-    parser.add_argument("config", help="the run's YAML config")
+    parser.add_argument("config", nargs="?", help="the run's YAML config: its bodies first, in its order")
     args = parser.parse_args()
     # A file that cannot be read is the caller's mistake: one line naming it, not a traceback.
+    configured: List[str] = []
+    if args.config:
+        try:
+            config = load_config(args.config)
+        except (OSError, yaml.YAMLError) as error:
+            print(f"bag_summary.py: config {args.config}: {reason(error)}", file=sys.stderr)
+            return 1
+        bodies = config.get("bodies") if isinstance(config, dict) else None
+        configured = list(bodies) if isinstance(bodies, dict) else []
     try:
-        config = load_config(args.config)
-    except (OSError, yaml.YAMLError) as error:
-        print(f"bag_summary.py: config {args.config}: {reason(error)}", file=sys.stderr)
-        return 1
-    try:
-        counts, states = read_bag(args.bag)
+        counts, states, events = read_bag(args.bag)
     except (OSError, rosbag.ROSBagException) as error:
         print(f"bag_summary.py: bag {args.bag}: {reason(error)}", file=sys.stderr)
         return 1
     print("messages per topic:")
     for topic in sorted(counts):
         print(f"  {topic:24s} {counts[topic]}")
-    for name, msgs in states.items():
-        spec = body_spec(config, name)
-        line = f"{name}: t {msgs[0].t:g} .. {msgs[-1].t:g} s, energy {msgs[0].energy:.6g} -> {msgs[-1].energy:.6g} J"
-        print(line + LINES[spec.TYPE](msgs, spec))
+    lines = event_lines(events)
+    # The config's bodies, then any other the bag holds (spawned while it ran), as they first appear.
+    for name in dict.fromkeys([*configured, *states, *lines]):
+        if name not in states and name not in lines:
+            print(f"{name}: in the config, nothing in the bag")
+            continue
+        spawned = " (not in the config)" if configured and name not in configured else ""
+        print(f"{name}: {states_line(states.get(name, []))}{spawned}")
+        for line in lines.get(name, []):
+            print(f"  {line}")
     return 0
 
 

@@ -4,8 +4,10 @@
     doc_figures.py SIMULATE [--write] [--work DIR]
 
 runs `simulate` on the documented configs (demo.yaml and incline.yaml for 10 s sampled at 1 kHz, the sweep
-of the text's random theta0 over 1001 rods of 10 s), computes every figure listed in FIGURES from them
-(with plot_run.py's own analysis) or from the closed forms, and compares each with the text of its doc.
+of the text's random theta0 over 1001 rods of 10 s, the lesson's race below the critical angles until its
+sphere is down), computes every figure listed in FIGURES from them (an instant, and the state then, from the
+core's events in the run's events.csv; a swing from the samples, with plot_run.py's own analysis) or from the
+closed forms the docs state as such, and compares each with the text of its doc.
 Without --write it prints one line per figure that differs and exits 1 (the `doc_figures` test); with
 --write it puts the computed figures into the docs (`make figures`). A figure that is no longer found in
 its doc fails as well: a reworded sentence must be reworded here too.
@@ -17,15 +19,17 @@ import re
 import subprocess
 import sys
 import tempfile
-from typing import Any, Callable, Dict, List, NamedTuple
+from typing import Any, Callable, Dict, List, NamedTuple, Tuple
 
 import numpy as np
-from rigid_body_sim.sim_tools import RodSpec, RollerSpec, body_spec, load_config
+from rigid_body_sim import runs as run_files
+from rigid_body_sim.sim_tools import Event, RodSpec, RollerSpec, body_spec, load_config, role
 
-from plot_run import finish_times, load_csv_folder, rod_energy_swing, slip_to_roll
+from plot_run import laps, load_csv_folder, rod_energy_swing
 
 PACKAGE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 THETA0_RODS = 1001  # theta0 = i 2 pi / 1000: theta0 + pi and pi - theta0 are on the grid too
+RACE_SECONDS = 2.1  # race_below.yaml's sphere is down at 2.04 s (docs/rviz.md); the other parts' bags need 0.02 s
 Runs = Dict[str, Any]
 
 
@@ -42,13 +46,14 @@ def run_simulate(simulate: str, args: List[str]) -> None:
 
 
 def runs(simulate: str, work: str) -> Runs:
-    """The documented runs: their CSV columns, the specs of their bodies, the sweep's rows."""
+    """The documented runs: their CSV columns, their events, the specs of their bodies, the sweep's rows."""
     out: Runs = {}
     for name, duration in (("demo", 10), ("incline", 10)):
         folder = os.path.join(work, name)
         config = os.path.join(PACKAGE, "config", name + ".yaml")
         run_simulate(simulate, [config, "--duration", str(duration), "--sample-rate", "1000", "--out-dir", folder])
         out[name] = load_csv_folder(folder)
+        out[name + "_events"] = run_files.read_events(folder)
         loaded = load_config(config)
         out[name + "_specs"] = {body: body_spec(loaded, body) for body in loaded["bodies"]}
     folder = os.path.join(work, "theta0")
@@ -57,10 +62,20 @@ def runs(simulate: str, work: str) -> Runs:
     out["sweep"] = np.genfromtxt(os.path.join(folder, "sweep.csv"), delimiter=",", names=True)
     for part in ("above", "below", "slip"):
         bag = os.path.join(work, f"race_{part}.bag")
-        run_simulate(simulate, [os.path.join(PACKAGE, "config", f"race_{part}.yaml"), "--duration", "0.02",
+        seconds = str(RACE_SECONDS if part == "below" else 0.02)
+        run_simulate(simulate, [os.path.join(PACKAGE, "config", f"race_{part}.yaml"), "--duration", seconds,
                                 "--out-dir", os.path.join(work, f"race_{part}"), "--bag", bag])
         out[f"lanes_{part}"] = lane_ys(bag)
+    out["race_below_events"] = run_files.read_events(os.path.join(work, "race_below"))
     return out
+
+
+def first_event(r: Runs, run: str, body: str, kind: str = "", of_role: str = "") -> Event:
+    """The first event of a body in a run, of a kind or of a role (a finish: its type's kind with that role)."""
+    for event in r[run + "_events"]:
+        if event["body"] == body and (not kind or event["kind"] == kind) and (not of_role or role(event) == of_role):
+            return event
+    sys.exit(f"doc_figures: the {run} run has no {kind or of_role} event of {body}")
 
 
 def lane_ys(bag: str) -> List[float]:
@@ -107,22 +122,17 @@ def degrees(radians: float) -> str:
 
 
 def race_row(r: Runs, body: str) -> List[str]:
-    """tan(phi_c), phi_c, the acceleration and the time down the slope (the run's, from plot_run)."""
+    """tan(phi_c), phi_c, the acceleration (closed forms) and the time down the slope (the run's first finish)."""
     p = spec(r, "incline", body)
     return [f"{p.tan_critical():.2f}", degrees(math.atan(p.tan_critical())), f"{acceleration(p):.3f}",
-            f"{finish_times(r['incline'][body], p.slope)[0]:.4f}"]
+            f"{first_event(r, 'incline', body, of_role='finish')['t']:.4f}"]
 
 
 # --- measured on the runs -------------------------------------------------------------------------------
-def first_lap(data: Dict[str, np.ndarray]) -> slice:
-    """The samples before the first restart (x jumps back to its start)."""
-    back = np.flatnonzero(np.diff(data["x"]) < -0.5)
-    return slice(0, int(back[0]) + 1 if len(back) else len(data["x"]))
-
-
 def energy_lost_on_first_lap(r: Runs, body: str) -> str:
-    e = r["demo"][body]["energy"][first_lap(r["demo"][body])]
-    return f"{e[0] - e[-1]:.3f}"
+    """From the start to the first finish: the energy of the state at that instant (the event's)."""
+    finish = first_event(r, "demo", body, of_role="finish")
+    return f"{r['demo'][body]['energy'][0] - finish['state']['energy']:.3f}"
 
 
 def bound(value: float) -> str:
@@ -136,45 +146,57 @@ def sphere_energy_bound(r: Runs) -> List[str]:
 
 
 def bowler_slip(r: Runs) -> List[str]:
-    d, p = r["demo"]["bowler"], spec(r, "demo", "bowler")
-    t_roll = slip_to_roll(d, p.radius)[0]["t"]
-    e = d["energy"]
-    at_roll = float(np.interp(t_roll, d["t"], e))
-    return [f"{e[0] - at_roll:.2f}", f"{e[0]:.3f}", f"{at_roll:.3f}"]
+    """The energy the bowler loses while it slips: from the start to its state at its first slip_to_roll."""
+    start = float(r["demo"]["bowler"]["energy"][0])
+    at_roll = float(first_event(r, "demo", "bowler", "slip_to_roll")["state"]["energy"])
+    return [f"{start - at_roll:.2f}", f"{start:.3f}", f"{at_roll:.3f}"]
 
 
-def bowler_closed_form(r: Runs) -> List[str]:
+def bowler_slip_speed(r: Runs) -> Tuple[float, float]:
+    """The closed form of the bowler's slip (docs/physics.md states it): u0 = v0 + omega0 R from its config and
+    du/dt = g sin(phi) - mu_d g cos(phi) (1 + c)/c."""
     p = spec(r, "demo", "bowler")
     config = load_config(os.path.join(PACKAGE, "config", "demo.yaml"))["bodies"]["bowler"]
     u0 = config["v0"] + config["omega0"] * p.radius
-    du_dt = G * math.sin(p.angle) - p.mu_d * G * math.cos(p.angle) * (1 + p.c) / p.c
+    return u0, G * math.sin(p.angle) - p.mu_d * G * math.cos(p.angle) * (1 + p.c) / p.c
+
+
+def bowler_closed_form(r: Runs) -> List[str]:
+    u0, du_dt = bowler_slip_speed(r)
     return [f"{u0:g}", f"{abs(du_dt):.4f}"]
 
 
-def bowler_rolls_at(r: Runs) -> str:
-    """The closed form's slip-to-roll instant of the demo's bowler, as the panel's note gives it (ms)."""
-    u0, rate = bowler_closed_form(r)
-    return f"{float(u0) / float(rate):.3f}"
+def bowler_rolls_at(r: Runs, decimals: int = 3) -> str:
+    """The closed form's slip-to-roll instant of the demo's bowler, u0 / |du/dt|, as the panel's note gives it:
+    the docs state the closed form itself, the truth the core's instant is checked against, so it stays a
+    formula."""
+    u0, du_dt = bowler_slip_speed(r)
+    return f"{u0 / abs(du_dt):.{decimals}f}"
+
+
+def rod_events(r: Runs) -> List[Event]:
+    return [event for event in r["demo_events"] if event["body"] == "rod"]
 
 
 def rod_first_lap(r: Runs) -> Dict[str, np.ndarray]:
-    """The demo rod's samples until it leaves its floor and restarts (the whole run: it bounces in place)."""
+    """The demo rod's samples until it leaves its floor and restarts (its first restart event; the whole run:
+    it bounces in place)."""
     d = r["demo"]["rod"]
-    lap = first_lap(d)
-    return {column: values[lap] for column, values in d.items()}
+    start, end = laps(d["t"], rod_events(r))[0]
+    return {column: values[start:end] for column, values in d.items()}
 
 
 def rod_swing(r: Runs) -> Dict[str, Any]:
     """The energy's swings inside the contacts of the rod's first lap, and its change over that lap."""
-    p = spec(r, "demo", "rod")
-    assert isinstance(p, RodSpec)
-    return rod_energy_swing(rod_first_lap(r), p.length)
+    assert isinstance(spec(r, "demo", "rod"), RodSpec)
+    lap = rod_first_lap(r)
+    return rod_energy_swing(lap, [event for event in rod_events(r) if event["t"] <= lap["t"][-1]])
 
 
 def free_flight_loss_rate(r: Runs) -> str:
-    """J/s lost in the rod's first free fall: from its start to the sample before its first contact."""
+    """J/s lost in the rod's first free fall: from its start to the sample before its first contact_began."""
     d = r["demo"]["rod"]
-    first_contact = int(np.flatnonzero(d["y"] < 0.5)[0])  # the centre at half a length: an end is down
+    first_contact = int(np.searchsorted(d["t"], first_event(r, "demo", "rod", "contact_began")["t"]))
     t, e = d["t"][:first_contact], d["energy"][:first_contact]
     return f"{(e[0] - e[-1]) / (t[-1] - t[0]):.3f}"
 
@@ -206,13 +228,13 @@ def sweep_figures(r: Runs) -> Dict[str, str]:
             "low_percent": f"{100 * drift.min() / e0:.1f}"}
 
 
-def race_time(_: Runs) -> float:
-    """The sphere's time down its slope in the lesson's race below the critical angles: rolling from rest,
-    sqrt(2 L / a) (the stepped race gives it to 1e-9 s: test_race)."""
-    config = load_config(os.path.join(PACKAGE, "config", "race_below.yaml"))
-    p = body_spec(config, "sphere")
-    assert isinstance(p, RollerSpec)
-    return math.sqrt(2 * p.slope / rolling_acceleration(p))
+def race_board(r: Runs) -> List[str]:
+    """What the sphere's board says at the end of the lesson's race below the critical angles: its place, its
+    lap time and the closed form's time, the values of its finished event."""
+    values = first_event(r, "race_below", "sphere", of_role="finish")["values"]
+    place = int(values["place"])
+    suffix = "th" if 10 <= place % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(place % 10, "th")
+    return [f"{place}{suffix}", f"{values['lap_time']:.4f}", f"{values['closed_form']:.4f}"]
 
 
 def settle_of_screenshot(_: Runs) -> List[str]:
@@ -226,16 +248,22 @@ def settle_of_screenshot(_: Runs) -> List[str]:
 FIGURES = [
     Figure("docs/physics.md", r"stepped to (\S+) s after the reset", settle_of_screenshot),
     Figure("docs/physics.md", r"u = v \+ ωR = 0, at t = (\S+) s \(green line\)",
-           lambda r: [f"{slip_to_roll(r['demo']['bowler'], spec(r, 'demo', 'bowler').radius)[0]['t']:.6f}"]),
+           lambda r: [f"{first_event(r, 'demo', 'bowler', 'slip_to_roll')['t']:.6f}"]),
     Figure("docs/physics.md", r"bottom, t = (\S+) s\)",
-           lambda r: [f"{finish_times(r['demo']['bowler'], spec(r, 'demo', 'bowler').slope)[0]:.4f}"]),
+           lambda r: [f"{first_event(r, 'demo', 'bowler', of_role='finish')['t']:.4f}"]),
     Figure("docs/physics.md", r"u0 / \|du/dt\| = (\S+) / (\S+) s", bowler_closed_form),
-    Figure("docs/rviz.md", r"`slip → roll at \S+ s \(closed form (\S+) s\)`", lambda r: [bowler_rolls_at(r)]),
+    Figure("docs/rviz.md", r"\((\S+) s after a Reset for `demo.yaml`'s\s+bowler",
+           lambda r: [f"{first_event(r, 'demo', 'bowler', 'slip_to_roll')['t']:.6f}"]),
+    Figure("docs/rviz.md", r"`slip → roll at (\S+) s`",
+           lambda r: [f"{first_event(r, 'demo', 'bowler', 'slip_to_roll')['t']:.3f}"]),
+    Figure("docs/rviz.md", r"`finished in (\S+) s \(closed form (\S+) s\)`",
+           lambda r: [f"{first_event(r, 'demo', 'bowler', of_role='finish')['values'][value]:.4f}"
+                      for value in ("lap_time", "closed_form")]),
+    Figure("docs/rviz.md", r"in a race its place first, `(\S+) in (\S+) s \(closed form (\S+) s\)`", race_board),
+    Figure("docs/testing.md", r"note with its place \(`(\S+) in (\S+) s \(closed form (\S+) s\)`\)", race_board),
     Figure("docs/testing.md", r"is at the closed form's instant after the Reset\s+\((\S+) s\) and its v then",
            lambda r: [bowler_rolls_at(r)]),
-    Figure("docs/testing.md", r"\(1 \+ c\)/c − g sin φ\) = (\S+) s", lambda r: [bowler_rolls_at(r)]),
-    Figure("docs/testing.md", r"the closed form's\s+instant after the Reset \(rviz_panel.py's formula, (\S+) s\)",
-           lambda r: [bowler_rolls_at(r)]),
+    Figure("docs/testing.md", r"\(1 \+ c\)/c − g sin φ\) = (\S+) s", lambda r: [bowler_rolls_at(r, 6)]),
     Figure("docs/physics.md", r"33\.0°, tan φ = (\S+),",
            lambda r: [f"{math.tan(spec(r, 'incline', 'sphere').angle):.3f}"]),
     Figure("docs/physics.md", r"\| sphere \| 2/5 \| 3\.5 μs = (\S+) \| (\S+)° \| rolls \| g sin φ/\(1\+c\) = (\S+) \| "
@@ -269,8 +297,7 @@ FIGURES = [
                       f"{rod_swing(r)['energy_last']:.4f}",
                       f"{100 * (rod_swing(r)['energy_last'] / rod_swing(r)['energy_first'] - 1):.2f}"
                       .replace("-", "−")]),
-    Figure("docs/rviz.md", r"`sphere: 1st, (\S+) s` over `\(closed form (\S+) s\)`",
-           lambda r: [f"{race_time(r):.4f}"] * 2),
+    Figure("docs/rviz.md", r"`sphere: (\S+), (\S+) s` over `\(closed form (\S+) s\)`", race_board),
     Figure("docs/rviz.md", r"\((\S+) m at 38°, (\S+) m at 20°, (\S+) m at 5\.7°\)",
            lambda r: [lane_spacing(r, part) for part in ("above", "below", "slip")]),
     Figure("docs/sweeps.md", r"lands on both ends at once\s+and bounces (\S+) times",

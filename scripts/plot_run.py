@@ -9,19 +9,23 @@ RUN is a .bag file, a folder of <body>.csv files, or a sweep (a sweep.csv, or th
 CONFIG is the run's config (it gives each rod's length, each roller's radius, shape and slope, and the
 bodies' types). Writes, for what the run holds:
   <prefix>rod.png      the path of each rod's centre with the rod drawn every 0.1 s (the text's Fig. 16.17)
-  <prefix>rollers.png  per roller: x(t), v(t) and -omega R(t), slipping shaded, slip-to-roll instants marked
+  <prefix>rollers.png  per roller: x(t), v(t) and -omega R(t), slipping shaded, its events marked (slip-to-roll,
+                       finish, ...: a line each)
   <prefix>race.png     rollers that share a slope (same angle and length), first lap: who is down first
-  <prefix>energy.png   energy against time of every body, rod contacts shaded
+  <prefix>energy.png   energy against time of every body, rod contacts shaded, every event marked at its energy
   <prefix>sweep_<body>.png  for a sweep, per body with a swept key: each outcome (what the sweep adds after
                        the final state: energy drift, bounces or slip-to-roll time; and a final state
                        that is a text: the mode) against the swept keys, as lines for one key and as heat
                        maps for two (the first key across, the second up); more than two are refused
-  <prefix>summary.json the numbers behind them (also printed): slip-to-roll instants, finish times,
-                       critical angles, the rods' energy swing in contact; for a sweep, per outcome the
-                       values drawn, their range and where it is reached, and how often each value occurs
-                       (whole numbers and texts; `empty`: variants without a value, e.g. never rolling)
-The slip-to-roll instant comes from the data alone: while a body slips its slip speed u = v + omega R
-is linear in time, so the line through the last two slipping samples crosses zero at the instant.
+  <prefix>summary.json the numbers behind them (also printed): each body's events (instants and values), the
+                       instants each figure marks, critical angles, the rods' energy swing in contact; for a
+                       sweep, per outcome the values drawn, their range and where it is reached, and how often
+                       each value occurs (whole numbers and texts; `empty`: variants without a value, e.g.
+                       never rolling)
+Every instant comes from the core's events (docs/events.md: a run's events.csv, a bag's /sim/events), none
+from the samples: the marks (a slip-to-roll, a finish, a block's stop: every kind but the restarts), the laps
+(cut at the events whose kind has the role restart), a rod's contacts (between contact_began and
+contact_ended). Marks need no word of a body type: their kinds and roles are the description's.
 The swept keys and the outcomes are read from the sweep's header (sim_tools.sweep_columns)."""
 import argparse
 import io
@@ -34,9 +38,11 @@ from typing import Any, Callable, Dict, List, Optional, Protocol, Set, Tuple
 
 import matplotlib
 import numpy as np
-from rigid_body_sim.sim_tools import (SWEEP_RESULT_LABELS, BlockSpec, BodySpec, Config, RodSpec, RollerSpec,
-                                      SweepColumns, body_spec, is_sweep_header, key_unit, labelled, load_config,
-                                      read_states, rod_end_below_floor, state_fields, sweep_columns)
+from rigid_body_sim import runs
+from rigid_body_sim.sim_tools import (EVENT_ROLES, SWEEP_RESULT_LABELS, BlockSpec, BodySpec, Config, Event, RodSpec,
+                                      RollerSpec, SweepColumns, body_spec, event_lines, is_sweep_header, key_unit,
+                                      labelled, load_config, read_bag_events, read_states, role, state_fields,
+                                      sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
@@ -45,19 +51,23 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 # rejects an alias of np.ndarray, which is untyped there.
 Columns = Dict[str, np.ndarray]  # one body's samples: column -> values
 Run = Dict[str, Columns]  # body -> its samples
+Events = Dict[str, List[Event]]  # body -> its events, in time order
 Summary = Dict[str, Dict[str, Any]]
 
 ROD_EVERY = 0.1  # s between drawn rods
 COLOURS = {"sphere": "tab:red", "cylinder": "tab:green", "ring": "tab:orange", "spherical_shell": "tab:purple"}
+# A colour and a marker per event kind, by the kind's place in its type's list (a roller's slip_to_roll green).
+KIND_COLOURS = ("tab:green", "tab:purple", "tab:brown", "tab:olive", "tab:cyan", "tab:pink")
+KIND_MARKERS = ("o", "s", "D", "^", "v", "P")
 
 
 # --- reading a run ---------------------------------------------------------------------------------
 def load_csv_folder(folder: str) -> Run:
     """{body: {column: array}} from simulate's <body>.csv files (their header starts with t; a sweep's
-    summary does not)."""
+    summary does not; events.csv is no body's)."""
     run: Run = {}
     for name in sorted(os.listdir(folder)):
-        if not name.endswith(".csv"):
+        if not name.endswith(".csv") or name == runs.EVENTS_FILE:
             continue
         with open(os.path.join(folder, name)) as f:
             header = f.readline().strip().split(",")
@@ -74,8 +84,18 @@ def load_bag(path: str) -> Run:
             for name, msgs in read_states(path).items()}
 
 
-def load_run(path: str, config: Config) -> Run:
-    """The run's bodies in the config's order."""
+def load_events(path: str) -> List[Event]:
+    """The run's events: a bag's /sim/events, or the events.csv simulate wrote beside the CSV files."""
+    if path.endswith(".bag"):
+        return read_bag_events(path)
+    if not os.path.isfile(os.path.join(path, runs.EVENTS_FILE)):
+        sys.exit(f"plot_run: no {runs.EVENTS_FILE} in {path}: its instants are the core's events (simulate "
+                 f"--out-dir writes the file beside the CSV files)")
+    return runs.read_events(path)
+
+
+def load_run(path: str, config: Config) -> Tuple[Run, Events]:
+    """The run's bodies in the config's order, and each one's events."""
     if not path.endswith(".bag") and not os.path.isdir(path):
         sys.exit(f"plot_run: {path} is not a .bag, a folder of CSV files or a sweep")
     run = load_bag(path) if path.endswith(".bag") else load_csv_folder(path)
@@ -84,90 +104,123 @@ def load_run(path: str, config: Config) -> Run:
     unknown = sorted(set(run) - set(config["bodies"]))
     if unknown:
         sys.exit(f"plot_run: bodies {', '.join(unknown)} of {path} are not in the config")
-    return {name: run[name] for name in config["bodies"] if name in run}
+    events: Events = {name: [] for name in config["bodies"] if name in run}
+    found = load_events(path)
+    if not found:
+        print(f"plot_run: warning: no events in {path}: nothing marked", file=sys.stderr)
+    for event in found:
+        if event["body"] in events:
+            events[event["body"]].append(event)
+    return {name: run[name] for name in events}, events
 
 
 # --- analysis --------------------------------------------------------------------------------------
-Event = Dict[str, Any]
+def laps(t: np.ndarray, happened: List[Event]) -> List[Tuple[int, int]]:
+    """Index ranges [start, end) of the samples between the body's restarts (its events whose kind has the role
+    restart); a sample at a restart's instant is the new lap's first: the state then is the restarted one."""
+    cuts = np.searchsorted(t, [e["t"] for e in happened if role(e) == "restart"], side="left")
+    edges = sorted({0, len(t), *map(int, cuts)})  # int per element: numpy 2's stubs and tolist()
+    return [(start, end) for start, end in zip(edges[:-1], edges[1:]) if end > start]
 
 
-def laps(t: np.ndarray, x: np.ndarray, v: np.ndarray) -> List[Tuple[int, int]]:
-    """Index ranges [start, end) between restarts: a restart is a jump of x that the speed cannot explain
-    (between events the acceleration is constant, so dx = (v0 + v1) dt / 2)."""
-    dx = np.diff(x)
-    expected = 0.5 * (v[:-1] + v[1:]) * np.diff(t)
-    jumps = np.flatnonzero(np.abs(dx - expected) > 0.05 + 0.25 * np.abs(expected)) + 1
-    # int per element, not jumps.tolist(): numpy 2's stubs do not know tolist() of a 1-D array is a list.
-    edges = [0, *map(int, jumps), len(t)]
-    return list(zip(edges[:-1], edges[1:]))
+def marked(happened: List[Event]) -> List[Event]:
+    """The events a figure marks: all but the restarts, which its lines show as a break."""
+    return [e for e in happened if role(e) != "restart"]
 
 
-def slip_to_roll(data: Columns, radius: float) -> List[Event]:
-    """Instants at which a slipping body starts to roll: for each mode change slipping -> rolling, the
-    zero of the line through the last two slipping samples of u = v + omega R (exact: u is linear while
-    slipping). With a single slipping sample, the first rolling sample's time (approximate)."""
-    t, mode = data["t"], data["mode"]
-    u = data["v"] + data["omega"] * radius
-    found = []
-    for start, end in laps(t, data["x"], data["v"]):
-        for i in range(start, end - 1):
-            if mode[i] != "slipping" or mode[i + 1] != "rolling":
-                continue
-            if i > start and mode[i - 1] == "slipping" and u[i] != u[i - 1]:
-                found.append({"t": float(t[i] - u[i] * (t[i] - t[i - 1]) / (u[i] - u[i - 1])), "exact": True,
-                              "last_slipping": float(t[i]), "first_rolling": float(t[i + 1])})
-            else:
-                found.append({"t": float(t[i + 1]), "exact": False,
-                              "last_slipping": float(t[i]), "first_rolling": float(t[i + 1])})
-    return found
+def kind_index(event: Event) -> int:
+    """The kind's place in its type's list (the description's; past its end for a kind it does not declare)."""
+    declared = list(EVENT_ROLES.get(event["type"], {}))
+    return declared.index(event["kind"]) if event["kind"] in declared else len(declared)
 
 
-def finish_times(data: Columns, slope: float) -> List[float]:
-    """For each lap that ends off the slope: when the centre crossed x = slope (or 0 going uphill),
-    from the last sample of the lap and its constant acceleration."""
-    t, x, v = data["t"], data["x"], data["v"]
-    times = []
-    for start, end in laps(t, x, v):
-        k = end - 1
-        if end == len(t) or k - start < 1:
-            continue  # the run ended on the slope
-        a = (v[k] - v[k - 1]) / (t[k] - t[k - 1])
-        target = slope if v[k] > 0 else 0.0
-        # x[k] + v s + a s^2 / 2 = target, the smallest s >= 0
-        roots = np.roots([0.5 * a, v[k], x[k] - target]) if abs(a) > 1e-12 else np.array([(target - x[k]) / v[k]])
-        s = min((r.real for r in np.atleast_1d(roots) if abs(r.imag) < 1e-12 and r.real >= -1e-12), default=None)
-        if s is not None:
-            times.append(float(t[k] + s))
-    return times
+def kind_style(event: Event) -> Tuple[str, str]:
+    """A kind's colour and marker, the same in every figure."""
+    i = kind_index(event)
+    return KIND_COLOURS[i % len(KIND_COLOURS)], KIND_MARKERS[i % len(KIND_MARKERS)]
+
+
+def record_marks(summary: Summary, figure: str, body: str, drawn: List[Event]) -> None:
+    """The instants a figure marked, by body and kind, for summary.json."""
+    kinds = summary["marks"].setdefault(figure, {}).setdefault(body, {})
+    for event in drawn:
+        kinds.setdefault(event["kind"], []).append(event["t"])
+
+
+def events_summary(happened: List[Event]) -> Dict[str, List[Dict[str, Any]]]:
+    """A body's events by kind: each one's instant and what its kind adds."""
+    kinds: Dict[str, List[Dict[str, Any]]] = {}
+    for event in happened:
+        kinds.setdefault(event["kind"], []).append({"t": event["t"], "values": event["values"]})
+    return kinds
 
 
 def critical_angle(p: RollerSpec) -> Dict[str, Any]:
-    """tan(phi_c) = mu_s (1 + c) / c: the steepest slope on which the body can roll without slipping."""
+    """tan(phi_c) = mu_s (1 + c) / c: the steepest slope on which the body can roll without slipping (a
+    figure's title and a race's labels: the verdict beside the run, no instant)."""
     tan_c = p.tan_critical()
     return {"shape": p.shape, "c": p.c, "mu_s": p.mu_s, "tan_phi_c": tan_c, "phi_c_deg": math.degrees(math.atan(tan_c)),
             "slope_deg": math.degrees(p.angle), "rolls": p.rolls()}
 
 
-def rod_contacts(data: Columns, length: float) -> np.ndarray:
-    """Boolean per sample: an end below the floor."""
-    return np.array([rod_end_below_floor(y, theta, length) for y, theta in zip(data["y"], data["theta"])])
+def spans(happened: List[Event], opens: str, closes: str, end: float) -> List[Tuple[float, float]]:
+    """The intervals [from, to) while anything an `opens` event opened is still open: each is keyed by the
+    event's values (a rod's end A or B), closed by a `closes` event with the same values or by a restart;
+    one still open at the run's `end` ends there."""
+    open_now: Set[str] = set()
+    found: List[Tuple[float, float]] = []
+    since = 0.0
+    for event in happened:
+        key = json.dumps(event["values"], sort_keys=True)
+        was_open = bool(open_now)
+        if event["kind"] == opens:
+            open_now.add(key)
+        elif event["kind"] == closes:
+            open_now.discard(key)
+        elif role(event) == "restart":
+            open_now.clear()
+        if open_now and not was_open:
+            since = event["t"]
+        elif was_open and not open_now:
+            found.append((since, event["t"]))
+    if open_now:
+        found.append((since, end))
+    return found
 
 
-def contact_runs(contact: np.ndarray) -> List[Tuple[int, int]]:
-    """(start, end) index ranges of consecutive contact samples."""
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], contact.astype(int), [0]])))
-    return list(zip(edges[::2], edges[1::2]))
+def in_spans(t: np.ndarray, intervals: List[Tuple[float, float]]) -> np.ndarray:
+    """Boolean per sample: inside one of the intervals (a sample at an interval's end is outside it)."""
+    inside = np.zeros(len(t), dtype=bool)
+    for since, until in intervals:
+        inside |= (t >= since) & (t < until)
+    return inside
 
 
-def rod_energy_swing(data: Columns, length: float) -> Dict[str, Any]:
-    """The largest swing of the energy inside one contact, relative to the energy just before it, and the
-    energy change over the whole run."""
-    e, contact = data["energy"], rod_contacts(data, length)
+def span_indices(t: np.ndarray, intervals: List[Tuple[float, float]]) -> List[Tuple[int, int]]:
+    """(start, end) index ranges of the samples inside each interval (empty for one between two samples)."""
+    return [(int(np.searchsorted(t, since)), int(np.searchsorted(t, until))) for since, until in intervals]
+
+
+# A rod's contacts: from an end's contact_began to its contact_ended (the rod's events; docs/events.md).
+ROD_CONTACT = ("contact_began", "contact_ended")
+
+
+def rod_contact_spans(data: Columns, happened: List[Event]) -> List[Tuple[float, float]]:
+    """The intervals while an end of the rod is in its floor, from its events."""
+    return spans(happened, *ROD_CONTACT, end=float(data["t"][-1]))
+
+
+def rod_energy_swing(data: Columns, happened: List[Event]) -> Dict[str, Any]:
+    """The largest swing of the energy inside one contact (its samples, with the one before and the one
+    after), relative to the energy just before it, and the energy change over the whole run. A contact's
+    instant is its contact_began's."""
+    e, t = data["energy"], data["t"]
     swings = []
-    for start, end in contact_runs(contact):
+    intervals = rod_contact_spans(data, happened)
+    for (since, _), (start, end) in zip(intervals, span_indices(t, intervals)):
         before = e[max(start - 1, 0)]
         inside = e[max(start - 1, 0):min(end + 1, len(e))]
-        swings.append({"t": float(data["t"][start]), "swing": float((inside.max() - inside.min()) / abs(before)),
+        swings.append({"t": since, "swing": float((inside.max() - inside.min()) / abs(before)),
                        "change": float((inside[-1] - before) / abs(before))})
     largest = max(swings, key=lambda s: s["swing"], default=None)
     return {"contacts": len(swings), "largest_swing": largest, "energy_first": float(e[0]),
@@ -176,6 +229,16 @@ def rod_energy_swing(data: Columns, length: float) -> Dict[str, Any]:
 
 # --- figures ---------------------------------------------------------------------------------------
 Specs = Dict[str, BodySpec]
+
+
+@dataclass(frozen=True)
+class States:
+    """A run as its figures take it: each body's samples, spec and events, and the summary, to which each
+    figure adds the instants it marks."""
+    run: Run
+    specs: Specs
+    events: Events
+    summary: Summary
 
 
 def save(fig: Any, path: str) -> None:
@@ -196,18 +259,18 @@ def rollers_of(run: Run, specs: Specs) -> List[Tuple[str, RollerSpec]]:
     return [(name, spec) for name, spec in specs.items() if name in run and isinstance(spec, RollerSpec)]
 
 
-def plot_rods(run: Run, specs: Specs, path: str) -> None:
-    rods = rods_of(run, specs)
+def plot_rods(r: States, path: str) -> None:
+    rods = rods_of(r.run, r.specs)
     fig, axes = plt.subplots(len(rods), 1, figsize=(10, 3.2 * len(rods)), squeeze=False)
     for ax, (name, p) in zip(axes[:, 0], rods):
-        d = run[name]
-        contact = rod_contacts(d, p.length)
+        d, happened = r.run[name], r.events[name]
+        contact = in_spans(d["t"], rod_contact_spans(d, happened))
         step = max(1, int(round(ROD_EVERY / np.median(np.diff(d["t"])))))
         for i in range(0, len(d["t"]), step):
             half = 0.5 * p.length * np.array([math.cos(d["theta"][i]), math.sin(d["theta"][i])])
             ends = np.array([[d["x"][i], d["y"][i]] - half, [d["x"][i], d["y"][i]] + half])
             ax.plot(ends[:, 0], ends[:, 1], color="tab:red" if contact[i] else "tab:blue", lw=1.0, alpha=0.7)
-        ax.plot(broken_at_restarts(d, "x", "vx"), broken_at_restarts(d, "y", "vx"), color="black", lw=0.8,
+        ax.plot(broken_at_restarts(d, "x", happened), broken_at_restarts(d, "y", happened), color="black", lw=0.8,
                 label="centre")
         if p.floor_length > 0:
             ax.plot([0.0, p.floor_length], [0.0, 0.0], color="saddlebrown", lw=2)
@@ -223,37 +286,48 @@ def plot_rods(run: Run, specs: Specs, path: str) -> None:
     save(fig, path)
 
 
-def broken_at_restarts(d: Columns, key: str, speed: str = "v") -> np.ndarray:
-    """A column with NaN between laps, so that a restart is not drawn as a line back to the start (`speed`:
-    the velocity along x, v for a roller, vx for a rod)."""
-    parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], d["x"], d[speed])]
+def broken_at_restarts(d: Columns, key: str, happened: List[Event]) -> np.ndarray:
+    """A column with NaN between laps, so that a restart is not drawn as a line back to the start."""
+    parts = [d[key][start:end].astype(float) for start, end in laps(d["t"], happened)]
     return np.concatenate([np.append(part, np.nan) for part in parts])[:-1]
 
 
-def shade_slipping(ax: Any, t: np.ndarray, mode: np.ndarray) -> None:
-    slipping = np.asarray(mode) == "slipping"
-    for start, end in contact_runs(slipping):
+def shade_mode(ax: Any, t: np.ndarray, mode: np.ndarray, shaded: str) -> None:
+    """Grey behind the samples whose mode is `shaded` (a roller's slipping, a block's sliding)."""
+    inside = np.asarray(mode) == shaded
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
+    for start, end in zip(edges[::2], edges[1::2]):
         ax.axvspan(t[start], t[min(end, len(t) - 1)], color="0.9", lw=0)
 
 
-def plot_rollers(run: Run, specs: Specs, path: str, summary: Summary) -> None:
-    rollers = rollers_of(run, specs)
+def mark_instants(ax: Any, happened: List[Event]) -> List[Event]:
+    """A line at each event the figures mark, in its kind's colour, with its kind and instant beside it (each
+    kind at a height of its own); the events marked."""
+    drawn = marked(happened)
+    for event in drawn:
+        colour, _ = kind_style(event)
+        ax.axvline(event["t"], color=colour, lw=1.0)
+        ax.annotate(f" {event['kind'].replace('_', ' ')}\n {event['t']:.4f} s",
+                    (event["t"], 0.05 + 0.22 * (kind_index(event) % 4)), xycoords=("data", "axes fraction"),
+                    fontsize=7, color=colour)
+    return drawn
+
+
+def plot_rollers(r: States, path: str) -> None:
+    rollers = rollers_of(r.run, r.specs)
     fig, axes = plt.subplots(len(rollers), 1, figsize=(9, 2.4 * len(rollers)), sharex=True, squeeze=False)
     for ax, (name, p) in zip(axes[:, 0], rollers):
-        d = run[name]
-        shade_slipping(ax, d["t"], d["mode"])
-        t, x, v, w = (broken_at_restarts(d, k) for k in ("t", "x", "v", "omega"))
+        d, happened = r.run[name], r.events[name]
+        shade_mode(ax, d["t"], d["mode"], "slipping")
+        t, x, v, w = (broken_at_restarts(d, k, happened) for k in ("t", "x", "v", "omega"))
         ax.plot(t, v, color="tab:blue", lw=1.2, label="v")
         ax.plot(t, -w * p.radius, color="tab:red", lw=1.2, ls="--", label="-ωR")
         ax.set_ylabel("v, -ωR (m/s)")
         ax_x = ax.twinx()
         ax_x.plot(t, x, color="0.3", lw=0.8, label="x (right axis)")
         ax_x.set_ylabel("x (m)")
-        for event in summary["rollers"][name]["slip_to_roll"]:
-            ax.axvline(event["t"], color="tab:green", lw=1.0)
-            ax.annotate(f" rolls at\n {event['t']:.4f} s", (event["t"], 0.05), xycoords=("data", "axes fraction"),
-                        fontsize=7, color="tab:green")
-        crit = summary["rollers"][name]["critical_angle"]
+        record_marks(r.summary, "rollers", name, mark_instants(ax, happened))
+        crit = r.summary["rollers"][name]["critical_angle"]
         ax.set_title(f"{name} ({p.shape}, c = {p.c:.3g}): slope {crit['slope_deg']:.1f}°, critical angle "
                      f"{crit['phi_c_deg']:.1f}°, μs = {p.mu_s:g}, μd = {p.mu_d:g}  (grey: slipping)", fontsize=9)
         handles = ax.get_legend_handles_labels()[0] + ax_x.get_legend_handles_labels()[0]
@@ -271,26 +345,39 @@ def slope_groups(run: Run, specs: Specs) -> List[List[Tuple[str, RollerSpec]]]:
     return [group for group in groups.values() if len(group) > 1]
 
 
-def plot_race(run: Run, specs: Specs, path: str, summary: Summary) -> None:
-    groups = slope_groups(run, specs)
+def first_finish(happened: List[Event]) -> Optional[Event]:
+    """The finish of the first lap: a finish before any restart."""
+    for event in happened:
+        if role(event) == "restart" and event["t"] > 0.0:  # one at t = 0 (spawn, config) starts the first lap
+            return None
+        if role(event) == "finish":
+            return event
+    return None
+
+
+def plot_race(r: States, path: str) -> None:
+    groups = slope_groups(r.run, r.specs)
     fig, axes = plt.subplots(2, len(groups), figsize=(9, 6), sharex="col", squeeze=False)
     for col, group in enumerate(groups):
         top, bottom = axes[0, col], axes[1, col]
         for rank, (name, p) in enumerate(group):
-            d = run[name]
-            start, end = laps(d["t"], d["x"], d["v"])[0]
+            d = r.run[name]
+            start, end = laps(d["t"], r.events[name])[0]
             width = 1.0 + 1.5 * (len(group) - 1 - rank)  # wider first: equal curves (two slipping shapes) both show
             colour = COLOURS.get(p.shape, "tab:gray")
-            finish = summary["rollers"][name]["finish_times"]
-            crit = summary["rollers"][name]["critical_angle"]
+            finish = first_finish(r.events[name])
+            crit = r.summary["rollers"][name]["critical_angle"]
+            place = finish["values"].get("place") if finish else None
             label = (f"{name}: c = {p.c:.3g}, φc = {crit['phi_c_deg']:.1f}°, "
-                     f"{'rolls' if crit['rolls'] else 'slips'}" + (f", down at {finish[0]:.3f} s" if finish else ""))
+                     f"{'rolls' if crit['rolls'] else 'slips'}" + (f", down at {finish['t']:.3f} s" if finish else "")
+                     + (f", place {place:g}" if isinstance(place, float) else ""))
             top.plot(d["t"][start:end], d["x"][start:end], color=colour, lw=width, label=label)
             bottom.plot(d["t"][start:end], d["v"][start:end], color=colour, lw=width, label=f"{name}: v")
             bottom.plot(d["t"][start:end], -d["omega"][start:end] * p.radius, color=colour, ls="--", lw=width,
                         label=f"{name}: -ωR")
             if finish:
-                top.plot(finish[0], p.slope, "o", color=colour)
+                top.plot(finish["t"], finish["state"]["x"], "o", color=colour)
+                record_marks(r.summary, "race", name, [finish])
         p = group[0][1]
         top.axhline(p.slope, color="saddlebrown", lw=1)
         top.set_ylabel("x along the slope (m)")
@@ -304,7 +391,7 @@ def plot_race(run: Run, specs: Specs, path: str, summary: Summary) -> None:
     save(fig, path)
 
 
-def zoom_on_contact(ax: Any, d: Columns, swing: Optional[Event], colour: str) -> None:
+def zoom_on_contact(ax: Any, d: Columns, swing: Optional[Dict[str, Any]], colour: str) -> None:
     """An inset with the energy through the contact of the largest swing."""
     if not swing:
         return
@@ -317,51 +404,70 @@ def zoom_on_contact(ax: Any, d: Columns, swing: Optional[Event], colour: str) ->
     inset.tick_params(labelsize=6)
 
 
-def plot_energy(run: Run, specs: Specs, path: str) -> None:
-    names = list(run)
-    looks = [TYPES[specs[n].TYPE] for n in names]
+def mark_energies(ax: Any, happened: List[Event]) -> List[Event]:
+    """A point at each event the figures mark, at the energy of its state then, a marker per kind (named in a
+    legend); the events marked."""
+    drawn = marked(happened)
+    for kind in dict.fromkeys(event["kind"] for event in drawn):
+        these = [event for event in drawn if event["kind"] == kind]
+        colour, marker = kind_style(these[0])
+        ax.plot([e["t"] for e in these], [e["state"]["energy"] for e in these], ls="none", marker=marker, ms=4,
+                mfc="none", color=colour, label=kind)
+    if drawn:
+        ax.legend(loc="upper right", fontsize=7, ncol=4)
+    return drawn
+
+
+def plot_energy(r: States, path: str) -> None:
+    names = list(r.run)
+    looks = [TYPES[r.specs[n].TYPE] for n in names]
     heights = [look.energy_height for look in looks]
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.6 * sum(heights) + 0.4), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": heights})
     for ax, name, look in zip(axes[:, 0], names, looks):
-        d, p = run[name], specs[name]
-        colour, shaded = look.shade_energy(ax, d, p)
+        d, p, happened = r.run[name], r.specs[name], r.events[name]
+        colour, shaded = look.shade_energy(ax, d, p, happened)
         ax.plot(d["t"], d["energy"], color=colour, lw=1.0)
         ax.set_ylabel("E (J)")
         spread = float(np.ptp(d["energy"]))
         if spread < 1e-6:  # constant to rounding: show it flat rather than magnify the rounding
             ax.set_ylim(d["energy"].mean() - 1, d["energy"].mean() + 1)
             shaded += f"; constant to {spread:.1e} J"
-        ax.set_title(f"{name}: energy (shaded: {shaded})", fontsize=9)
-        look.zoom_energy(ax, d, p, colour)
+        record_marks(r.summary, "energy", name, mark_energies(ax, happened))
+        ax.set_title(f"{name}: energy (shaded: {shaded}; marked: its events)", fontsize=9)
+        look.zoom_energy(ax, d, p, happened, colour)
     axes[-1, 0].set_xlabel("t (s)")
     fig.tight_layout()
     save(fig, path)
 
 
 # --- each body type's own look --------------------------------------------------------------------
-def shade_rod_contacts(ax: Any, d: Columns, p: RodSpec) -> Tuple[str, str]:
-    for start, end in contact_runs(rod_contacts(d, p.length)):
-        ax.axvspan(d["t"][start], d["t"][min(end, len(d["t"]) - 1)], color="lightcoral", alpha=0.4, lw=0)
+def shade_rod_contacts(ax: Any, d: Columns, p: RodSpec, happened: List[Event]) -> Tuple[str, str]:
+    for since, until in rod_contact_spans(d, happened):
+        ax.axvspan(since, until, color="lightcoral", alpha=0.4, lw=0)
     return "tab:blue", "an end in the floor"
 
 
-def zoom_on_rod_contact(ax: Any, d: Columns, p: RodSpec, colour: str) -> None:
-    zoom_on_contact(ax, d, rod_energy_swing(d, p.length)["largest_swing"], colour)
+def zoom_on_rod_contact(ax: Any, d: Columns, p: RodSpec, happened: List[Event], colour: str) -> None:
+    zoom_on_contact(ax, d, rod_energy_swing(d, happened)["largest_swing"], colour)
 
 
-def rod_numbers(d: Columns, p: RodSpec) -> Dict[str, Any]:
-    return rod_energy_swing(d, p.length)
+def rod_numbers(d: Columns, p: RodSpec, happened: List[Event]) -> Dict[str, Any]:
+    return rod_energy_swing(d, happened)
 
 
-def shade_roller_slipping(ax: Any, d: Columns, p: RollerSpec) -> Tuple[str, str]:
-    shade_slipping(ax, d["t"], d["mode"])
+def shade_roller_slipping(ax: Any, d: Columns, p: RollerSpec, happened: List[Event]) -> Tuple[str, str]:
+    shade_mode(ax, d["t"], d["mode"], "slipping")
     return COLOURS.get(p.shape, "tab:blue"), "slipping"
 
 
-def roller_numbers(d: Columns, p: RollerSpec) -> Dict[str, Any]:
-    return {"critical_angle": critical_angle(p), "slip_to_roll": slip_to_roll(d, p.radius),
-            "finish_times": finish_times(d, p.slope)}
+def shade_block_sliding(ax: Any, d: Columns, p: BlockSpec, happened: List[Event]) -> Tuple[str, str]:
+    shade_mode(ax, d["t"], d["mode"], "sliding")  # its energy falls while it slides
+    return "tab:pink", "sliding"
+
+
+def roller_numbers(d: Columns, p: RollerSpec, happened: List[Event]) -> Dict[str, Any]:
+    return {"critical_angle": critical_angle(p)}
 
 
 def nothing(*_: Any) -> None:
@@ -371,20 +477,20 @@ def nothing(*_: Any) -> None:
 # Callables as dataclass fields typed by protocols: Debian 11's mypy (0.812) takes a field typed Callable
 # for a method and calls it with the instance.
 class ShadeEnergy(Protocol):
-    def __call__(self, __ax: Any, __d: Any, __p: Any) -> Tuple[str, str]: ...
+    def __call__(self, __ax: Any, __d: Any, __p: Any, __happened: List[Event]) -> Tuple[str, str]: ...
 
 
 class ZoomEnergy(Protocol):
-    def __call__(self, __ax: Any, __d: Any, __p: Any, __colour: str) -> None: ...
+    def __call__(self, __ax: Any, __d: Any, __p: Any, __happened: List[Event], __colour: str) -> None: ...
 
 
 @dataclass(frozen=True)
 class TypeLook:
-    """How plot_run draws and sums up the bodies of one type."""
-    # Shades the energy's axes (ax, columns, spec) and gives (the line's colour, what the shading shows).
+    """How plot_run draws and sums up the bodies of one type, beyond its events' marks (which need no row)."""
+    # Shades the energy's axes (ax, columns, spec, events) and gives (the line's colour, what the shading shows).
     shade_energy: ShadeEnergy
     energy_height: int = 1  # the energy axes' share of the figure's height
-    zoom_energy: ZoomEnergy = nothing  # (ax, columns, spec, colour): an inset after the line
+    zoom_energy: ZoomEnergy = nothing  # (ax, columns, spec, events, colour): an inset after the line
     summary: Optional[Tuple[str, Callable[..., Dict[str, Any]]]] = None  # (its group, its numbers)
 
 
@@ -393,7 +499,7 @@ TYPES: Dict[str, TypeLook] = {
     RodSpec.TYPE: TypeLook(shade_rod_contacts, energy_height=2, zoom_energy=zoom_on_rod_contact,
                            summary=("rods", rod_numbers)),
     RollerSpec.TYPE: TypeLook(shade_roller_slipping, summary=("rollers", roller_numbers)),
-    BlockSpec.TYPE: TypeLook(lambda ax, d, p: ("tab:pink", "sliding")),  # its energy falls while it slides
+    BlockSpec.TYPE: TypeLook(shade_block_sliding),
 }
 
 
@@ -676,8 +782,9 @@ def print_sweep_summary(summary: Dict[str, Any]) -> None:
 
 
 # --- main ------------------------------------------------------------------------------------------
-def summarise(run: Run, specs: Specs) -> Summary:
+def summarise(run: Run, specs: Specs, events: Events) -> Summary:
     summary: Summary = {look.summary[0]: {} for look in TYPES.values() if look.summary}
+    summary.update(events={}, marks={})
     for name, d in run.items():
         steps = np.diff(d["t"])
         gaps = int((steps > 1.5 * np.median(steps)).sum()) if len(steps) else 0
@@ -687,11 +794,12 @@ def summarise(run: Run, specs: Specs) -> Summary:
         look = TYPES[p.TYPE]
         if look.summary:
             group, numbers = look.summary
-            summary[group][name] = numbers(d, p)
+            summary[group][name] = numbers(d, p, events[name])
+        summary["events"][name] = events_summary(events[name])
     return summary
 
 
-def print_summary(summary: Summary) -> None:
+def print_summary(summary: Summary, events: Events) -> None:
     for name, s in summary["rods"].items():
         big = s["largest_swing"]
         line = f"{name}: {s['contacts']} contacts, energy {s['energy_first']:.4f} -> {s['energy_last']:.4f} J"
@@ -700,10 +808,11 @@ def print_summary(summary: Summary) -> None:
         print(line)
     for name, s in summary["rollers"].items():
         c = s["critical_angle"]
-        rolls = ", ".join(f"{e['t']:.6f}" + ("" if e["exact"] else " (approx.)") for e in s["slip_to_roll"])
         print(f"{name}: {c['shape']}, tan(phi_c) = mu_s (1+c)/c = {c['tan_phi_c']:.3f} ({c['phi_c_deg']:.1f} deg) "
-              f"on {c['slope_deg']:.1f} deg: {'rolls' if c['rolls'] else 'slips'}; slip-to-roll at t = "
-              f"{rolls or 'never'}; off the slope at t = {', '.join(f'{t:.4f}' for t in s['finish_times']) or 'never'}")
+              f"on {c['slope_deg']:.1f} deg: {'rolls' if c['rolls'] else 'slips'}")
+    for name, lines in event_lines(event for happened in events.values() for event in happened).items():
+        for line in lines:
+            print(f"{name}: {line}")
 
 
 FIGURES = ("rod", "rollers", "race", "energy", "sweep")
@@ -721,21 +830,22 @@ def plot_sweep(path: str, config: Config, out_dir: str, prefix: str, wanted: Set
 
 
 def plot_states(path: str, config: Config, out_dir: str, prefix: str, wanted: Set[str]) -> None:
-    run = load_run(path, config)
+    run, events = load_run(path, config)
     specs = {name: body_spec(config, name) for name in run}
-    summary = summarise(run, specs)
+    summary = summarise(run, specs, events)
+    r = States(run, specs, events, summary)
     figures: Dict[str, Tuple[bool, Callable[[str], None]]] = {
-        "rod": (bool(rods_of(run, specs)), lambda path: plot_rods(run, specs, path)),
-        "rollers": (bool(rollers_of(run, specs)), lambda path: plot_rollers(run, specs, path, summary)),
-        "race": (bool(slope_groups(run, specs)), lambda path: plot_race(run, specs, path, summary)),
-        "energy": (True, lambda path: plot_energy(run, specs, path)),
+        "rod": (bool(rods_of(run, specs)), lambda path: plot_rods(r, path)),
+        "rollers": (bool(rollers_of(run, specs)), lambda path: plot_rollers(r, path)),
+        "race": (bool(slope_groups(run, specs)), lambda path: plot_race(r, path)),
+        "energy": (True, lambda path: plot_energy(r, path)),
     }
     for name, (drawable, plot) in figures.items():
         if name in wanted and drawable:
             plot(os.path.join(out_dir, f"{prefix}{name}.png"))
     with open(os.path.join(out_dir, f"{prefix}summary.json"), "w") as f:
         json.dump(summary, f, indent=1)
-    print_summary(summary)
+    print_summary(summary, events)
 
 
 def main(argv: Optional[List[str]] = None) -> int:

@@ -1,6 +1,10 @@
 """What the Python tools of rigid_body_sim share: a config's values with the documented defaults, each body
-type's spec (SPECS, by its `type`: what Python knows of one type and no other), the state messages of a
-bag, the rod's contact with the floor, the columns of a sweep, and waiting on processes and ROS masters.
+type's spec (SPECS, by its `type`: what Python knows of one type and no other), the state messages and the
+events of a bag, the events' kinds and roles with lines that say them, the columns of a sweep, and waiting on
+processes and ROS masters.
+
+No instant is computed here: when a body started to roll, finished, came to rest or touched its floor is the
+core's event (docs/events.md), read from events.csv, a bag's events topic or rigid_body_sim.core.
 
 No list of fields is copied from the C++ here: a CSV file names its columns in its header, a state
 message its fields in __slots__, both in the order of include/rigid_body_sim/core/state_fields.h.
@@ -36,6 +40,10 @@ FIRST_SWEEP_RESULT = description.load()["energy_drift"]["name"]
 SWEEP_RESULT_LABELS: Dict[str, Tuple[str, str]] = {
     FIRST_SWEEP_RESULT: (description.load()["energy_drift"]["label"], description.load()["energy_drift"]["unit"]),
     **{t["sweep_column"]: (t["sweep_label"], t["sweep_unit"]) for t in description.body_types().values()}}
+# Each type's event kinds, in the order it declares them, with their role ("finish", "restart" or ""): the
+# description's. The tools read roles, never a kind's name, to cut a run into laps or mark a finish.
+EVENT_ROLES: Dict[str, Dict[str, str]] = {
+    name: {kind["name"]: kind["role"] for kind in t["event_kinds"]} for name, t in description.body_types().items()}
 
 
 # --- configs ------------------------------------------------------------------------------------------
@@ -209,6 +217,73 @@ def read_states(bag_path: str) -> Dict[str, List[Any]]:
     return states
 
 
+# --- events -------------------------------------------------------------------------------------------
+Event = Dict[str, Any]  # a record of rigid_body_sim.runs: {"t", "body", "type", "kind", "values", "state"}
+LISTED = 12  # instants a kind's line lists; the rest are counted, the last given
+
+
+def role(event: Event) -> str:
+    """The role of an event's kind: "finish", "restart", or "" (also for a type or kind the description lacks)."""
+    return EVENT_ROLES.get(str(event["type"]), {}).get(str(event["kind"]), "")
+
+
+def events_namespace(topics: Iterable[str]) -> str:
+    """The namespace of a bag's events topic: /sim for /sim/events, /left/sim for /left/sim/events (a node
+    recorded in a namespace); /sim for a bag without one."""
+    for topic in topics:
+        parts = topic.strip("/").split("/")
+        if parts[-2:] == ["sim", "events"]:
+            return "/" + "/".join(parts[:-1])
+    return "/sim"
+
+
+def read_bag_events(bag_path: str) -> List[Event]:
+    """The events of a bag in its order (runs.read_bag_events of the namespace the bag recorded)."""
+    import rosbag  # only for bags: a run of CSV files needs no ROS
+    from rigid_body_sim import runs
+
+    with rosbag.Bag(bag_path) as bag:
+        topics = list(bag.get_type_and_topic_info().topics)
+    return runs.read_bag_events(bag_path, events_namespace(topics))
+
+
+def number_text(value: Any) -> str:
+    """A value as events.csv writes it: a number in its shortest round-trip form (float() gives back the very
+    double; a whole number without ".0", such as a place), a text as it is."""
+    if isinstance(value, str):
+        return value
+    number = float(value)
+    return str(int(number)) if number.is_integer() and abs(number) < 1e15 else repr(number)
+
+
+def instant_text(event: Event) -> str:
+    """An event's instant with what its kind adds: `1.7491626163026333 (speed=2.08... lap_time=1.74...)`."""
+    values = " ".join(f"{name}={number_text(value)}" for name, value in event["values"].items())
+    return number_text(event["t"]) + (f" ({values})" if values else "")
+
+
+def event_lines(events: Iterable[Event]) -> Dict[str, List[str]]:
+    """A line per kind of each body (bodies as they first happen, kinds in their type's order): how often, and
+    the instants, `slip_to_roll: 2 times, at t = 0.565892621098528, 2.315892621098528 s`; past LISTED of a
+    kind, how many more and the last."""
+    grouped: Dict[str, Dict[str, List[Event]]] = {}
+    for event in events:
+        grouped.setdefault(str(event["body"]), {}).setdefault(str(event["kind"]), []).append(event)
+    lines: Dict[str, List[str]] = {}
+    for body, kinds in grouped.items():
+        declared = list(EVENT_ROLES.get(str(next(iter(kinds.values()))[0]["type"]), {}))
+        order = sorted(kinds, key=lambda kind: declared.index(kind) if kind in declared else len(declared))
+        lines[body] = []
+        for kind in order:
+            happened = kinds[kind]
+            listed = ", ".join(instant_text(event) for event in happened[:LISTED])
+            if len(happened) > LISTED:
+                listed += f", and {len(happened) - LISTED} more, the last at {number_text(happened[-1]['t'])}"
+            often = "once" if len(happened) == 1 else f"{len(happened)} times"
+            lines[body].append(f"{kind}: {often}, at t = {listed} s")
+    return lines
+
+
 def subscribe_to_the_rest(bag_path: str, taken: Iterable[str], played_as: Optional[Dict[str, str]] = None) -> List[Any]:
     """Subscriptions (rospy.AnyMsg, the messages dropped) to every topic of a bag but the caller's own
     (`taken`), named as the player publishes them (`played_as`: its remaps): playback.launch plays nothing
@@ -248,12 +323,6 @@ def play_until(bag_path: str, what: str, done: Callable[[], bool], timeout: floa
     if play.returncode != 0:
         raise RuntimeError(f"playback.launch ended with exit status {play.returncode}:\n{said}")
     return said
-
-
-def rod_end_below_floor(y: float, theta: float, length: float) -> bool:
-    """An end of the rod below the floor (the floor's spring pushes it)."""
-    half = 0.5 * length * math.sin(theta)
-    return y + half < 0.0 or y - half < 0.0
 
 
 # --- sweeps -------------------------------------------------------------------------------------------

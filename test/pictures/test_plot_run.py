@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """scripts/plot_run.py on a short simulate run of config/demo.yaml, read from the CSV files and from the
-bag of the same run, and on a bag recorded from sim_node through sim.launch: it writes every figure, and the
-numbers it marks agree with the closed forms of docs/DESIGN.md and with the CSV's own modes. On sweeps of one
+bag of the same run, and on a bag recorded from sim_node through sim.launch: it writes every figure; every
+instant it marks is an event of the run's events.csv (or the bag's /sim/events), each one it should mark is
+marked, and those instants agree with the closed forms of docs/DESIGN.md and with the CSV's own modes; a folder
+without events.csv is refused. On sweeps of one
 key (the rod's θ0) and of two (the bowler's v0 and omega0): a figure for each swept body and none for the
 others, and the values it draws and reports are the sweep.csv's, variant for variant.
 Needs RBS_SIMULATE (the simulate executable) and RBS_DEVEL (the devel space, for sim.launch)."""
@@ -10,14 +12,16 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
 import unittest
 from collections import Counter
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Set
 
-from rigid_body_sim.sim_tools import free_port, load_config
+from rigid_body_sim import runs
+from rigid_body_sim.sim_tools import free_port, load_config, read_bag_events, role
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(os.path.dirname(HERE))
@@ -56,6 +60,7 @@ class PlotRunTest(unittest.TestCase):
     run_dir: str
     summaries: Dict[str, Any]
     bodies: Dict[str, Body]
+    events: List[Dict[str, Any]]
 
     @classmethod
     def setUpClass(cls) -> None:
@@ -72,6 +77,7 @@ class PlotRunTest(unittest.TestCase):
             with open(os.path.join(out, "summary.json")) as f:
                 cls.summaries[source] = json.load(f)
         cls.bodies = load_config(CONFIG)["bodies"]
+        cls.events = runs.read_events(cls.run_dir)
 
     @classmethod
     def tearDownClass(cls) -> None:
@@ -91,26 +97,66 @@ class PlotRunTest(unittest.TestCase):
                 ink = (matplotlib.image.imread(path)[..., :3].min(axis=2) < 0.9).mean()
                 self.assertGreater(ink, MIN_INK, path)
 
+    def instants(self, body: str, kind: str) -> List[float]:
+        return [e["t"] for e in self.events if e["body"] == body and e["kind"] == kind]
+
+    def test_each_figure_marks_the_events_instants(self) -> None:
+        """The rollers' and the energy figure mark every event but the restarts, at its instant, to the bit;
+        the race its racers' first finish."""
+        marks = self.summaries["csv"]["marks"]
+        for figure, bodies in (("rollers", ("sphere", "cylinder", "ring", "bowler")), ("energy", self.bodies)):
+            expected: Dict[str, Dict[str, List[float]]] = {}
+            for e in self.events:
+                if e["body"] in bodies and role(e) != "restart":
+                    expected.setdefault(e["body"], {}).setdefault(e["kind"], []).append(e["t"])
+            self.assertEqual(marks[figure], expected, figure)
+        self.assertEqual(set(marks["energy"]), set(self.bodies))  # every body has a mark in 6 s: none is missed
+        self.assertEqual(marks["race"], {name: {"finished": self.instants(name, "finished")[:1]}
+                                         for name in ("sphere", "cylinder", "ring")})
+        self.assertIn("slip_to_roll", marks["rollers"]["bowler"])
+        self.assertIn("contact_began", marks["energy"]["rod"])
+
+    def test_the_summary_has_every_event(self) -> None:
+        summary = self.summaries["csv"]["events"]
+        self.assertEqual(sum(len(happened) for kinds in summary.values() for happened in kinds.values()),
+                         len(self.events))
+        for e in self.events:
+            self.assertIn({"t": e["t"], "values": e["values"]}, summary[e["body"]][e["kind"]])
+
     def test_slip_to_roll_instant_is_the_closed_form(self) -> None:
-        bowler = self.bodies["bowler"]
-        events = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"]
-        self.assertGreaterEqual(len(events), 1)
-        self.assertTrue(events[0]["exact"])
-        self.assertAlmostEqual(events[0]["t"], closed_form_slip_to_roll(bowler), delta=1e-9)
+        marked = self.summaries["csv"]["marks"]["rollers"]["bowler"]["slip_to_roll"]
+        self.assertGreaterEqual(len(marked), 1)
+        self.assertAlmostEqual(marked[0], closed_form_slip_to_roll(self.bodies["bowler"]), delta=1e-9)
 
     def test_slip_to_roll_instant_lies_at_the_csv_mode_change(self) -> None:
         rows = self.csv_rows("bowler")
         change = next(i for i in range(1, len(rows))
                       if rows[i - 1]["mode"] == "slipping" and rows[i]["mode"] == "rolling")
-        marked = self.summaries["csv"]["rollers"]["bowler"]["slip_to_roll"][0]["t"]
+        marked = self.summaries["csv"]["marks"]["rollers"]["bowler"]["slip_to_roll"][0]
         self.assertLess(float(rows[change - 1]["t"]), marked)
         self.assertLessEqual(marked, float(rows[change]["t"]))
 
     def test_race_times_are_the_closed_forms(self) -> None:
         for name in ("sphere", "cylinder", "ring"):
-            finish = self.summaries["csv"]["rollers"][name]["finish_times"]
-            self.assertGreaterEqual(len(finish), 1, name)
+            finish = self.summaries["csv"]["marks"]["race"][name]["finished"]
+            self.assertEqual(len(finish), 1, name)
             self.assertAlmostEqual(finish[0], closed_form_down(self.bodies[name]), delta=1e-9, msg=name)
+
+    def test_laps_are_cut_at_the_restarts(self) -> None:
+        """The x the race draws for its first lap stops before the first restart; the rollers' curves break
+        there (NaN) and nowhere else."""
+        sys.path.insert(0, os.path.dirname(PLOT))  # the figures' own cutting, on the CSV's samples
+        import plot_run
+        data = plot_run.load_csv_folder(self.run_dir)
+        for name in ("sphere", "bowler"):
+            happened = [e for e in self.events if e["body"] == name]
+            restarts = [e["t"] for e in happened if role(e) == "restart"]
+            self.assertGreater(len(restarts), 0, name)
+            t = data[name]["t"]
+            starts = [int(start) for start, _ in plot_run.laps(t, happened)]
+            self.assertEqual([float(t[i]) for i in starts[1:]], [min(t[t >= r]) for r in restarts], name)
+            broken = plot_run.broken_at_restarts(data[name], "x", happened)
+            self.assertEqual(sum(1 for x in broken if math.isnan(x)), len(restarts), name)
 
     def test_critical_angle_verdict_matches_the_run(self) -> None:
         # The verdict comes from tan(phi_c) = mu_s (1 + c)/c; the modes from the simulation itself.
@@ -125,6 +171,20 @@ class PlotRunTest(unittest.TestCase):
         expected = rod["mass"] * G * rod["y0"] + 0.5 * rod["mass"] * rod["vx0"] ** 2
         self.assertAlmostEqual(summary["energy_first"], expected, delta=1e-9)
         self.assertGreater(summary["contacts"], 0)
+
+    def test_rod_contacts_are_its_events(self) -> None:
+        """A contact lasts from an end's contact_began while either end is in the floor: counted here from
+        events.csv, each begins at a contact_began."""
+        ends: Set[str] = set()
+        begins: List[float] = []
+        for e in self.events:
+            if e["body"] == "rod" and e["kind"] in ("contact_began", "contact_ended"):
+                if not ends:
+                    begins.append(e["t"])
+                (ends.add if e["kind"] == "contact_began" else ends.discard)(e["values"]["end"])
+        summary = self.summaries["csv"]["rods"]["rod"]
+        self.assertEqual(summary["contacts"], len(begins))
+        self.assertIn(summary["largest_swing"]["t"], begins)
 
     def test_rod_energy_swing_is_the_figure_docs_physics_states(self) -> None:
         # docs/physics.md: "by up to X % (t = T s, inset)", from `make pictures`' run of demo.yaml: 10 s with
@@ -152,6 +212,18 @@ class PlotRunTest(unittest.TestCase):
                                     capture_output=True, text=True)
         self.assertNotEqual(result.returncode, 0)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+
+    def test_a_folder_without_events_is_refused_in_one_line(self) -> None:
+        """Its instants are the core's events: without them it marks nothing rather than guess."""
+        with tempfile.TemporaryDirectory() as tmp:
+            states = os.path.join(tmp, "states")
+            shutil.copytree(self.run_dir, states)
+            os.remove(os.path.join(states, runs.EVENTS_FILE))
+            result = subprocess.run([sys.executable, PLOT, CONFIG, states, "--out-dir", os.path.join(tmp, "out")],
+                                    capture_output=True, text=True)
+        self.assertNotEqual(result.returncode, 0)
+        self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
+        self.assertIn(runs.EVENTS_FILE, result.stderr)
 
 
 def sweep(config: str, out: str, *sweeps: str) -> List[Dict[str, str]]:
@@ -282,10 +354,12 @@ class NodeBagTest(unittest.TestCase):
             for figure in FIGURES:
                 self.assertTrue(os.path.isfile(os.path.join(out, figure)), figure)
             with open(os.path.join(out, "summary.json")) as f:
-                events = json.load(f)["rollers"]["bowler"]["slip_to_roll"]
+                marked = json.load(f)["marks"]["rollers"]["bowler"]["slip_to_roll"]
+            recorded = [e["t"] for e in read_bag_events(bag) if e["body"] == "bowler" and e["kind"] == "slip_to_roll"]
         bowler = load_config(CONFIG)["bodies"]["bowler"]
-        # Any two slipping samples give the exact instant: a message the recorder missed does not matter.
-        self.assertAlmostEqual(events[0]["t"], closed_form_slip_to_roll(bowler), delta=1e-9)
+        # The marks are the node's events, recorded with their instants: no sample is needed for them.
+        self.assertEqual(marked, recorded)
+        self.assertAlmostEqual(marked[0], closed_form_slip_to_roll(bowler), delta=1e-9)
 
 
 if __name__ == "__main__":

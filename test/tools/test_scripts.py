@@ -1,22 +1,28 @@
 #!/usr/bin/env python3
 """The scripts that read bags and configs, on small bags written here: scripts/soak_bagcheck.py (a count
-per topic, each checked on its own), scripts/bag_summary.py (a body with a single state; a missing bag: one line),
+per topic, each checked on its own), scripts/bag_summary.py (every event of a run that rigid_body_sim.core
+recorded, at its instant to the bit, with its values; bodies spawned or only in the events; a body with a single
+state; a missing bag: one line),
 test/pictures' reading of rviz's log (none there: a finding) and bench/run_bench.py's 1 kHz config.
 Usage: test_scripts.py   (with the package's devel space sourced, for its messages)"""
 import importlib.abc
 import importlib.util
 import os
+import pathlib
+import re
 import subprocess
 import sys
 import tempfile
 import unittest
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Tuple
 
 import rosbag
 import rospy
 import yaml
 from tf2_msgs.msg import TFMessage
-from rigid_body_sim.msg import RodState, RollerState
+from rigid_body_sim import core
+from rigid_body_sim.msg import Event, EventField, RodState, RollerState
+from rigid_body_sim.sim_tools import LISTED
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 SCRIPTS = os.path.join(ROOT, "scripts")
@@ -75,18 +81,106 @@ class SoakBagcheck(Case):
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
 
 
+DEMO = os.path.join(ROOT, "config", "demo.yaml")
+Summary = Dict[str, Tuple[str, List[str]]]
+
+
+def summarised(stdout: str) -> Summary:
+    """bag_summary's output after the topics' counts: {body: (its line after the name, its kinds' lines)}."""
+    bodies: Summary = {}
+    current = ""
+    for line in stdout.splitlines()[1:]:
+        if line.startswith("  /"):
+            continue  # a topic's count
+        if line.startswith("  "):
+            bodies[current][1].append(line.strip())
+        else:
+            current, _, rest = line.partition(": ")
+            bodies[current] = (rest, [])
+    return bodies
+
+
+def kind_line(line: str) -> Tuple[str, int, List[Tuple[float, Dict[str, Any]]]]:
+    """A kind's line: the kind, how often, and each instant listed with its values (numbers as float)."""
+    found = re.fullmatch(r"(\w+): (once|\d+ times), at t = (.*) s", line)
+    assert found, line
+    listed = []
+    for item in found.group(3).split(", "):
+        instant, _, pairs = item.partition(" (")
+        values: Dict[str, Any] = {}
+        for pair in pairs.rstrip(")").split():
+            name, text = pair.split("=")
+            values[name] = float(text) if re.fullmatch(r"[-+.e\d]+|nan|-?inf", text) else text
+        listed.append((float(instant), values))
+    return found.group(1), 1 if found.group(2) == "once" else int(found.group(2).split()[0]), listed
+
+
+def event(t: float, body: str, type_name: str, kind: str, **values: Any) -> Event:
+    message = Event(t=t, body=body, type=type_name, kind=kind)
+    message.values = [EventField(name=name, text=value) if isinstance(value, str) else
+                      EventField(name=name, number=value) for name, value in values.items()]
+    return message
+
+
 class BagSummary(Case):
+    def summary(self, *args: str) -> Summary:
+        result = run_script(os.path.join(SCRIPTS, "bag_summary.py"), *args)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertEqual(result.stderr, "")
+        return summarised(result.stdout)
+
+    def test_every_event_at_its_instant(self) -> None:
+        """A run of demo.yaml recorded by rigid_body_sim.core, its events as the core returned them: each body's
+        kinds, how often, every instant to the bit (0.565892621098528, not a sample's 0.58) with its values."""
+        _, events = core.World(pathlib.Path(DEMO)).run(6.0, bag=self.path("run.bag"), events=True)
+        bodies = self.summary(self.path("run.bag"), DEMO)
+        with open(DEMO) as f:
+            self.assertEqual(list(bodies), list(yaml.safe_load(f)["bodies"]))
+        for body, (_, lines) in bodies.items():
+            mine = [e for e in events if e["body"] == body]
+            self.assertEqual(sorted(kind_line(line)[0] for line in lines), sorted({e["kind"] for e in mine}), body)
+            for line in lines:
+                kind, often, listed = kind_line(line)
+                happened = [e for e in mine if e["kind"] == kind]
+                self.assertEqual(often, len(happened), line)
+                self.assertEqual(listed, [(e["t"], e["values"]) for e in happened[:LISTED]], line)
+        slips = [e["t"] for e in events if e["body"] == "bowler" and e["kind"] == "slip_to_roll"]
+        self.assertIn(f"slip_to_roll: {len(slips)} times, at t = 0.565892621098528, ", bodies["bowler"][1][0])
+
+    def test_a_spawned_body_and_one_only_in_the_events(self) -> None:
+        config = self.write_config({"bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}})
+        rod, hoop = RodState(), RollerState()
+        rod.energy, hoop.t, hoop.mode = 19.6, 0.5, "rolling"
+        write_bag(self.path("run.bag"), {
+            "/sim/rod/state": [rod], "/sim/hoop/state": [hoop],
+            "/sim/events": [event(0.123456789012345, "hoop", "roller", "slip_to_roll"),
+                            event(0.75, "hoop", "roller", "finished", lap_time=0.75, place=2.0),
+                            event(0.8, "hoop", "roller", "lap_restarted", cause="race"),
+                            event(1.5, "ghost", "block", "came_to_rest")]})
+        bodies = self.summary(self.path("run.bag"), config)
+        with open(config) as f:
+            self.assertEqual(list(bodies), [*yaml.safe_load(f)["bodies"], "hoop", "ghost"])  # the config's first
+        self.assertEqual(bodies["ball"], ("in the config, nothing in the bag", []))
+        self.assertTrue(bodies["hoop"][0].startswith("t 0.5 .. 0.5 s (a single sample)"), bodies["hoop"])
+        self.assertTrue(bodies["hoop"][0].endswith("; final mode rolling (not in the config)"), bodies["hoop"])
+        self.assertEqual(bodies["hoop"][1], ["slip_to_roll: once, at t = 0.123456789012345 s",
+                                             "finished: once, at t = 0.75 (lap_time=0.75 place=2) s",
+                                             "lap_restarted: once, at t = 0.8 (cause=race) s"])
+        self.assertEqual(bodies["ghost"], ("no states (not in the config)", ["came_to_rest: once, at t = 1.5 s"]))
+        # Without a config: the bag's bodies as they first appear, none noted.
+        self.assertEqual(list(self.summary(self.path("run.bag"))), ["rod", "hoop", "ghost"])
+
     def test_a_body_with_a_single_state(self) -> None:
         config = self.write_config({"bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}})
         rod, ball = RodState(), RollerState()
         rod.y, rod.energy = 4.0, 19.6
         ball.mode, ball.energy = "rolling", 1.0
         write_bag(self.path("run.bag"), {"/sim/rod/state": [rod], "/sim/ball/state": [ball]})
-        result = run_script(os.path.join(SCRIPTS, "bag_summary.py"), self.path("run.bag"), config)
-        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
-        self.assertIn("ball: t 0 .. 0 s", result.stdout)
-        self.assertIn("a single sample", result.stdout)
-        self.assertIn("rod: t 0 .. 0 s", result.stdout)
+        bodies = self.summary(self.path("run.bag"), config)
+        self.assertEqual(bodies["rod"], ("t 0 .. 0 s (a single sample), energy 19.6 -> 19.6 J (min 19.6, max 19.6)",
+                                         []))
+        self.assertEqual(bodies["ball"][0], "t 0 .. 0 s (a single sample), energy 1 -> 1 J (min 1, max 1); "
+                                            "final mode rolling")
 
     def test_a_missing_bag_is_one_line(self) -> None:
         config = self.write_config({"bodies": {"rod": {"type": "rod"}}})

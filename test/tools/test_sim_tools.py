@@ -2,9 +2,12 @@
 """rigid_body_sim.sim_tools against the C++ it describes: its defaults and units are the core's exported description
 (rigid_body_sim.description), and what simulate does with a config that leaves every key out; its
 shape factors are the ones the core's rolling friction follows; a CSV header and a state message name the same
-fields; it reads a sweep's header as simulate writes it, and has words for every column a sweep adds.
+fields; the event kinds and roles it knows are those simulate writes, a bag's events read as events.csv's, and
+its lines give each instant as events.csv writes it; it reads a sweep's header as simulate writes it, and has
+words for every column a sweep adds.
 Usage: test_sim_tools.py SIMULATE_EXE   (with the package's devel space sourced, for the .cfg modules)"""
 import argparse
+import csv
 import math
 import os
 import re
@@ -16,7 +19,7 @@ from typing import Dict, List, Tuple
 
 import rosbag
 from rigid_body_sim.cfg import RollerReconfigureConfig
-from rigid_body_sim import sim_tools
+from rigid_body_sim import runs, sim_tools
 
 
 def csv_rows(path: str) -> List[Dict[str, str]]:
@@ -88,11 +91,6 @@ class Runs(SimulateCase):
                 numbers = [float(v) for v in f.readline().strip().split(",") if re.fullmatch(r"[-+.e\d]+|nan", v)]
                 self.assertEqual(sim_tools.state_numbers(msgs[0]), numbers, name)
 
-    def test_a_rod_end_is_below_the_floor_when_its_height_is_negative(self) -> None:
-        self.assertFalse(sim_tools.rod_end_below_floor(0.6, 1.0, 1.0))
-        self.assertTrue(sim_tools.rod_end_below_floor(0.4, math.pi / 2, 1.0))
-        self.assertTrue(sim_tools.rod_end_below_floor(0.4, -math.pi / 2, 1.0))
-
     def test_body_spec_fills_in_the_defaults(self) -> None:
         config = {"bodies": {"rod": {"type": "rod", "k": 5.0}, "ring": {"type": "roller", "shape": "ring"},
                              "odd": {"type": "roller", "inertia_factor": 0.3}}}
@@ -101,6 +99,85 @@ class Runs(SimulateCase):
         assert isinstance(ring, sim_tools.RollerSpec) and isinstance(odd, sim_tools.RollerSpec)
         self.assertEqual((ring.c, ring.radius, ring.slope), (1.0, 0.1, 5.0))
         self.assertEqual((odd.shape, odd.c), ("custom", 0.3))
+
+
+# Every type with events within 3 s: the rod's contacts and restarts (off its short floor, some in contact), the
+# rollers' grip, finishes and restarts (short slopes), a block launched up its slope to a stop, another sliding
+# down to its finishes.
+EVENTFUL = """bodies:
+  rod: {type: rod, y0: 1.0, theta0: 0.3, floor_length: 2.0, vx0: 1.5}
+  bowler: {type: roller, incline_angle: 0.05, incline_length: 2.0, v0: 2.5, omega0: 10.0, mu_d: 0.2}
+  ring: {type: roller, shape: ring, incline_length: 1.0}
+  sled: {type: block, incline_angle: 0.05, v0: -1.0, x0: 1.0}
+  crate: {type: block, incline_angle: 0.3, incline_length: 1.0, mu_s: 0.1, mu_d: 0.1}
+"""
+
+
+def listed(line: str) -> Tuple[str, int, List[str], str]:
+    """A line of event_lines: its kind, how often, the instants it lists (as written) and the last instant it
+    names after them ("" when it lists them all)."""
+    found = re.fullmatch(r"(\w+): (once|\d+ times), at t = (.*) s", line)
+    assert found, line
+    kind, often, items = found.group(1), found.group(2), found.group(3).split(", ")
+    last = ""
+    if items[-1].startswith("the last at "):
+        last = items.pop()[len("the last at "):]
+        items.pop()  # "and N more"
+    return kind, 1 if often == "once" else int(often.split()[0]), [item.split(" (")[0] for item in items], last
+
+
+class Events(SimulateCase):
+    def test_the_kinds_and_roles_are_those_simulate_writes(self) -> None:
+        folder, _ = self.run_simulate(EVENTFUL, "--duration", "3")
+        happened = runs.read_events(folder)
+        kinds = {(event["type"], event["kind"]) for event in happened}
+        for type_name, kind in kinds:
+            self.assertIn(kind, sim_tools.EVENT_ROLES[type_name], type_name)
+        self.assertEqual({event["type"] for event in happened}, set(sim_tools.EVENT_ROLES))  # every type: events
+        for event in happened:
+            # A finish carries its lap's time and a restart its cause (docs/events.md): what a role means.
+            if sim_tools.role(event) == "finish":
+                self.assertIn("lap_time", event["values"], event)
+            if sim_tools.role(event) == "restart":
+                self.assertIn("cause", event["values"], event)
+        self.assertEqual({sim_tools.role(event) for event in happened}, {"", "finish", "restart"})
+
+    def test_the_lines_give_every_instant_as_events_csv_writes_it(self) -> None:
+        folder, _ = self.run_simulate(EVENTFUL, "--duration", "10")
+        with open(os.path.join(folder, runs.EVENTS_FILE), newline="") as f:
+            rows = list(csv.DictReader(f))
+        lines = sim_tools.event_lines(runs.read_events(folder))
+        self.assertEqual(list(lines), list(dict.fromkeys(row["body"] for row in rows)))
+        long_enough = False
+        for body, body_lines in lines.items():
+            kinds = [listed(line)[0] for line in body_lines]
+            declared = list(sim_tools.EVENT_ROLES[next(row["type"] for row in rows if row["body"] == body)])
+            self.assertEqual(kinds, sorted(kinds, key=declared.index), body)
+            for line in body_lines:
+                kind, often, instants, last = listed(line)
+                written = [row["t"] for row in rows if row["body"] == body and row["kind"] == kind]
+                self.assertEqual(often, len(written), line)
+                self.assertEqual(instants, written[:sim_tools.LISTED], line)  # the CSV's text, to the character
+                self.assertEqual(last, written[-1] if len(written) > sim_tools.LISTED else "", line)
+                long_enough |= len(written) > sim_tools.LISTED
+        self.assertTrue(long_enough, "a kind with more instants than a line lists")  # that case is exercised
+
+    def test_a_bags_events_are_events_csvs(self) -> None:
+        folder, _ = self.run_simulate(EVENTFUL, "--duration", "3", "--out-dir", "run", "--bag", "run.bag")
+        from_csv = runs.read_events(os.path.join(folder, "run"))
+        self.assertGreater(len(from_csv), 0)
+        self.assertEqual(sim_tools.read_bag_events(os.path.join(folder, "run.bag")), from_csv)
+
+    def test_the_namespace_of_a_bags_events(self) -> None:
+        self.assertEqual(sim_tools.events_namespace(["/tf", "/sim/rod/state", "/sim/events"]), "/sim")
+        self.assertEqual(sim_tools.events_namespace(["/left/sim/rod/state", "/left/sim/events"]), "/left/sim")
+        self.assertEqual(sim_tools.events_namespace(["/sim/rod/state"]), "/sim")
+
+    def test_number_text_is_the_shortest_round_trip(self) -> None:
+        for value in (0.565892621098528, 0.1 + 0.2, 1e-7, 2.0, -3.0, 1.5e300):
+            text = sim_tools.number_text(value)
+            self.assertEqual(float(text), value, text)
+        self.assertEqual((sim_tools.number_text(1.0), sim_tools.number_text("A")), ("1", "A"))
 
 
 class Sweeps(SimulateCase):
