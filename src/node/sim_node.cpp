@@ -265,7 +265,8 @@ void SimNode::stopRecording(double t, const std::string& what) {
   ros::requestShutdown();
 }
 
-// start_delay wall seconds; with start_on_subscribers only until every state topic, ~events and the transforms
+// start_delay wall seconds; with start_on_subscribers only until every state topic, ~events and the
+// transforms
 // (/tf, or the namespace's tf) have a subscriber (a recorder that found them), start_delay the most it waits.
 // Changes handed over meanwhile apply at once.
 void SimNode::waitForStart() {
