@@ -4,13 +4,6 @@ namespace rigid_body_sim {
 
 namespace {
 
-template <class Type>
-constexpr std::size_t settableCount() {
-  std::size_t count = 0;
-  for (const auto& field : Type::kStateFields) count += field.settable() ? 1 : 0;
-  return count;
-}
-
 // The settable fields are the whole motion (a set_state can set any of it, the NaN guard checks all of it).
 template <class... Types>
 constexpr bool motionsSettable(BodyTypeList<Types...>) {

@@ -46,25 +46,8 @@ std::optional<std::string> nonFiniteField(const Body& body) {
 
 namespace {
 // The settable fields are the motion; the rest follow from it. std::abs(NaN) <= bound is false: a NaN is
-// never surely finite.
-// The settable fields' members of a type's table, picked at compile time: the check after every step runs
-// over these alone, unrolled, instead of over the table asking each field whether it is settable.
-template <class Type>
-constexpr std::size_t settableCount() {
-  std::size_t n = 0;
-  for (const auto& field : Type::kStateFields) n += field.settable() ? 1 : 0;
-  return n;
-}
-template <class Type>
-constexpr auto settableMembers() {
-  std::array<typename StateFieldDef<typename Type::Model>::MotionMember, settableCount<Type>()> members{};
-  std::size_t i = 0;
-  for (const auto& field : Type::kStateFields) {
-    if (field.settable()) members[i++] = field.motion;
-  }
-  return members;
-}
-
+// never surely finite. The members are picked at compile time: the check after every step runs over these
+// alone, unrolled, instead of over the table asking each field whether it is settable.
 template <class Model>
 bool surelyFiniteModel(const Model& model) {
   static constexpr auto kMembers = settableMembers<TypeOfModel<Model>>();

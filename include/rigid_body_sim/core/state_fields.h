@@ -64,6 +64,24 @@ const std::vector<std::string>& stateFieldNames(const Body& body);
 const std::vector<std::string>& stateFieldNames(const BodyConfig& body);
 const std::vector<std::string>& settableStateFields(const Body& body);
 
+// How many of a type's fields are settable, and their members of the motion, in the table's order: picked
+// at compile time (the NaN guard's check after every step runs over these alone).
+template <class Type>
+constexpr std::size_t settableCount() {
+  std::size_t count = 0;
+  for (const auto& field : Type::kStateFields) count += field.settable() ? 1 : 0;
+  return count;
+}
+template <class Type>
+constexpr auto settableMembers() {
+  std::array<typename StateFieldDef<typename Type::Model>::MotionMember, settableCount<Type>()> members{};
+  std::size_t i = 0;
+  for (const auto& field : Type::kStateFields) {
+    if (field.settable()) members[i++] = field.motion;
+  }
+  return members;
+}
+
 // The motion's field named `name` among the settable ones of the model's table, or null.
 template <class Model>
 auto settableMember(const Model& model, const std::string& name) {
