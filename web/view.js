@@ -174,7 +174,8 @@ function addEvent(e) {
   if (startsRun(e) && e.t > resetT) {
     resetT = e.t;
     for (const body of Object.keys(points)) points[body] = points[body].filter((p) => p.t > e.t);
-    for (const body of Object.keys(events)) events[body] = events[body].filter((f) => f.t >= e.t);
+    // At its instant too, what came before it is of the run before (the step that ended at the reset).
+    for (const body of Object.keys(events)) events[body] = events[body].filter((f) => f.t > e.t || f === e);
   }
 }
 

@@ -242,7 +242,8 @@ class EventLog:
             self.events.sort(key=lambda pair: pair[1]["t"])
         if self.starts_run(record) and record["t"] > self.run_start:
             self.run_start = record["t"]
-            self.events = [(a, r) for a, r in self.events if r["t"] >= self.run_start]
+            # At its instant too, what came before it is of the run before (the step that ended at the reset).
+            self.events = [(a, r) for a, r in self.events if r["t"] > self.run_start or r is record]
         self._trim()
         return True
 

@@ -160,6 +160,7 @@ class Events(unittest.TestCase):
         log.add(event(2.0, "ring", "finished", lap_time=2.0, speed=3.0))
         log.add(event(3.0, "ring", "lap_restarted", cause="race"))  # a lap: the run goes on
         self.assertEqual(len(log.records()), 3)
+        log.add(event(4.0, "sphere", "slip_to_roll"))  # in the step that ended at the reset: the run before
         log.add(event(4.0, "ring", "lap_restarted", cause="reset"))
         log.add(event(4.0, "sphere", "lap_restarted", cause="reset"))
         self.assertFalse(log.add(event(3.5, "sphere", "slip_to_roll")), "from before the reset, come late")
