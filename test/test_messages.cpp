@@ -1,11 +1,15 @@
-// The state messages against the core's table of fields (core/state_fields.h): after header and t, the
-// fields of RodState and RollerState are the CSV's columns in the CSV's order, of the table's types (a text
-// is a string) and units (the unit closing a field's comment), with the same values.
+// The state messages against the core's table of fields (core/state_fields.h), for every body type: after
+// header and t, the fields of its message are the CSV's columns in the CSV's order, of the table's types (a
+// text is a string) and units (the unit closing a field's comment), and a message's bytes carry the values.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "rigid_body_sim/core/state_fields.h"
@@ -62,41 +66,84 @@ std::vector<MsgField> expectedFields(const Table& table) {
   return fields;
 }
 
-World demoWorld() {
+// A world of one body of `Type`, launched fast enough to slip (a round body) and stepped a while.
+template <class Type>
+World oneBodyWorld() {
   WorldConfig config;
-  RollerConfig ball;
-  ball.initial.v0 = 3.0;  // slipping first
-  config.bodies = {{"rod", RodConfig{}}, {"ball", ball}};
+  typename Type::Config body{};
+  if constexpr (std::is_same_v<Type, RollerType>) body.initial.v0 = 3.0;  // slipping first
+  config.bodies = {{"body", body}};
   World world(config);
   for (int i = 0; i < 1234; ++i) world.step();
   return world;
 }
 
+// A message's fields after its header, read back from its serialized bytes by its definition: {name: the
+// number, or the text}. What a subscriber reads, whatever code filled the message.
+std::vector<std::pair<std::string, StateField>> readBack(const std::string& definition,
+                                                         const std::vector<std::uint8_t>& bytes) {
+  std::vector<std::pair<std::string, StateField>> fields;
+  std::size_t at = 0;
+  const auto take = [&](void* out, std::size_t n) {
+    std::memcpy(out, bytes.data() + at, n);
+    at += n;
+  };
+  const auto text = [&] {
+    std::uint32_t length = 0;
+    take(&length, 4);
+    std::string value(reinterpret_cast<const char*>(bytes.data() + at), length);
+    at += length;
+    return value;
+  };
+  for (const MsgField& field : fieldsOf(definition)) {
+    StateField value{""};
+    if (field.type == "Header") {
+      at += 12;  // seq, stamp
+      text();    // frame_id
+      continue;
+    }
+    if (field.type == "string") {
+      value.text = text();
+    } else {
+      take(&value.number, 8);
+    }
+    fields.emplace_back(field.name, value);
+  }
+  EXPECT_EQ(at, bytes.size());
+  return fields;
+}
+
 }  // namespace
 
 TEST(StateMessages, FieldsAreTheCoreTableInItsOrderWithItsTypesAndUnits) {
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RodState>()), expectedFields(RodType::kStateFields));
-  EXPECT_EQ(fieldsOf(ros::message_traits::definition<RollerState>()),
-            expectedFields(RollerType::kStateFields));
+  BodyTypes::forEach([](auto type) {
+    using Type = decltype(type);
+    using Msg = typename RosMessages<Type>::StateMsg;
+    EXPECT_EQ(fieldsOf(ros::message_traits::definition<Msg>()), expectedFields(Type::kStateFields))
+        << Type::kName;
+  });
 }
 
 TEST(StateMessages, CarryTheValuesOfTheCoreFields) {
-  const World world = demoWorld();
-  const Rod& rod = std::get<Rod>(world.bodies()[0].model);
-  const RodState rod_msg = toStateMsg(world.time(), rod);
-  const auto rod_fields = stateFields(rod);
-  const double rod_values[] = {rod_msg.x,  rod_msg.y,     rod_msg.theta, rod_msg.vx,
-                               rod_msg.vy, rod_msg.omega, rod_msg.energy};
-  for (std::size_t i = 0; i < rod_fields.size(); ++i) EXPECT_EQ(rod_values[i], rod_fields[i].number) << i;
-
-  const Roller& ball = std::get<Roller>(world.bodies()[1].model);
-  const RollerState ball_msg = toStateMsg(world.time(), ball);
-  const auto ball_fields = stateFields(ball);
-  const double ball_values[] = {ball_msg.x, ball_msg.v,        ball_msg.theta,  ball_msg.omega,
-                                0.0,        ball_msg.friction, ball_msg.normal, ball_msg.energy};
-  for (std::size_t i = 0; i < ball_fields.size(); ++i) {
-    if (ball_fields[i].text.empty()) EXPECT_EQ(ball_values[i], ball_fields[i].number) << i;
-  }
-  EXPECT_EQ(ball_msg.mode, ball_fields[4].text);
-  EXPECT_EQ(rod_msg.t, world.time());
+  BodyTypes::forEach([](auto type) {
+    using Type = decltype(type);
+    using Msg = typename RosMessages<Type>::StateMsg;
+    const World world = oneBodyWorld<Type>();
+    const auto& model = std::get<typename Type::Model>(world.bodies()[0].model);
+    const Msg msg = toStateMsg(world.time(), model);
+    std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(msg));
+    ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+    ros::serialization::serialize(out, msg);
+    const auto sent = readBack(ros::message_traits::definition<Msg>(), bytes);
+    const auto fields = stateFields(model);
+    ASSERT_EQ(sent.size(), fields.size() + 1) << Type::kName;
+    EXPECT_EQ(sent[0].first, "t");
+    EXPECT_EQ(sent[0].second.number, world.time()) << Type::kName;
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      EXPECT_EQ(sent[i + 1].first, fields[i].name) << Type::kName;
+      EXPECT_EQ(sent[i + 1].second.text, fields[i].text) << Type::kName << ' ' << fields[i].name;
+      if (fields[i].text.empty())
+        EXPECT_EQ(sent[i + 1].second.number, fields[i].number) << Type::kName << ' ' << fields[i].name;
+    }
+  });
 }

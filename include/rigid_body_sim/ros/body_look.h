@@ -66,7 +66,6 @@ template <class Type>
 struct RosBodyType {
   using StateMsg = typename RosMessages<Type>::StateMsg;
   using Reconfigure = typename RosMessages<Type>::Reconfigure;
-  static StateMsg state(double t, const typename Type::Model& model);  // the CSV's fields, no header
   static BodyLook look(const typename Type::Model& model);
   static BodyShape shape(const typename Type::Model& model);
   static BodyHandles handles(const typename Type::Config& config);
@@ -75,15 +74,13 @@ struct RosBodyType {
 }  // namespace rigid_body_sim
 
 // Declares a body type's ROS side in its ros/types/<type>_ros.h (inside namespace rigid_body_sim): its
-// messages, and the four functions its src/ros/types/<type>_ros.cpp defines.
+// messages, and the three functions its src/ros/types/<type>_ros.cpp defines.
 #define RBS_ROS_BODY_TYPE(TYPE, STATE_MSG, RECONFIGURE)                   \
   template <>                                                             \
   struct RosMessages<TYPE> {                                              \
     using StateMsg = STATE_MSG;                                           \
     using Reconfigure = RECONFIGURE;                                      \
   };                                                                      \
-  template <>                                                             \
-  STATE_MSG RosBodyType<TYPE>::state(double t, const TYPE::Model& model); \
   template <>                                                             \
   BodyLook RosBodyType<TYPE>::look(const TYPE::Model& model);             \
   template <>                                                             \

@@ -13,19 +13,6 @@ constexpr double kGhostAcross = 1.2;  // its interactive ghost: edges across
 }  // namespace
 
 template <>
-BlockState RosBodyType<BlockType>::state(double t, const Block& block) {
-  BlockState msg;
-  msg.t = t;
-  msg.x = block.state().x;
-  msg.v = block.state().v;
-  msg.mode = toString(block.mode());
-  msg.friction = block.frictionForce();
-  msg.normal = block.normalForce();
-  msg.energy = block.energy();
-  return msg;
-}
-
-template <>
 BodyLook RosBodyType<BlockType>::look(const Block& block) {
   const BlockParams& p = block.params();
   BodyLook look;

@@ -16,20 +16,6 @@ constexpr double kGhostThickness = 0.08;  // m: its interactive ghost, a little 
 }  // namespace
 
 template <>
-RodState RosBodyType<RodType>::state(double t, const Rod& rod) {
-  RodState msg;
-  msg.t = t;
-  msg.x = rod.state().x;
-  msg.y = rod.state().y;
-  msg.theta = rod.state().theta;
-  msg.vx = rod.state().vx;
-  msg.vy = rod.state().vy;
-  msg.omega = rod.state().omega;
-  msg.energy = rod.energy();
-  return msg;
-}
-
-template <>
 BodyLook RosBodyType<RodType>::look(const Rod& rod) {
   BodyLook look;
   look.colour = rgba(0.1f, 0.3f, 0.9f);

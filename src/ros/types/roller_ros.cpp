@@ -30,21 +30,6 @@ std_msgs::ColorRGBA colourOf(Shape shape) {
 }  // namespace
 
 template <>
-RollerState RosBodyType<RollerType>::state(double t, const Roller& roller) {
-  RollerState msg;
-  msg.t = t;
-  msg.x = roller.state().x;
-  msg.v = roller.state().v;
-  msg.theta = roller.state().theta;
-  msg.omega = roller.state().omega;
-  msg.mode = toString(roller.mode());
-  msg.friction = roller.frictionForce();
-  msg.normal = roller.normalForce();
-  msg.energy = roller.energy();
-  return msg;
-}
-
-template <>
 BodyLook RosBodyType<RollerType>::look(const Roller& roller) {
   const RollerParams& p = roller.params();
   BodyLook look;
