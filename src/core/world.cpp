@@ -237,7 +237,7 @@ void World::setState(std::size_t index, const std::vector<StateValue>& state) {
 
 double World::time() const { return static_cast<double>(steps_) / rate_; }
 
-void World::step() {
+void World::step(BodyStepObserver* observer) {
   const double t0 = time();
   const std::size_t first_event = events_.size();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -247,6 +247,7 @@ void World::step() {
           report(i, t0, model, happened);
         },
         bodies_[i].model);
+    if (observer) observer->afterBodyStep(i, bodies_[i]);
   }
   ++steps_;
   if (events_.size() != first_event) {

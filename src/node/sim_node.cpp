@@ -197,7 +197,7 @@ void SimNode::stepPaused(std::uint64_t steps, Step::Response& response) {
     response.message = "refused: steps " + std::to_string(steps) + " is not in [1, " +
                        std::to_string(max_steps) + "] (at most " + formatNumber(kMaxStepSeconds) + " s)";
   } else {
-    session_.advance(static_cast<std::int64_t>(steps), after_step_);
+    session_.advance(static_cast<std::int64_t>(steps), after_step_, this);
     session_.sampleNow();  // show where the steps ended
     publisher_.publishMarkersNow(world());
     response.success = true;
@@ -232,11 +232,15 @@ void SimNode::anchor() {
   publisher_.anchor(world().time());
 }
 
-void SimNode::afterStep(World& world) {
+void SimNode::afterBodyStep(std::size_t index, Body& body) {
 #ifdef RBS_FAULT_INJECTION  // sim_node_faults, a test's build only: test/faults/fault_injection.h
-  injectFault(world);
+  injectFault(body, static_cast<double>(world().stepCount() + 1) / world().rate());
 #endif
-  for (const NonFinite& fault : guard_.afterStep(world.bodies())) {
+  guard_.afterBodyStep(index, body);
+}
+
+void SimNode::afterStep(World& world) {
+  for (const NonFinite& fault : guard_.takeNewlyHeld()) {
     const Body& held = world.bodies()[fault.index];  // already back at its last finite state
     ROS_ERROR_STREAM("body '" << held.name << "': " << fault.field
                               << " became non-finite in the step to t = " << formatNumber(world.time())
@@ -309,7 +313,7 @@ void SimNode::stepLoop() {
     const std::int64_t next_publish = (world().stepCount() / steps_per_publish + 1) * steps_per_publish;
     const std::int64_t target = std::min(pacer_.dueSteps(wallNow()), next_publish);
     while (world().stepCount() < target) {
-      session_.advance(1, after_step_);  // one at a time: the duration ends a run at its step
+      session_.advance(1, after_step_, this);  // one at a time: the duration ends a run at its step
       if (duration_steps > 0 && world().stepCount() >= duration_steps) {
         ROS_INFO("simulated %.3f s: the requested duration; shutting down", world().time());
         serveTasksWhileSubscribersTake();

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <new>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -83,33 +84,51 @@ FiniteGuard::FiniteGuard(const std::vector<Body>& bodies) : held_(bodies.size(),
   for (const auto& body : bodies) last_finite_.push_back(progressOf(body));
 }
 
-std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
-  std::vector<NonFinite> newly_held;
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    // One visit a body, its progress kept in place: a body keeps its type, so its last finite progress is
-    // of its own type (three visits and a variant's construction a body-step were a third of the node's CPU).
-    std::visit(
-        [&](auto& model) {
-          using Progress = typename std::decay_t<decltype(model)>::Progress;
-          Progress& last = std::get<Progress>(last_finite_[i]);
-          if (!held_[i]) {
-            if (surelyFiniteModel(model)) {
-              last = model.progress();
-              return;
-            }
-            const std::optional<std::string> field = nonFiniteField(bodies[i]);
-            if (!field) {
-              last = model.progress();
-              return;
-            }
-            newly_held.push_back({i, *field});
-            held_[i] = 1;
+namespace {
+// The model's progress built in its slot, not assigned from a temporary: a Progress just built on the stack
+// and copied in wider moves stalled on store forwarding, most of the guard's cost.
+template <class Model>
+void keepProgress(typename Model::Progress& slot, const Model& model) {
+  using Progress = typename Model::Progress;
+  static_assert(std::is_trivially_destructible_v<Progress>);
+  ::new (static_cast<void*>(&slot)) Progress(model.progress());
+}
+}  // namespace
+
+void FiniteGuard::afterBodyStep(std::size_t i, Body& body) {
+  // One visit a body, its progress kept in place: a body keeps its type, so its last finite progress is of
+  // its own type (three visits and a variant's construction a body-step were a third of the node's CPU).
+  std::visit(
+      [&](auto& model) {
+        using Progress = typename std::decay_t<decltype(model)>::Progress;
+        Progress& last = std::get<Progress>(last_finite_[i]);
+        if (!held_[i]) {
+          if (surelyFiniteModel(model)) {
+            keepProgress(last, model);
+            return;
           }
-          model.restore(last);  // held: whatever the step did to it is undone
-        },
-        bodies[i].model);
-  }
-  return newly_held;
+          const std::optional<std::string> field = nonFiniteField(body);
+          if (!field) {
+            keepProgress(last, model);
+            return;
+          }
+          newly_held_.push_back({i, *field});
+          held_[i] = 1;
+        }
+        model.restore(last);  // held: whatever the step did to it is undone
+      },
+      body.model);
+}
+
+std::vector<NonFinite> FiniteGuard::takeNewlyHeld() {
+  std::vector<NonFinite> taken;
+  taken.swap(newly_held_);
+  return taken;
+}
+
+std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) afterBodyStep(i, bodies[i]);
+  return takeNewlyHeld();
 }
 
 void FiniteGuard::release(std::size_t index, const Body& body) {

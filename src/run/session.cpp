@@ -22,10 +22,10 @@ Session::Session(const WorldConfig& config, std::vector<std::string> reserved_na
 
 void Session::addSink(SampleSink& sink) { sinks_.push_back(&sink); }
 
-void Session::advance(std::int64_t steps, const StepHook& after_step) {
+void Session::advance(std::int64_t steps, const StepHook& after_step, BodyStepObserver* observer) {
   if (steps < 0) throw std::invalid_argument("cannot advance " + std::to_string(steps) + " steps");
   for (std::int64_t i = 0; i < steps; ++i) {
-    world_.step();
+    world_.step(observer);
     if (after_step) after_step(world_);
     if (world_.hasEvents()) handEvents();
     if (atSamplingInstant()) handOut();

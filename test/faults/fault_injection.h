@@ -1,9 +1,9 @@
 // A fault where the node's NaN guard looks, for sim_node_faults only: test/CMakeLists.txt builds the node's
-// sources once more with RBS_FAULT_INJECTION and this header included, and SimNode::afterStep then calls
-// injectFault before the guard after every step. The installed sim_node has neither. At the first step to a
-// time at or after $RBS_FAULT_TIME (s), body $RBS_FAULT_BODY's x becomes NaN, as a step gone wrong would
-// leave it; without RBS_FAULT_BODY nothing happens. (Environment variables: the node refuses a private
-// parameter that is not one of its keys.)
+// sources once more with RBS_FAULT_INJECTION and this header included, and SimNode::afterBodyStep then calls
+// injectFault on each body after its step, before the guard looks at it. The installed sim_node has neither.
+// At the first step to a time at or after $RBS_FAULT_TIME (s), body $RBS_FAULT_BODY's x becomes NaN, as a
+// step gone wrong would leave it; without RBS_FAULT_BODY nothing happens. (Environment variables: the node
+// refuses a private parameter that is not one of its keys.)
 #pragma once
 
 #include <cstdlib>
@@ -15,7 +15,8 @@
 
 namespace rigid_body_sim {
 
-inline void injectFault(World& world) {
+// `body` has just stepped to time `t`.
+inline void injectFault(Body& body, double t) {
   struct Fault {
     std::string body;
     double time = 0.0;
@@ -23,22 +24,21 @@ inline void injectFault(World& world) {
   };
   static Fault fault = [] {
     Fault planned;
-    const char* body = std::getenv("RBS_FAULT_BODY");
+    const char* name = std::getenv("RBS_FAULT_BODY");
     const char* time = std::getenv("RBS_FAULT_TIME");
-    planned.body = body ? body : "";
+    planned.body = name ? name : "";
     planned.time = time ? std::atof(time) : 0.0;
     planned.done = planned.body.empty();
     return planned;
   }();
-  if (fault.done || world.time() < fault.time) return;
-  const auto poison = [](auto& model) {
-    auto state = model.state();
-    state.x = std::numeric_limits<double>::quiet_NaN();
-    model.setState(state);
-  };
-  for (Body& body : world.bodies()) {
-    if (body.name == fault.body) std::visit(poison, body.model);
-  }
+  if (fault.done || t < fault.time || body.name != fault.body) return;
+  std::visit(
+      [](auto& model) {
+        auto state = model.state();
+        state.x = std::numeric_limits<double>::quiet_NaN();
+        model.setState(state);
+      },
+      body.model);
   fault.done = true;
 }
 

@@ -39,6 +39,16 @@ struct EventKindInfo {
   std::string meaning;
 };
 
+// Looks at each body right after its step, while it is at hand in the cache (the node's NaN guard): one pass
+// over the bodies a step, not two.
+class BodyStepObserver {
+ public:
+  virtual void afterBodyStep(std::size_t index, Body& body) = 0;
+
+ protected:
+  ~BodyStepObserver() = default;
+};
+
 class World {
  public:
   // Simulated seconds a race's results stand, every racer at its finish, before the next lap starts.
@@ -47,7 +57,8 @@ class World {
   // Validates (with the names a body may not take beside the world keys); throws ConfigError.
   explicit World(const WorldConfig& config, std::vector<std::string> reserved_names = {});
 
-  void step();   // one step of dt = 1 / rate for every body
+  // One step of dt = 1 / rate for every body; `observer` sees each body after its step and its events.
+  void step(BodyStepObserver* observer = nullptr);
   void reset();  // every body back to its initial conditions (a race's new lap); time goes on
 
   // Applies a change made while the world runs (command.step must be stepCount()). The world it would make

@@ -34,7 +34,7 @@
 
 namespace rigid_body_sim {
 
-class SimNode {
+class SimNode : private BodyStepObserver {
  public:
   // The exit status after the master restarted and forgot the node (roslaunch's respawn starts it again).
   static constexpr int kMasterForgotStatus = 3;
@@ -77,6 +77,7 @@ class SimNode {
   // --- The stepping thread
   void stepLoop();
   // The step hook: the NaN guard (one ERROR line per body it holds), then the step's events (DEBUG).
+  void afterBodyStep(std::size_t index, Body& body) override;  // the guard (and a test's fault) on each body
   void afterStep(World& world);
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).

@@ -36,12 +36,16 @@ struct NonFinite {
 
 // Holds every body whose state became non-finite at its last finite state. It keeps what a step changes
 // (Model::Progress), not whole bodies: a step changes nothing else.
-class FiniteGuard {
+class FiniteGuard : public BodyStepObserver {
  public:
   explicit FiniteGuard(const std::vector<Body>& bodies);  // the current states are the last finite ones
 
-  // Call after every step. A body that became non-finite is put back to its last finite state and held
-  // there at every later call; returns the bodies that became non-finite at this call (each once).
+  // Call on each body after its step (World::step's observer). A body that became non-finite is put back
+  // to its last finite state and held there at every later call; takeNewlyHeld() gives it once.
+  void afterBodyStep(std::size_t index, Body& body) override;
+  // The bodies that became non-finite since the last call.
+  std::vector<NonFinite> takeNewlyHeld();
+  // afterBodyStep on every body, then takeNewlyHeld(): after a step taken without the guard as observer.
   std::vector<NonFinite> afterStep(std::vector<Body>& bodies);
 
   bool held(std::size_t index) const { return held_[index] != 0; }
@@ -58,6 +62,7 @@ class FiniteGuard {
   static Progress progressOf(const Body& body);
 
   std::vector<Progress> last_finite_;
+  std::vector<NonFinite> newly_held_;
   std::vector<char> held_;  // not vector<bool>: its bit arithmetic was a sixth of the guard's time
 };
 

@@ -58,9 +58,10 @@ class Session {
   // Not owned: each must outlive the session's use. Called in the order added.
   void addSink(SampleSink& sink);
 
-  // Takes `steps` steps (std::invalid_argument if negative), calling `after_step` after each; whenever the
-  // count lands on a sampling instant (a multiple of stepsPerSample()), hands the state to the sinks.
-  void advance(std::int64_t steps = 1, const StepHook& after_step = {});
+  // Takes `steps` steps (std::invalid_argument if negative), `observer` seeing each body after its step and
+  // `after_step` called after each step; whenever the count lands on a sampling instant (a multiple of
+  // stepsPerSample()), hands the state to the sinks.
+  void advance(std::int64_t steps = 1, const StepHook& after_step = {}, BodyStepObserver* observer = nullptr);
 
   // The one way to change the world. At a sampling instant not yet handed out, hands it out first (the
   // state of the count, whatever the command); then applies `command` at the current count (command.step
