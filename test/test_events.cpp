@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/core/constants.h"
 #include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/run/session.h"
@@ -113,6 +114,7 @@ TEST(Events, RollerInstantsAreTheClosedForms) {
       EXPECT_NEAR(roll->t, *expected.slip_to_roll, kTimeTolerance);
       EXPECT_EQ(findValue(roll->state, "mode")->text, "rolling");
       EXPECT_EQ(number(roll->state, "omega"), -number(roll->state, "v") / config.params.radius);  // u = 0
+      EXPECT_EQ(number(roll->values, "closed_form"), *expected.slip_to_roll);
     }
     if (finish) {
       ++finished;
@@ -155,6 +157,7 @@ TEST(Events, BlockInstantsAreTheClosedForms) {
       EXPECT_NEAR(rest->t, *expected.stops, kTimeTolerance);
       EXPECT_EQ(number(rest->state, "v"), 0.0);
       EXPECT_EQ(findValue(rest->state, "mode")->text, "sticking");
+      EXPECT_EQ(number(rest->values, "closed_form"), *expected.stops);
     }
     if (finish) {
       ++finished;
@@ -227,6 +230,170 @@ TEST(Events, RaceFinishesCarryPlacesAndTheNextLapRestartsAll) {
   }
   EXPECT_EQ(places, (std::map<std::string, double>{{"sphere", 1}, {"twin", 1}, {"ring", 3}}));
   EXPECT_EQ(restarts, (std::map<std::string, int>{{"sphere", 1}, {"twin", 1}, {"ring", 1}}));
+}
+
+// Each grip event's closed_form against the text's formula, lap after lap: bodies launched in a spread of
+// ways (every shape and a custom c; backspin, no spin, topspin; launched down- and uphill), all in one world.
+// At slip_to_roll, u = v0 + omega0 R has fallen to 0 at the constant rate du/dt = g sin(phi) - sigma mu_d g
+// cos(phi) (1 + c) / c (sigma = sign(u0)): t = (v0 + omega0 R) / (mu_d g cos(phi) (1 + c) / c - g sin(phi))
+// for sigma = +1, and t = -(v0 + omega0 R) / (g sin(phi) + mu_d g cos(phi) (1 + c) / c) for topspin. The
+// event comes that long after its lap started (1e-9 s), and with every lap.
+TEST(Events, SlipToRollCarriesTheTextsClosedForm) {
+  struct Launch {
+    double phi, v0, omega0;
+  };
+  const std::vector<Launch> launches{{0.1, 3.0, 0.0},   {0.1, 0.5, 30.0},   {0.3, 2.0, 25.0},
+                                     {0.3, 1.0, -40.0}, {0.45, 0.0, -35.0}, {0.2, -1.0, -20.0},
+                                     {0.05, 4.0, 10.0}, {0.35, -0.5, 30.0}};
+  std::vector<Shape> shapes(namedShapes().begin(), namedShapes().end());
+  shapes.push_back(Shape::Custom);
+  std::vector<BodyConfig> bodies;
+  std::map<std::string, double> formula;  // body -> t of its slip_to_roll, as the text gives it
+  for (const Shape shape : shapes) {
+    for (std::size_t i = 0; i < launches.size(); ++i) {
+      RollerConfig config;
+      config.params.shape = shape;
+      config.params.inertia_factor = shape == Shape::Custom ? 0.3 : inertiaFactorOf(shape);
+      config.params.incline_angle = launches[i].phi;
+      config.params.mu_s = 0.6;  // every launch can roll: tan(phi) <= mu_s (1 + c) / c
+      config.params.mu_d = 0.4;
+      config.params.incline_length = 8.0;
+      config.initial.x0 = 3.0;
+      config.initial.v0 = launches[i].v0;
+      config.initial.omega0 = launches[i].omega0;
+      const std::string name = toString(shape) + "_" + std::to_string(i);
+      bodies.push_back({name, config});
+      const double g = kDefaultGravity, c = config.params.inertia_factor, phi = launches[i].phi;
+      const double u0 = launches[i].v0 + launches[i].omega0 * config.params.radius;
+      const double grip = 0.4 * g * std::cos(phi) * (1.0 + c) / c;
+      formula[name] = u0 > 0.0 ? u0 / (grip - g * std::sin(phi)) : -u0 / (g * std::sin(phi) + grip);
+    }
+  }
+  World world(worldOf(bodies));
+  std::map<std::string, double> lap_start;
+  std::map<std::string, int> rolled;
+  std::set<int> signs;
+  for (const auto& event : eventsOf(world, 12.0)) {
+    if (event.kind == "lap_restarted") lap_start[event.body] = event.t;
+    if (event.kind != "slip_to_roll") continue;
+    SCOPED_TRACE(event.body + " at t = " + std::to_string(event.t));
+    const EventValue* closed_form = findValue(event.values, "closed_form");
+    ASSERT_NE(closed_form, nullptr);
+    EXPECT_NEAR(closed_form->number, formula.at(event.body), 1e-12 * formula.at(event.body));
+    EXPECT_NEAR(event.t - lap_start[event.body], closed_form->number, kTimeTolerance);
+    const RollerInitial& initial = std::get<RollerConfig>(bodies[*world.indexOf(event.body)].config).initial;
+    signs.insert(initial.v0 + initial.omega0 * 0.1 > 0.0 ? 1 : -1);
+    ++rolled[event.body];
+  }
+  EXPECT_EQ(signs, (std::set<int>{-1, 1})) << "backspin and topspin both covered";
+  for (const auto& body : bodies) {
+    EXPECT_GE(rolled[body.name], 2) << body.name << ": a slip_to_roll in each of two laps at least";
+  }
+}
+
+// Each came_to_rest's closed_form against the stop of a block slowed by friction at the constant rate
+// |a| = mu_d g cos(phi) - sigma g sin(phi), sigma = sign(v0): t = v0 / (mu_d g cos(phi) - g sin(phi))
+// launched downhill (tan(phi) < mu_d), t = -v0 / (g sin(phi) + mu_d g cos(phi)) uphill; that long after its
+// lap started (1e-9 s), lap after lap.
+TEST(Events, CameToRestCarriesTheStopsClosedForm) {
+  struct Launch {
+    double phi, mu_d, v0;
+  };
+  const std::vector<Launch> launches{{0.1, 0.3, 2.0},  {0.2, 0.5, 4.0},  {0.0, 0.2, 1.5}, {0.3, 0.4, 0.5},
+                                     {0.1, 0.3, -2.0}, {0.4, 0.2, -3.0}, {0.6, 0.8, 1.0}, {0.25, 0.6, -1.0}};
+  std::vector<BodyConfig> bodies;
+  std::map<std::string, double> formula;
+  for (std::size_t i = 0; i < launches.size(); ++i) {
+    BlockConfig config;
+    config.params.incline_angle = launches[i].phi;
+    config.params.mu_s = 0.9;  // it sticks where it stops: tan(phi) <= mu_s
+    config.params.mu_d = launches[i].mu_d;
+    config.params.incline_length = 20.0;
+    config.initial.x0 = 10.0;
+    config.initial.v0 = launches[i].v0;
+    const std::string name = "block_" + std::to_string(i);
+    bodies.push_back({name, config});
+    const double g = kDefaultGravity, phi = launches[i].phi, v0 = launches[i].v0;
+    const double friction = launches[i].mu_d * g * std::cos(phi);
+    formula[name] = v0 > 0.0 ? v0 / (friction - g * std::sin(phi)) : -v0 / (g * std::sin(phi) + friction);
+  }
+  World world(worldOf(bodies));
+  std::map<std::string, int> stopped;
+  for (const auto& event : eventsOf(world, 6.0)) {
+    if (event.kind != "came_to_rest") continue;
+    SCOPED_TRACE(event.body + " at t = " + std::to_string(event.t));
+    const EventValue* closed_form = findValue(event.values, "closed_form");
+    ASSERT_NE(closed_form, nullptr);
+    EXPECT_NEAR(closed_form->number, formula.at(event.body), 1e-12 * formula.at(event.body));
+    EXPECT_NEAR(event.t, closed_form->number, kTimeTolerance);  // its first lap started at t = 0
+    ++stopped[event.body];
+  }
+  for (const auto& body : bodies) EXPECT_EQ(stopped[body.name], 1) << body.name;
+  // A reset: each stops again as far into its new lap.
+  WorldCommand reset;
+  reset.kind = WorldCommand::Kind::Reset;
+  reset.step = world.stepCount();
+  world.apply(reset);
+  const double lap_start = world.time();
+  for (const auto& event : eventsOf(world, lap_start + 6.0)) {
+    if (event.kind != "came_to_rest") continue;
+    EXPECT_NEAR(event.t - lap_start, number(event.values, "closed_form"), kTimeTolerance) << event.body;
+    EXPECT_NEAR(number(event.values, "closed_form"), formula.at(event.body), 1e-12 * formula.at(event.body))
+        << event.body;
+    ++stopped[event.body];
+  }
+  for (const auto& body : bodies) EXPECT_EQ(stopped[body.name], 2) << body.name;
+}
+
+// A grip in a lap that did not run as configured carries no closed_form: moved by set_state, or its friction
+// changed in mid-lap; the next lap's has it again.
+TEST(Events, AGripInALapChangedInMidLapHasNoClosedForm) {
+  RollerConfig bowled;  // backspin: slips, then rolls within its first second
+  bowled.initial.v0 = 2.0;
+  bowled.initial.omega0 = 10.0;
+  BlockConfig pushed;  // slows on a gentle slope and stops within its first second
+  pushed.params.incline_angle = 0.1;
+  pushed.params.mu_s = 0.5;
+  pushed.params.mu_d = 0.4;
+  pushed.initial.v0 = 2.0;
+  for (const bool by_set_state : {true, false}) {
+    SCOPED_TRACE(by_set_state ? "set_state" : "reconfigure");
+    World world(worldOf({{"ball", bowled}, {"block", pushed}}));
+    eventsOf(world, 0.2);
+    for (const auto& body : world.bodies()) {
+      WorldCommand change;
+      change.step = world.stepCount();
+      change.body = body.name;
+      if (by_set_state) {
+        change.kind = WorldCommand::Kind::SetState;
+        change.state = {{"v", 1.5}};
+      } else {
+        change.kind = WorldCommand::Kind::Reconfigure;
+        change.config = world.config().bodies[*world.indexOf(body.name)];
+        std::visit(
+            [](auto& config) {
+              if constexpr (!std::is_same_v<std::decay_t<decltype(config)>, RodConfig>)
+                config.params.mu_d *= 1.1;
+            },
+            change.config.config);
+      }
+      world.apply(change);
+    }
+    std::map<std::string, std::vector<bool>> has_closed_form;  // body -> at each grip, in order
+    for (const auto& event : eventsOf(world, 12.0)) {
+      if (event.kind == "slip_to_roll" || event.kind == "came_to_rest")
+        has_closed_form[event.body].push_back(findValue(event.values, "closed_form") != nullptr);
+      if (event.kind == "finished" && event.body == "ball") {
+        EXPECT_EQ(findValue(event.values, "closed_form") != nullptr, has_closed_form["ball"].size() > 1);
+      }
+    }
+    // The block stops for good in its first lap; the ball rolls in every lap, off its slope from the second.
+    EXPECT_EQ(has_closed_form["block"], std::vector<bool>{false});
+    ASSERT_GE(has_closed_form["ball"].size(), 2u);
+    EXPECT_FALSE(has_closed_form["ball"][0]);
+    for (std::size_t i = 1; i < has_closed_form["ball"].size(); ++i)
+      EXPECT_TRUE(has_closed_form["ball"][i]) << i;
+  }
 }
 
 // A reset restarts every body with cause "reset"; a reconfigure of an initial condition restarts that body

@@ -283,16 +283,14 @@ void World::record(std::size_t index, double t, std::size_t kind, const Model& a
   BodyEvent event{t, body.name, Type::kName, what.name, {}, std::move(values)};
   for (const auto& field : stateFields(at))
     event.state.push_back(EventValue{field.name, field.number, field.text});
+  if (what.role == EventRole::Finish) event.values.push_back(EventValue{"lap_time", t - body.lap_start});
+  // The kind's instant in closed form since the lap's start, as its type computes it (none for most kinds):
+  // it holds only while the lap runs as configured.
+  const auto& config = std::get<typename Type::Config>(config_.bodies[index].config);
+  const std::optional<double> closed_form = Type::closedFormInstant(config, kind);
+  if (closed_form && body.lap_as_configured) event.values.push_back(EventValue{"closed_form", *closed_form});
   if (what.role == EventRole::Finish) {
-    const double lap_time = t - body.lap_start;
-    event.values.push_back(EventValue{"lap_time", lap_time});
     if constexpr (Type::kRaces) {
-      const auto& config = std::get<typename Type::Config>(config_.bodies[index].config);
-      if (body.lap_as_configured) {
-        if (const auto closed_form = Type::closedFormFinish(config)) {
-          event.values.push_back(EventValue{"closed_form", *closed_form});
-        }
-      }
       const auto& model = std::get<Model>(body.model);
       if (model.finished()) finish(index, t, findValue(event.values, "speed")->number);
     }
@@ -328,11 +326,16 @@ void World::placeFinishers(std::size_t first_event) {
 void World::finish(std::size_t index, double t, double speed) {
   Body& body = bodies_[index];
   const double lap_start = static_cast<double>(lap_start_step_) / rate_;
+  // The instant of its type's Finish kind in closed form.
   const std::optional<double> closed_form = std::visit(
-      [&](const auto& config) -> std::optional<double> {
+      [&](const auto& config) {
         using Type = TypeOfConfig<decltype(config)>;
-        if constexpr (Type::kRaces) return Type::closedFormFinish(config);
-        return std::nullopt;
+        std::optional<double> instant;
+        for (std::size_t kind = 0; kind < Type::kEventKinds.size(); ++kind) {
+          if (Type::kEventKinds[kind].role == EventRole::Finish)
+            instant = Type::closedFormInstant(config, kind);
+        }
+        return instant;
       },
       config_.bodies[index].config);
   body.finish = RaceFinish{1, t - lap_start, speed, closed_form};

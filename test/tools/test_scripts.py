@@ -145,7 +145,8 @@ class BagSummary(Case):
                 self.assertEqual(often, len(happened), line)
                 self.assertEqual(listed, [(e["t"], e["values"]) for e in happened[:LISTED]], line)
         slips = [e["t"] for e in events if e["body"] == "bowler" and e["kind"] == "slip_to_roll"]
-        self.assertIn(f"slip_to_roll: {len(slips)} times, at t = 0.565892621098528, ", bodies["bowler"][1][0])
+        self.assertIn(f"slip_to_roll: {len(slips)} times, at t = 0.565892621098528 (closed_form=0.565892621098528), ",
+                      bodies["bowler"][1][0])
 
     def test_a_spawned_body_and_one_only_in_the_events(self) -> None:
         config = self.write_config({"bodies": {"rod": {"type": "rod"}, "ball": {"type": "roller"}}})

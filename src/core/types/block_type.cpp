@@ -45,8 +45,12 @@ void BlockType::checkState(const std::string& body, const Config& config, const 
   checkOnSlope(body, "x", state.x, config.params.incline_length);
 }
 
-std::optional<double> BlockType::closedFormFinish(const Config& config) {
-  return closedFormRun(config.params, config.initial).finish;
+std::optional<double> BlockType::closedFormInstant(const Config& config, std::size_t kind) {
+  if (kind != kGripped && kind != kFinished) return std::nullopt;
+  const BlockRun run = closedFormRun(config.params, config.initial);
+  if (kind == kFinished) return run.finish;
+  // A stop where static friction does not hold is no event: the block slides back at once.
+  return Block::canStick(config.params) ? run.stops : std::nullopt;
 }
 
 }  // namespace rigid_body_sim

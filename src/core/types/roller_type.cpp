@@ -108,8 +108,10 @@ void RollerType::checkState(const std::string& body, const Config& config, const
   checkOnSlope(body, "x", state.x, config.params.incline_length);
 }
 
-std::optional<double> RollerType::closedFormFinish(const Config& config) {
-  return closedFormRun(config.params, config.initial).finish;
+std::optional<double> RollerType::closedFormInstant(const Config& config, std::size_t kind) {
+  if (kind != kGripped && kind != kFinished) return std::nullopt;
+  const RollerRun run = closedFormRun(config.params, config.initial);
+  return kind == kGripped ? run.slip_to_roll : run.finish;
 }
 
 }  // namespace rigid_body_sim

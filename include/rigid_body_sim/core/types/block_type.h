@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,7 +29,10 @@ struct BlockType : InclineEvents<Block> {  // its events' lifecycle: incline_eve
   static constexpr const char* kFixedFrameSuffix = "_slope";
   // Its events: its grip kinds, then the lap's.
   static constexpr std::array kEventKinds = inclineEventKinds(
-      {"came_to_rest", "it stopped where static friction holds it"},
+      {"came_to_rest",
+       "it stopped where static friction holds it; value closed_form (its instant in closed form, s since "
+       "its "
+       "lap started, when the lap ran as configured)"},
       {"started_sliding",
        "at rest, it started to slide: a change made the slope too steep for static friction to hold"});
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
@@ -47,8 +51,11 @@ struct BlockType : InclineEvents<Block> {  // its events' lifecycle: incline_eve
   static std::vector<std::string> extraFrames(const std::string&) { return {}; }
   // A state that leaves the block where it may be (set_state): x on its slope. Throws ConfigError.
   static void checkState(const std::string& body, const Config& config, const BlockMotion& state);
-  // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
-  static std::optional<double> closedFormFinish(const Config& config);
+  // The instant of an event of kind `kind` (an index into kEventKinds) in closed form from the initial
+  // conditions, s after the lap's start (closedFormRun): came_to_rest's and finished's; none for the other
+  // kinds, or when the run has no such instant. The world adds it to an event of a lap that ran as
+  // configured.
+  static std::optional<double> closedFormInstant(const Config& config, std::size_t kind);
   // The run summary's tallies (simulate): whether energy is conserved exactly in this state (a stretch of
   // such states is followed for drift), and whether the body touches a floor (a contact begun: a bounce).
   static bool conservesEnergy(const Block&) { return false; }  // sliding, friction takes it

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,8 @@ struct RodType {
       report(began ? 0 : 1, dt, rod, std::vector<EventValue>{EventValue{"end", 0.0, end == 1u ? "A" : "B"}});
     }
   }
+  // Its events' instants in closed form: none (the text's scheme locates a contact only to its step).
+  static std::optional<double> closedFormInstant(const Config&, std::size_t) { return std::nullopt; }
   static const BodyType<Config>& description();
   static constexpr SweepColumn kSweepColumn{"bounces", SweepColumn::Of::Bounces, "", "bounces", ""};
   static constexpr std::array kStateFields{

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,7 +30,8 @@ struct RollerType : InclineEvents<Roller> {  // its events' lifecycle: incline_e
   // Its events: its grip kinds, then the lap's.
   static constexpr std::array kEventKinds = inclineEventKinds(
       {"slip_to_roll",
-       "slipping turned into rolling: the contact point's speed reached 0 where static friction holds"},
+       "slipping turned into rolling: the contact point's speed reached 0 where static friction holds; value "
+       "closed_form (its instant in closed form, s since its lap started, when the lap ran as configured)"},
       {"roll_to_slip",
        "rolling turned into slipping: a change made the slope too steep for static friction to hold"});
   static constexpr bool kRaces = true;  // in a race it stops at the end of its slope (World::step)
@@ -50,8 +52,11 @@ struct RollerType : InclineEvents<Roller> {  // its events' lifecycle: incline_e
   static std::vector<std::string> extraFrames(const std::string&) { return {}; }
   // A state that leaves the body where it may be (set_state): x on its slope. Throws ConfigError.
   static void checkState(const std::string& body, const Config& config, const RollerMotion& state);
-  // The instant it would pass the end of its slope from its initial conditions (closedFormRun).
-  static std::optional<double> closedFormFinish(const Config& config);
+  // The instant of an event of kind `kind` (an index into kEventKinds) in closed form from the initial
+  // conditions, s after the lap's start (closedFormRun): slip_to_roll's and finished's; none for the other
+  // kinds, or when the run has no such instant. The world adds it to an event of a lap that ran as
+  // configured.
+  static std::optional<double> closedFormInstant(const Config& config, std::size_t kind);
   // The run summary's tallies (simulate): whether energy is conserved exactly in this state (a stretch of
   // such states is followed for drift), and whether the body touches a floor (a contact begun: a bounce).
   static bool conservesEnergy(const Roller& roller) { return roller.mode() == RollMode::Rolling; }
