@@ -40,9 +40,9 @@ import matplotlib
 import numpy as np
 from rigid_body_sim import runs
 from rigid_body_sim.sim_tools import (EVENT_ROLES, SWEEP_RESULT_LABELS, BlockSpec, BodySpec, Config, Event, RodSpec,
-                                      RollerSpec, SweepColumns, body_spec, event_lines, is_sweep_header, key_unit,
-                                      labelled, load_config, read_bag_events, read_states, role, state_fields,
-                                      sweep_columns)
+                                      RollerSpec, SweepColumns, body_spec, event_lines, face_of, is_sweep_header,
+                                      key_unit, labelled, load_config, read_bag_events, read_states, role,
+                                      state_fields, sweep_columns)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
@@ -420,7 +420,7 @@ def mark_energies(ax: Any, happened: List[Event]) -> List[Event]:
 
 def plot_energy(r: States, path: str) -> None:
     names = list(r.run)
-    looks = [TYPES[r.specs[n].TYPE] for n in names]
+    looks = [look_of(r.specs[n].TYPE) for n in names]
     heights = [look.energy_height for look in looks]
     fig, axes = plt.subplots(len(names), 1, figsize=(9, 1.6 * sum(heights) + 0.4), sharex=True, squeeze=False,
                              gridspec_kw={"height_ratios": heights})
@@ -501,6 +501,10 @@ TYPES: Dict[str, TypeLook] = {
     RollerSpec.TYPE: TypeLook(shade_roller_slipping, summary=("rollers", roller_numbers)),
     BlockSpec.TYPE: TypeLook(shade_block_sliding),
 }
+
+
+def look_of(type_name: str) -> TypeLook:
+    return face_of(TYPES, type_name, "look (its row in TYPES)", "scripts/plot_run.py")
 
 
 # --- sweeps ----------------------------------------------------------------------------------------
@@ -791,7 +795,7 @@ def summarise(run: Run, specs: Specs, events: Events) -> Summary:
         if gaps:  # e.g. rosbag record dropping messages of a node run as fast as possible
             print(f"plot_run: warning: {name}: {gaps} gaps in the samples", file=sys.stderr)
         p = specs[name]
-        look = TYPES[p.TYPE]
+        look = look_of(p.TYPE)
         if look.summary:
             group, numbers = look.summary
             summary[group][name] = numbers(d, p, events[name])

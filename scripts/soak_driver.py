@@ -13,9 +13,9 @@ from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import rospy
 from dynamic_reconfigure.client import Client
-from rigid_body_sim.sim_tools import (BlockSpec, BodySpec, RodSpec, RollerSpec, SlopeSpec, body_specs, load_config,
-                                      node_pid, resident_kib, state_message, state_numbers, subscribers, wait_for,
-                                      world_value)
+from rigid_body_sim.sim_tools import (BlockSpec, BodySpec, RodSpec, RollerSpec, SlopeSpec, body_specs, face_of,
+                                      load_config, node_pid, resident_kib, state_message, state_numbers, subscribers,
+                                      wait_for, world_value)
 from rigid_body_sim.srv import Step
 
 
@@ -100,7 +100,7 @@ CHANGES: Dict[str, Callable[[random.Random, Any], Dict[str, float]]] = {
 
 
 def random_change(rng: random.Random, spec: BodySpec) -> Dict[str, float]:
-    return CHANGES[spec.TYPE](rng, spec)
+    return face_of(CHANGES, spec.TYPE, "random change (its row in CHANGES)", "scripts/soak_driver.py")(rng, spec)
 
 
 class Driver:

@@ -20,7 +20,7 @@ import threading
 import time
 import xmlrpc.client
 from dataclasses import dataclass
-from typing import Any, Callable, ClassVar, Dict, Iterable, List, Optional, Set, Tuple, Type, Union
+from typing import Any, Callable, ClassVar, Dict, Iterable, List, Optional, Set, Tuple, Type, TypeVar, Union
 
 import yaml
 from rigid_body_sim import description
@@ -159,6 +159,26 @@ SPECS: Dict[str, Union[Type[RodSpec], Type[RollerSpec], Type[BlockSpec]]] = {
     RodSpec.TYPE: RodSpec, RollerSpec.TYPE: RollerSpec, BlockSpec.TYPE: BlockSpec}
 INERTIA_FACTORS = RollerSpec.INERTIA_FACTORS
 
+Row = TypeVar("Row")
+
+
+class MissingFace(LookupError):
+    """A body type of the description without its row in a table of what the tools know of each type
+    (SPECS here, plot_run.TYPES, soak_driver.CHANGES): test/tools/test_type_faces.py fails first."""
+
+
+def face_of(table: Dict[str, Row], type_name: str, face: str, where: str) -> Row:
+    """A body type's row of `table`, or a one-line MissingFace naming the type, the face and its file."""
+    if type_name not in table:
+        raise MissingFace(f"body type '{type_name}' has no {face} in {where} (it has rows for "
+                          f"{', '.join(table)}; docs/DESIGN.md lists every file a type touches)")
+    return table[type_name]
+
+
+def spec_class(type_name: str) -> Union[Type[RodSpec], Type[RollerSpec], Type[BlockSpec]]:
+    """The spec of a body type, by its `type`."""
+    return face_of(SPECS, type_name, "Python spec (a class with its TYPE in SPECS)", "src/rigid_body_sim/sim_tools.py")
+
 
 def body_type(config: Config, name: str) -> str:
     """Its `type` (a body without one is refused by the config loader before any run)."""
@@ -168,12 +188,12 @@ def body_type(config: Config, name: str) -> str:
 def with_defaults(body: Config) -> Config:
     """A body's keys (with its `type`), its type's defaults filled in and what its type derives from them (a
     roller's c from its shape)."""
-    return SPECS[str(body["type"])].keys(body)
+    return spec_class(str(body["type"])).keys(body)
 
 
 def body_spec(config: Config, name: str) -> BodySpec:
     """One body's values, the documented defaults where the config leaves a key out."""
-    return SPECS[body_type(config, name)].of(name, config["bodies"][name])
+    return spec_class(body_type(config, name)).of(name, config["bodies"][name])
 
 
 def state_message(type_name: str) -> Any:
