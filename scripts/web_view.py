@@ -23,8 +23,19 @@ The Host a request names must be one of this machine's names or addresses (on ev
 rebinding); a request's head must come whole within HEAD_TIMEOUT, and an overlong target or header is
 answered 414 or 431.
 
+Every page may open a lab of its own (rigid_body_sim.labs): a private rigid_body_sim.core.World of the class's
+config (as it runs now, or its lesson part's file), stepped in real time on a worker thread at the frame timer,
+its frames and events to its page(s) alone; a page acts on its own lab only (the `rbs_lab` cookie, HttpOnly,
+that GET / gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of its run so far).
+The teacher's page gets the class's results and the curves they lie on, asks the class a question and shows
+one lab to every page. web_protocol's docstring is the protocol.
+
+Listening on every address (0.0.0.0 or ::), it listens on IPv4 and, where the machine has it, IPv6: the
+addresses it offers are ones it listens on.
+
 Parameters: ~host (127.0.0.1), ~port (8080), ~control (false), ~node (sim), ~web_root (the package's web/),
-~frame_rate (50 Hz), ~queue (4 frames)."""
+~frame_rate (50 Hz), ~queue (4 frames), ~max_labs (60), ~labs_per_address (8; the loopback's exempt),
+~simulate (the package's simulate, found in the workspaces of CMAKE_PREFIX_PATH)."""
 from __future__ import annotations
 
 import asyncio
@@ -40,9 +51,12 @@ import resource
 import secrets
 import signal
 import socket
+import subprocess
 import sys
+import tempfile
 import threading
 import time
+import zipfile
 from typing import Any, Dict, List, Optional, Set, Tuple
 
 import qrcode
@@ -54,18 +68,20 @@ import tornado.httputil
 import tornado.ioloop
 import tornado.iostream
 import tornado.log
+import tornado.netutil
 import tornado.web
 import tornado.websocket
 import yaml
 from dynamic_reconfigure.msg import Config as ReconfigureConfig
 from dynamic_reconfigure.msg import DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
-from rigid_body_sim import description
+from rigid_body_sim import description, labs
 from rigid_body_sim.msg import Command, Event
 from rigid_body_sim.runs import event_record
 from rigid_body_sim.sim_tools import WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
-from rigid_body_sim.web_protocol import (LESSON_KEYS, MAX_REQUEST_BYTES, EventLog, FrameQueue, Record, Refusal,
-                                         Request, event_roles, events_message, frame_message, parse_request,
+from rigid_body_sim.web_protocol import (LAB_OPS, LESSON_KEYS, MAX_REQUEST_BYTES, EventLog, FrameQueue, Record,
+                                         Refusal, Request, event_roles, events_message, frame_message,
+                                         lab_events_message, lab_frame_message, parse_request, part_config,
                                          part_of_config, websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, GetEvents, Step
 from rosgraph_msgs.msg import Log
@@ -82,7 +98,14 @@ DESCRIPTION = description.load()
 NODE_LINE_WAIT = 3.0  # s: the node logs a refusal before it answers, but /rosout may bring it later
 MAX_PENDING_REQUESTS = 8  # per page: more waiting for the node are refused
 MAX_REPLIES = 64  # per page: replies and world updates not yet written; a page that leaves more is closed
-WEB_FILES = ("index.html", "types.js", "view.js", "view.css")
+# The page's files: the view, and the lab's and the class's parts.
+WEB_FILES = ("index.html", "types.js", "view.js", "view.css", "lab.js", "class.js", "lab.css")
+LAB_COOKIE = "rbs_lab"
+# The ops that go to the labs (the page's own, the poll, the teacher's lab ops), never to the node.
+LABS_OPS = (*LAB_OPS, "lab_open", "answer", "ask", "reveal", "show_lab", "class_clear")
+CLASS_PERIOD = 1.0  # s: the class's results go to the teacher at most this often
+MAX_DOWNLOADS = 2  # simulate runs for downloads at once
+SIMULATE_TIMEOUT = 120.0  # s
 SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
 CONTROL_COOKIE = "rbs_control"
 MAX_URL = 8 * 1024  # bytes of a request's target: longer is answered 414
@@ -215,9 +238,14 @@ class Page(tornado.websocket.WebSocketHandler):
         latest = self.view.latest_frame()
         if latest:
             self.frames.offer(latest)
+        # Its lab (a reload re-attaches it), the question, the lab the teacher shows, the class's results.
+        self.lab_cookie = self.get_cookie(LAB_COOKIE, "") or ""
+        self.view.attach(self)
         asyncio.ensure_future(self.send_loop())
 
     def on_close(self) -> None:
+        if self in self.view.pages:
+            self.view.detach(self)
         self.view.pages.discard(self)
         self.wake.set()
         more = sum(self.refused.values()) - len(self.refused)
@@ -234,8 +262,16 @@ class Page(tornado.websocket.WebSocketHandler):
     def on_message(self, message: Any) -> None:
         request_id = None
         try:
-            request = parse_request(message, self.control, self.view.world.kinds(), self.view.world.parts())
+            lab = self.view.room.of(self.lab_cookie)
+            request = parse_request(message, self.control, self.view.world.kinds(), self.view.world.parts(),
+                                    lab.bodies if lab else None)
             request_id = request.id
+            if request.op in LABS_OPS:
+                if self.pending >= MAX_PENDING_REQUESTS:
+                    raise Refusal("busy", f"refused: {MAX_PENDING_REQUESTS} requests already wait")
+                self.pending += 1
+                asyncio.ensure_future(self.carry_out_lab(request))
+                return
             if request.op == "view":  # the teacher's choice for every following page: the server's own
                 self.view.shared = {"plot_body": request.body}
                 self.view.broadcast({"type": "view", **self.view.shared})
@@ -251,10 +287,20 @@ class Page(tornado.websocket.WebSocketHandler):
                 raise Refusal("busy", f"refused: {MAX_PENDING_REQUESTS} requests already wait for the node")
         except Refusal as refusal:
             self.note_refusal(refusal)
-            self.reply({"type": "reply", "id": request_id, "ok": False, "line": str(refusal)})
+            self.reply({"type": "reply", "id": request_id if request_id is not None else refusal.id, "ok": False,
+                        "line": str(refusal)})
             return
         self.pending += 1
         asyncio.ensure_future(self.carry_out(request))
+
+    async def carry_out_lab(self, request: Request) -> None:
+        try:
+            ok, line = await self.view.carry_out_lab(self, request)
+        finally:
+            self.pending -= 1
+        if not ok:
+            self.note_refusal(Refusal(request.op, line))
+        self.reply({"type": "reply", "id": request.id, "ok": ok, "line": line})
 
     async def carry_out(self, request: Request) -> None:
         try:
@@ -320,6 +366,10 @@ class Page(tornado.websocket.WebSocketHandler):
             self.sent += 1
 
 
+# A lab's news of a tick: the lab, its frame, its events, its `lab` and `shown_lab` messages if it changed.
+LabOutput = Tuple[labs.Lab, Optional[bytes], Optional[str], Optional[Tuple[str, str]]]
+
+
 class WebView:
     def __init__(self) -> None:
         self.host = str(rospy.get_param("~host", "127.0.0.1"))
@@ -363,6 +413,24 @@ class WebView:
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
         state_topic = re.escape(self.node) + r"/([A-Za-z][A-Za-z0-9_]*)/state"
         self.state_topic = re.compile(state_topic + "$")
+        # The labs: stepped on their own thread (one at a time, in order), the class's curves on another.
+        self.room = labs.LabRoom(int(rospy.get_param("~max_labs", labs.MAX_LABS)),
+                                 int(rospy.get_param("~labs_per_address", labs.LABS_PER_ADDRESS)))
+        self.simulate = str(rospy.get_param("~simulate", "")) or labs.find_simulate()
+        self.config_dir = os.path.join(self.web_root, "..", "config")
+        self.lab_thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+        self.class_thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+        self.lab_pages: Dict[str, Set[Page]] = {}  # lab cookie -> its pages
+        self.lab_ticking = False
+        self.tick_seconds = 0.0  # the last lab tick's time on its thread (logged when it nears a frame's)
+        self.shown: Optional[str] = None  # the lab the teacher shows every page
+        self.poll = labs.Poll()
+        self.curves = labs.Curves()
+        self.class_text = ""
+        self.class_due = False
+        self.class_busy = False
+        self.last_part = ""  # the lesson part the world last had: a lab's "start"
+        self.downloads: asyncio.Semaphore  # made on the server's loop (serve)
 
     # --- ROS: every callback hands its news to the server's thread ------------------------------------------
     def start_ros(self) -> None:
@@ -528,7 +596,11 @@ class WebView:
 
     def flush(self) -> None:
         """One frame of every state since the last, serialised once for every page; the events since the last
-        before it, in one message (a reset's burst of restarts is one reply, not one a body)."""
+        before it, in one message (a reset's burst of restarts is one reply, not one a body). The labs step
+        on their thread meanwhile (a tick still running is not doubled: the labs catch up in real time)."""
+        if not self.lab_ticking and self.room.labs:
+            self.lab_ticking = True
+            asyncio.ensure_future(self.tick_labs())
         if self.new_events and self.pages:
             self.broadcast_text(events_message(self.new_events, False))
         self.new_events = []
@@ -542,6 +614,7 @@ class WebView:
             page.offer(frame)
 
     def send_world(self) -> None:
+        self.last_part = self.world.part() or self.last_part
         text = self.world.message()
         for page in list(self.pages):
             page.reply_text(text)
@@ -619,6 +692,259 @@ class WebView:
         rospy.ServiceProxy(f"{self.node}/reset", Empty)()
         return True, f"part {part}: every body's keys set, the race started again"
 
+    # --- labs: every world call on the lab thread -------------------------------------------------------------
+    def pages_of(self, lab: labs.Lab) -> List[Page]:
+        return list(self.lab_pages.get(lab.cookie, ()))
+
+    def attach(self, page: Page) -> None:
+        """A page that opens: its lab (a reload re-attaches it), the question, the lab shown, the class."""
+        lab = self.room.attach(page.lab_cookie)
+        if lab is not None:
+            self.lab_pages.setdefault(page.lab_cookie, set()).add(page)
+        if self.poll.question:
+            page.reply(self.poll.question_message())
+            if page.control or not self.poll.open:
+                page.reply(self.poll.answers_message())
+        if page.control and self.class_text:
+            page.reply_text(self.class_text)
+        shown = self.room.by_id.get(self.shown or "")
+        if lab is not None or shown is not None:
+            asyncio.ensure_future(self.send_labs(page, lab, shown))
+
+    def detach(self, page: Page) -> None:
+        pages = self.lab_pages.get(page.lab_cookie)
+        if pages is not None and page in pages:
+            pages.discard(page)
+            self.room.detach(page.lab_cookie)
+
+    async def send_labs(self, page: Page, own: Optional[labs.Lab], shown: Optional[labs.Lab]) -> None:
+        """A page's own lab and the shown one, whole: each lab message and its run's events."""
+        texts = await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.lab_texts, own, shown)
+        if page in self.pages:
+            for text in texts:
+                page.reply_text(text)
+
+    @staticmethod
+    def lab_texts(own: Optional[labs.Lab], shown: Optional[labs.Lab]) -> List[str]:
+        texts = []
+        for lab, kind in ((own, "lab"), (shown, "shown_lab")):
+            if lab is not None:
+                with lab.lock:
+                    texts.append(json.dumps(lab.message(kind)))
+                    texts.append(lab_events_message(lab.id, list(lab.events), True))
+        return texts
+
+    def lab_config(self, source: str) -> str:
+        """The config a lab opens from: the world's as it runs ("now") or its lesson part's file ("start")."""
+        if source == "now":
+            if self.world.source != "node" or not self.world.bodies:
+                raise labs.LabRefusal(f"refused: no simulation's config to open a lab from ({self.node})")
+            return yaml.safe_dump({**self.world.settings, "bodies": self.world.bodies}, sort_keys=False)
+        if not self.last_part:
+            raise labs.LabRefusal("refused: the world has had no lesson part's keys: open a lab from now")
+        with open(os.path.join(self.config_dir, part_config(self.last_part))) as text:
+            return text.read()
+
+    def lab_gone(self, lab: labs.Lab, line: str) -> None:
+        message = {"type": "lab_closed", "lab": lab.id, "line": line}
+        for page in self.pages_of(lab):
+            page.reply(message)
+        if self.shown == lab.id:
+            self.shown = None
+            self.broadcast({"type": "shown_lab", "lab": None})
+        self.class_due = True
+
+    def lab_changed(self, lab: labs.Lab, texts: Tuple[str, str]) -> None:
+        """Its `lab` message to its pages, and `shown_lab` to every page if shown."""
+        for page in self.pages_of(lab):
+            page.reply_text(texts[0])
+        if self.shown == lab.id:
+            self.broadcast_text(texts[1])
+        self.class_due = True
+
+    @staticmethod
+    def lab_messages(lab: labs.Lab) -> Tuple[str, str]:
+        """On the lab thread, its lock held: its `lab` and `shown_lab` messages."""
+        lab.changed = False
+        return json.dumps(lab.message("lab")), json.dumps(lab.message("shown_lab"))
+
+    def lab_op(self, lab: labs.Lab, request: Request) -> Tuple[str, Tuple[str, str]]:
+        """On the lab thread: a request of the page's own lab. (its line, its messages)."""
+        with lab.lock:
+            self.room.touch(lab)
+            now = self.room.clock()
+            if request.op == "lab_run":
+                line = lab.run(now)
+            elif request.op == "lab_pause":
+                line = lab.pause()
+            elif request.op == "lab_reset":
+                line = lab.reset(now)
+            elif request.op == "lab_step":
+                line = lab.step(request.steps)
+            else:
+                line = lab.set(request.body, request.key, request.value, now)
+            return line, self.lab_messages(lab)
+
+    def open_lab(self, page: Page, request: Request, config: str) -> Tuple[labs.Lab, Optional[labs.Lab],
+                                                                           Tuple[str, str]]:
+        """On the lab thread: a new lab for the page's cookie."""
+        lab, old = self.room.open(page.lab_cookie, page.request.remote_ip or "", request.name, request.source, config)
+        with lab.lock:
+            return lab, old, self.lab_messages(lab)
+
+    async def carry_out_lab(self, page: Page, request: Request) -> Tuple[bool, str]:
+        """A lab's, the poll's or the class's request: (accepted, its line)."""
+        loop = asyncio.get_running_loop()
+        op = request.op
+        try:
+            if op == "lab_open":
+                config = self.lab_config(request.source)
+                lab, old, texts = await loop.run_in_executor(self.lab_thread, self.open_lab, page, request, config)
+                if old is not None:
+                    self.lab_gone(old, f"lab {old.id} closed: a new one opened")
+                pages = self.lab_pages.setdefault(lab.cookie, set())
+                pages.update(p for p in self.pages if p.lab_cookie == lab.cookie)
+                lab.attached = len(pages)
+                self.lab_changed(lab, texts)
+                return True, f"lab {lab.id} opened from {request.source}: t = 0, running"
+            if op == "answer":
+                line = self.poll.answer(page.lab_cookie, request.answer if request.answer is not None else "")
+                self.broadcast(self.poll.answers_message(), control_only=True)
+                return True, line
+            if op == "ask":
+                line = self.poll.ask(request.question, request.choices, request.unit)
+                self.broadcast(self.poll.question_message())
+                self.broadcast(self.poll.answers_message(), control_only=True)
+                return True, line
+            if op == "reveal":
+                line = self.poll.reveal()
+                self.broadcast(self.poll.question_message())
+                self.broadcast(self.poll.answers_message())
+                return True, line
+            if op == "show_lab":
+                return self.show_lab(request.lab)
+            if op == "class_clear":
+                await loop.run_in_executor(self.lab_thread, self.room.clear_results)
+                self.class_due = True
+                return True, "the class's results cleared (the labs go on)"
+            own = self.room.of(page.lab_cookie)
+            if own is None:
+                raise labs.LabRefusal("refused: this page has no lab (open one first)")
+            if op == "lab_close":
+                self.room.close(own.cookie)
+                self.lab_gone(own, f"lab {own.id} closed")
+                return True, f"lab {own.id} closed"
+            line, texts = await loop.run_in_executor(self.lab_thread, self.lab_op, own, request)
+            self.lab_changed(own, texts)
+            return True, line
+        except labs.LabRefusal as refusal:
+            return False, str(refusal)
+        except OSError as error:  # a lesson part's config that cannot be read
+            return False, f"refused: {error}"
+
+    def show_lab(self, lab_id: Optional[str]) -> Tuple[bool, str]:
+        if lab_id is None:
+            self.shown = None
+            self.broadcast({"type": "shown_lab", "lab": None})
+            return True, "the class sees its world again"
+        lab = self.room.by_id.get(lab_id)
+        if lab is None:
+            raise labs.LabRefusal(f"refused: no lab {lab_id!r}")
+        self.shown = lab.id
+        for page in list(self.pages):
+            asyncio.ensure_future(self.send_labs(page, None, lab))
+        return True, f"the class sees {lab.name}'s lab"
+
+    async def tick_labs(self) -> None:
+        """Every running lab stepped to now on the lab thread; its frame and events to its pages (the shown
+        lab's to every page); the labs idle past their time ended."""
+        try:
+            gone, out = await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.lab_tick)
+        finally:
+            self.lab_ticking = False
+        for lab in gone:
+            self.lab_gone(lab, f"lab {lab.id} ended: {labs.IDLE / 60:g} minutes idle")
+            self.lab_pages.pop(lab.cookie, None)
+        for lab, frame, events, texts in out:
+            everyone = self.shown == lab.id
+            pages = list(self.pages) if everyone else self.pages_of(lab)
+            for page in pages:
+                if frame is not None:
+                    page.offer(frame)
+                if events is not None:
+                    page.reply_text(events)
+            if texts is not None:
+                self.lab_changed(lab, texts)
+            if lab.results_changed:
+                self.class_due = True
+        if self.class_due and not self.class_busy and any(page.control for page in self.pages):
+            self.class_due, self.class_busy = False, True
+            asyncio.ensure_future(self.send_class())
+
+    def lab_tick(self) -> Tuple[List[labs.Lab], List[LabOutput]]:
+        """On the lab thread: (the labs ended, [(a lab, its frame, its events, its messages if it changed)])."""
+        started = time.perf_counter()
+        gone = self.room.expire()
+        out = []
+        for lab in self.room.tick():
+            with lab.lock:
+                samples = lab.take_samples()
+                frame = None
+                if samples:
+                    lab.seq += 1
+                    frame = websocket_text_frame(lab_frame_message(lab.id, lab.seq, samples))
+                whole, records = lab.take_events()
+                events = lab_events_message(lab.id, records, whole) if whole or records else None
+                texts = self.lab_messages(lab) if lab.changed else None
+            out.append((lab, frame, events, texts))
+        self.tick_seconds = time.perf_counter() - started
+        if self.tick_seconds > 0.5 / self.frame_rate:
+            rospy.logwarn_throttle(60, f"web view: a tick of {len(out)} labs took {1000 * self.tick_seconds:.1f} ms "
+                                       f"(a frame is {1000 / self.frame_rate:.0f} ms)")
+        return gone, out
+
+    async def send_class(self) -> None:
+        """The class's results and curves (on the class thread) to the teacher's pages, at most every
+        CLASS_PERIOD s."""
+        try:
+            text = await asyncio.get_running_loop().run_in_executor(self.class_thread, self.class_message)
+            if text != self.class_text:
+                self.class_text = text
+                self.broadcast_text(text, control_only=True)
+            await asyncio.sleep(CLASS_PERIOD)
+        finally:
+            self.class_busy = False
+
+    def class_message(self) -> str:
+        results = self.room.class_results()
+        with self.room.lock:
+            by_id = dict(self.room.by_id)
+        lesson = labs.lesson_of(results, by_id)
+        on_lesson = [r for r in results if r["lab"] in by_id and by_id[r["lab"]].origin == lesson]
+        curves = self.curves.compute(lesson, on_lesson) if lesson else {}
+        return labs.class_message(results, lesson, by_id, curves)
+
+    def lab_zip(self, lab: labs.Lab) -> bytes:
+        """On a worker thread: the lab's config and the files `simulate` writes of its run so far, zipped."""
+        with lab.lock:
+            config, duration = lab.config, lab.sampled_t
+        with tempfile.TemporaryDirectory(prefix="rbs_lab_") as folder:
+            path = os.path.join(folder, "config.yaml")
+            with open(path, "w") as file:
+                file.write(config)
+            run = os.path.join(folder, "run")
+            os.mkdir(run)
+            done = subprocess.run([self.simulate, path, "--duration", repr(duration), "--out-dir", run],
+                                  capture_output=True, text=True, timeout=SIMULATE_TIMEOUT, check=False)
+            if done.returncode != 0:
+                raise RuntimeError(f"simulate: {(done.stderr.strip().splitlines() or ['failed'])[-1]}")
+            packed = io.BytesIO()
+            with zipfile.ZipFile(packed, "w", zipfile.ZIP_DEFLATED) as archive:
+                archive.write(path, "config.yaml")
+                for name in sorted(os.listdir(run)):
+                    archive.write(os.path.join(run, name), name)
+            return packed.getvalue()
+
     # --- HTTP -----------------------------------------------------------------------------------------------
     def application(self) -> tornado.web.Application:
         root = os.path.realpath(self.web_root)
@@ -628,11 +954,18 @@ class WebView:
         return tornado.web.Application(
             [(r"/ws", Page, {"view": self}),
              (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
-             (r"/(types\.js|view\.js|view\.css)", File, {"path": root, "view": self}),
-             (r"/qr\.svg", QrCode, {"view": self})],
+             (r"/(" + "|".join(re.escape(name) for name in WEB_FILES if name != "index.html") + ")", File,
+              {"path": root, "view": self}),
+             (r"/qr\.svg", QrCode, {"view": self}),
+             (r"/lab/([0-9a-f]{1,40})\.zip", LabZip, {"view": self})],
             # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
             websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20,
             log_function=log_request)
+
+    def offer_only(self, families: Set[int]) -> None:
+        """The addresses offered: only those of the families it listens on."""
+        listened = [u for u in self.watch_urls if (socket.AF_INET6 if "[" in u else socket.AF_INET) in families]
+        self.watch_urls = listened or self.watch_urls
 
     def urls(self) -> Tuple[str, str]:
         base = self.watch_urls[0]
@@ -709,6 +1042,10 @@ class File(tornado.web.StaticFileHandler):
             self.set_header("Cache-Control", "no-store")
             self.redirect("/", status=303)
             return
+        if path == "" and not self.get_cookie(LAB_COOKIE):
+            # The page's lab is the cookie's: a random secret its script cannot read; a reload keeps it.
+            self.set_cookie(LAB_COOKIE, secrets.token_urlsafe(18), path="/", httponly=True, samesite="Strict",
+                            expires_days=1)
         await super().get(path, include_body)
 
     def prepare(self) -> None:
@@ -741,6 +1078,36 @@ class QrCode(tornado.web.RequestHandler):
         self.set_header("Cache-Control", "no-store")
         self.set_header("X-Content-Type-Options", "nosniff")
         self.write(svg.getvalue())
+
+
+class LabZip(tornado.web.RequestHandler):
+    """GET /lab/<id>.zip: the cookie's own lab (any other is 404): its config.yaml and the files `simulate
+    config.yaml --duration <its last sample's t>` writes, its run so far."""
+
+    def initialize(self, view: "WebView") -> None:
+        self.view = view
+
+    def prepare(self) -> None:
+        refuse_foreign_host(self, self.view)
+
+    async def get(self, lab_id: str) -> None:
+        lab = self.view.room.of(self.get_cookie(LAB_COOKIE, "") or "")
+        if lab is None or not hmac.compare_digest(lab.id, lab_id):
+            raise tornado.web.HTTPError(404, "no lab %s of this page's", lab_id)
+        if not self.view.simulate:
+            raise tornado.web.HTTPError(503, "simulate not found (CMAKE_PREFIX_PATH, ~simulate)")
+        self.view.room.touch(lab)
+        async with self.view.downloads:
+            try:
+                data = await asyncio.get_running_loop().run_in_executor(None, self.view.lab_zip, lab)
+            except (RuntimeError, OSError, subprocess.SubprocessError) as error:
+                rospy.logwarn(f"web view: lab {lab.id}'s download: {error}")
+                raise tornado.web.HTTPError(500, "%s", error) from None
+        self.set_header("Content-Type", "application/zip")
+        self.set_header("Content-Disposition", f'attachment; filename="lab-{lab.id}.zip"')
+        self.set_header("Cache-Control", "no-store")
+        self.set_header("X-Content-Type-Options", "nosniff")
+        self.write(data)
 
 
 class SizeGuard(tornado.httputil.HTTPMessageDelegate):
@@ -786,18 +1153,36 @@ class Server(tornado.httpserver.HTTPServer):
         return SizeGuard(super().start_request(server_conn, request_conn), request_conn)
 
 
+def listening_sockets(host: str, port: int) -> List[socket.socket]:
+    """The sockets to listen on: every address (0.0.0.0, :: or "") is IPv4's and, where the machine has
+    IPv6, IPv6's (a socket of its own, IPv6 only: tornado sets IPV6_V6ONLY); else the host's."""
+    if host not in ("0.0.0.0", "::", ""):
+        return tornado.netutil.bind_sockets(port, host)
+    sockets = tornado.netutil.bind_sockets(port, "0.0.0.0", family=socket.AF_INET)
+    if socket.has_ipv6 and os.path.exists("/proc/net/if_inet6"):
+        try:
+            sockets += tornado.netutil.bind_sockets(port, "::", family=socket.AF_INET6)
+        except OSError as error:  # IPv6 disabled: its addresses are not offered
+            rospy.logwarn(f"web view: not listening on IPv6 ({error}): IPv4 addresses alone")
+    return sockets
+
+
 async def serve(view: WebView) -> None:
     """Runs the server on this thread's event loop until ROS shuts down."""
     view.loop = tornado.ioloop.IOLoop.current()
     view.line_came = asyncio.Event()
+    view.downloads = asyncio.Semaphore(MAX_DOWNLOADS)
     done = asyncio.Event()
     try:
         # An idle or half-sent request's connection is closed HEAD_TIMEOUT s after it began.
-        Server(view.application(), xheaders=False, max_header_size=READ_HEAD_LIMIT,
-               idle_connection_timeout=HEAD_TIMEOUT, body_timeout=HEAD_TIMEOUT).listen(view.port, address=view.host)
+        server = Server(view.application(), xheaders=False, max_header_size=READ_HEAD_LIMIT,
+                        idle_connection_timeout=HEAD_TIMEOUT, body_timeout=HEAD_TIMEOUT)
+        sockets = listening_sockets(view.host, view.port)
     except OSError as error:
         rospy.logfatal(f"web view: cannot listen on {view.host}:{view.port}: {error}")
         sys.exit(1)
+    server.add_sockets(sockets)
+    view.offer_only({s.family for s in sockets})
     view.start_ros()
     tornado.ioloop.PeriodicCallback(view.flush, 1000.0 / view.frame_rate).start()
     watch, control = view.urls()

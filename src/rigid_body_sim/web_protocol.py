@@ -3,7 +3,7 @@ may send (each checked whole before anything is done with it), the messages the 
 queue of frames each page has, and the run's events the server keeps for a page that opens late.
 
 A request is one JSON object of at most MAX_REQUEST_BYTES, {"op": ..., "id": N, ...} with exactly the keys
-of its op:
+of its op. The teacher's page (the token's cookie) alone may send:
   {"op": "pause" | "run" | "reset", "id": N}
   {"op": "step", "id": N, "steps": S}                    S a whole number in [1, MAX_STEPS]
   {"op": "set", "id": N, "body": B, "key": K, "value": V} B a body the view knows, K one of LESSON_KEYS of its
@@ -12,9 +12,39 @@ of its op:
                                                            follows the teacher plots
   {"op": "part", "id": N, "part": P}                     P a lesson part the world's bodies can take
                                                            (lesson.launch's, config/): its keys, then a reset
-Every reply names the request it answers by its id.
+  {"op": "ask", "id": N, "question": Q, "choices": [C, ...] | null, "unit": U}
+                                                         pose a question to every page: Q 1..MAX_QUESTION
+                                                           printable characters; choices 2..MAX_CHOICES different
+                                                           texts of 1..MAX_NAME (which finishes first...), or null
+                                                           for a number (a time...) in unit U (0..MAX_UNIT)
+  {"op": "reveal", "id": N}                              close the question: every page gets the answers
+  {"op": "show_lab", "id": N, "lab": L | null}           every page shows lab L's world (null: the class's again)
+  {"op": "class_clear", "id": N}                         forget every lab's outcomes (the labs go on)
+Every page may send, about its own lab (the one of its `rbs_lab` cookie, which GET / gives: HttpOnly,
+SameSite=Strict, a random secret; a reload re-attaches the page to its lab):
+  {"op": "lab_open", "id": N, "from": "now" | "start", "name": S}
+                                                         a lab of the class's world as it runs now (the keys the
+                                                           teacher changed included) or of its lesson part's config
+                                                           file, from t = 0; S the student's name, trimmed, 1..40
+                                                           printable characters. The cookie's lab before ends.
+  {"op": "lab_run" | "lab_pause" | "lab_reset" | "lab_close", "id": N}
+                                                         run in real time, pause, start again from t = 0, end it
+  {"op": "lab_step", "id": N, "steps": S}                S whole in [1, MAX_LAB_STEPS], paused only
+  {"op": "lab_set", "id": N, "body": B, "key": K, "value": V}
+                                                         B a body of its lab, K one of LESSON_KEYS of its type, V a
+                                                           finite number: the lab's new config (the core's World.set
+                                                           on a trial World; a refusal is the core's one line and
+                                                           changes nothing), from t = 0
+  {"op": "answer", "id": N, "answer": A}                 A one of the open question's choices, or a finite number;
+                                                           a page's latest answer counts (one a cookie)
+A lab op from a page without a lab is refused ("no lab"); a lab is opened at most ~max_labs in all and
+~labs_per_address from one remote address (the loopback exempt), and ends after 30 minutes without a request
+and without a page attached.
+Every reply names the request it answers by its id; a refusal too, once the message was a JSON object with a
+whole "id" in [0, 2^53) (else "id": null).
 Anything else is refused with one line (Refusal) and goes no further: the node's services and reconfigure
-servers see only well-formed requests from pages that hold the token, and judge the values themselves.
+servers see only well-formed requests from pages that hold the token, and judge the values themselves; a lab's
+core judges its.
 
 The server's messages, each a JSON object with its "type":
   hello    {control, node, frame_rate, description (body_types.json), view, [addresses]}: first, once
@@ -27,7 +57,34 @@ The server's messages, each a JSON object with its "type":
   view     {plot_body}: the teacher's choice for every following page
   paused   {paused}
   reply    {id, ok, line}: the answer to a request
-  line     {line}: the node's WARN line, to the teacher's page alone"""
+  line     {line}: the node's WARN line, to the teacher's page alone
+The labs' (rigid_body_sim.labs):
+  lab      {lab (its public id), name, config (YAML text: runs unchanged in simulate, the node and the core),
+           bodies: {body: type}, settings: {body: every key, as the config has them}, world: {rate,
+           publish_rate, gravity, world_frame, race}, t, paused, from, states: {body: its last sample}}: the
+           page's own lab, at attach and open and after each of its requests (a paused lab is drawn from states)
+  lab_frame  {lab, seq, states: {body: [state, ...]}}: its samples since its last frame (every rate /
+           publish_rate steps, t = k / publish_rate, the first at t = 0; at most 500 a body, the newest), to its
+           pages, or to every page while it is shown
+  lab_events {lab, all, events: [record, ...]}: its events (as World.events() gives them; a value that is not
+           finite as null); all: true after each (re)start and at attach (its run's, at most 10000: replace)
+  lab_closed {lab, line}: it ended (lab_close, a new lab_open, 30 idle minutes)
+  shown_lab  {the fields of `lab`} | {lab: null}: the lab the teacher shows (again when it changes; its
+           lab_frame and lab_events then go to every page)
+  class    {results: [{lab, name, from, varied: {"body.key": value}, outcomes: [{body, kind, value_name,
+           value, t}], t, on_curves}], curves: {"body.key": {"body.kind.value_name": {x: [...], y: [... |
+           null]}}}, lesson: {"body.key": value}}: to the teacher's pages, at most every second when results
+           change. outcomes: each (body, kind) first event of the run (finished: lap_time; any other kind: t;
+           came_to_rest: x too; contact_began: count so far too); varied: its lesson keys that differ from the
+           config it was opened from. curves: for each varied key and each outcome of that body (no count),
+           the core run over a grid of the key (the lesson config, that body alone; the labs' own values among
+           the grid's: their points lie on it exactly); y null where the core gave no such event or refused the
+           value. lesson: the config most labs were opened from (on_curves: a lab opened from it).
+  question {question, choices, unit, open}: to every page (at ask, at reveal with open: false, at hello)
+  answers  {n, counts: {choice: n} | values: [sorted numbers]}: to the teacher's pages at each answer; to every
+           page at reveal
+HTTP: GET /lab/<lab id>.zip (that lab's cookie only; else 404): config.yaml and the files `simulate
+config.yaml --duration <its last sample's t> --out-dir` writes (one CSV a body, events.csv): its run so far."""
 from __future__ import annotations
 
 import collections
@@ -48,8 +105,22 @@ LESSON_KEYS: Dict[str, Tuple[str, ...]] = {kind: tuple(keys) for kind, keys in d
 # lesson.launch's parts that are no race: each one's config is config/<part>.yaml (its `config` argument says
 # the same); every other part's is config/race_<part>.yaml.
 SOLO_PARTS: Tuple[str, ...] = ("rod",)
+# A lab's (rigid_body_sim.labs): a lab_step's most steps, a student's name's most characters.
+MAX_LAB_STEPS = 100_000
+MAX_NAME = 40
+MAX_QUESTION = 200  # characters of a question
+MAX_CHOICES = 8
+MAX_UNIT = 20
 OPS: Dict[str, Set[str]] = {"pause": set(), "run": set(), "reset": set(), "step": {"steps"},
-                            "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"}}
+                            "set": {"body", "key", "value"}, "view": {"plot_body"}, "part": {"part"},
+                            "lab_open": {"from", "name"}, "lab_run": set(), "lab_pause": set(), "lab_reset": set(),
+                            "lab_close": set(), "lab_step": {"steps"}, "lab_set": {"body", "key", "value"},
+                            "answer": {"answer"}, "ask": {"question", "choices", "unit"}, "reveal": set(),
+                            "show_lab": {"lab"}, "class_clear": set()}
+# The ops any page may send (about its own lab, or its answer); the rest need the token.
+PAGE_OPS = ("lab_open", "lab_run", "lab_pause", "lab_reset", "lab_close", "lab_step", "lab_set", "answer")
+# The ops of a page's lab: refused where the page has none (but lab_open).
+LAB_OPS = ("lab_run", "lab_pause", "lab_reset", "lab_close", "lab_step", "lab_set")
 
 
 def part_config(part: str) -> str:
@@ -68,9 +139,10 @@ class Refusal(Exception):
     """A request that goes no further; str() is the one line the page and the log show. `kind` groups
     refusals of one sort, so that each is logged once per page."""
 
-    def __init__(self, kind: str, line: str) -> None:
+    def __init__(self, kind: str, line: str, request_id: Optional[int] = None) -> None:
         super().__init__(line)
         self.kind = kind
+        self.id = request_id  # the request's id, when it had a well-formed one: its reply names it
 
 
 @dataclass(frozen=True)
@@ -81,15 +153,37 @@ class Request:
     body: str = ""
     key: str = ""
     value: float = 0.0
+    name: str = ""  # lab_open: the student's name, trimmed
+    source: str = ""  # lab_open: "now" or "start"
+    answer: Union[str, float, None] = None
+    question: str = ""
+    choices: Optional[Tuple[str, ...]] = None  # ask: None for a number's question
+    unit: str = ""
+    lab: Optional[str] = None  # show_lab: None for none
 
 
 def _whole(value: Any) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Collection[str] = ()) -> Request:
-    """The request in `text` (a WebSocket message), or Refusal. `control`: the page holds the token;
-    `bodies`: {name: its type} of the world the view knows; `parts`: the lesson parts it can take."""
+def printable_text(value: Any, most: int, least: int = 1) -> Optional[str]:
+    """`value` trimmed if it is a text of `least`..`most` printable characters, else None."""
+    if not isinstance(value, str):
+        return None
+    trimmed = value.strip()
+    return trimmed if least <= len(trimmed) <= most and trimmed.isprintable() else None
+
+
+def _finite_number(value: Any) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
+
+
+def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Collection[str] = (),
+                  lab_bodies: Optional[Mapping[str, str]] = None) -> Request:
+    """The request in `text` (a WebSocket message), or Refusal (with the request's id when it had a
+    well-formed one). `control`: the page holds the token; `bodies`: {name: its type} of the world the view
+    knows; `parts`: the lesson parts it can take; `lab_bodies`: {name: its type} of the page's own lab, None
+    where it has none."""
     if not isinstance(text, str):
         raise Refusal("binary", "refused: a binary message (requests are JSON text)")
     if len(text.encode()) > MAX_REQUEST_BYTES:
@@ -100,6 +194,17 @@ def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Co
         raise Refusal("json", "refused: not JSON") from None
     if not isinstance(message, dict):
         raise Refusal("shape", "refused: a request is a JSON object")
+    given: Any = message.get("id")
+    request_id = given if _whole(given) and 0 <= given < 2**53 else None
+    try:
+        return _parse(message, control, bodies, parts, lab_bodies)
+    except Refusal as refusal:
+        refusal.id = request_id
+        raise
+
+
+def _parse(message: Dict[str, Any], control: bool, bodies: Mapping[str, str], parts: Collection[str],
+           lab_bodies: Optional[Mapping[str, str]]) -> Request:
     op = message.get("op")
     if not isinstance(op, str) or op not in OPS:
         raise Refusal("op", f"refused: unknown op {str(op)[:40]!r}")
@@ -108,9 +213,51 @@ def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Co
         raise Refusal("keys", f"refused: {op} takes exactly {', '.join(sorted(expected))}")
     if not _whole(message["id"]) or not 0 <= message["id"] < 2**53:
         raise Refusal("id", "refused: id is a whole number in [0, 2^53)")
-    if not control:
+    if not control and op not in PAGE_OPS:
         raise Refusal("control", "refused: this page only shows (control needs the link with the token)")
     request = Request(op, message["id"])
+    if op in LAB_OPS and lab_bodies is None:
+        raise Refusal("no lab", "refused: this page has no lab (open one first)")
+    if op == "lab_open":
+        source, name = message["from"], printable_text(message["name"], MAX_NAME)
+        if source not in ("now", "start"):
+            raise Refusal("from", "refused: a lab opens from \"now\" (the class's world as it runs) or \"start\" "
+                                  "(its lesson part's config)")
+        if name is None:
+            raise Refusal("name", f"refused: a name is 1 to {MAX_NAME} printable characters")
+        return Request(op, request.id, source=source, name=name)
+    if op == "answer":
+        answer = message["answer"]
+        if isinstance(answer, str):
+            text = printable_text(answer, MAX_NAME)
+            if text is None:
+                raise Refusal("answer", f"refused: an answer is a choice (1 to {MAX_NAME} printable characters) "
+                                        "or a finite number")
+            return Request(op, request.id, answer=text)
+        if not _finite_number(answer):
+            raise Refusal("answer", "refused: an answer is a choice or a finite number")
+        return Request(op, request.id, answer=float(answer))
+    if op == "ask":
+        question, unit, choices = message["question"], message["unit"], message["choices"]
+        question = printable_text(question, MAX_QUESTION)
+        if question is None:
+            raise Refusal("question", f"refused: a question is 1 to {MAX_QUESTION} printable characters")
+        unit = printable_text(unit, MAX_UNIT, least=0)
+        if unit is None:
+            raise Refusal("unit", f"refused: a unit is at most {MAX_UNIT} printable characters")
+        if choices is not None:
+            texts = [printable_text(c, MAX_NAME) for c in choices] if isinstance(choices, list) else [None]
+            if not 2 <= len(texts) <= MAX_CHOICES or None in texts or len(set(texts)) != len(texts):
+                raise Refusal("choices", f"refused: choices are null (a number's question) or 2 to {MAX_CHOICES} "
+                                         f"different texts of 1 to {MAX_NAME} printable characters")
+            return Request(op, request.id, question=question, unit=unit,
+                           choices=tuple(str(t) for t in texts))
+        return Request(op, request.id, question=question, unit=unit)
+    if op == "show_lab":
+        lab = message["lab"]
+        if lab is not None and (not isinstance(lab, str) or not re.fullmatch(r"[0-9a-f]{1,40}", lab)):
+            raise Refusal("lab", f"refused: no lab {str(lab)[:40]!r}")
+        return Request(op, request.id, lab=lab)
     if op == "part":
         part = message["part"]
         if not isinstance(part, str) or part not in parts:
@@ -122,19 +269,20 @@ def parse_request(text: Any, control: bool, bodies: Mapping[str, str], parts: Co
         if not isinstance(body, str) or body not in bodies:
             raise Refusal("body", f"refused: no body {str(body)[:40]!r}")
         return Request(op, request.id, body=body)
-    if op == "step":
-        steps = message["steps"]
-        if not _whole(steps) or not 1 <= steps <= MAX_STEPS:
-            raise Refusal("steps", f"refused: steps is a whole number in [1, {MAX_STEPS}]")
+    if op in ("step", "lab_step"):
+        steps, most = message["steps"], MAX_STEPS if op == "step" else MAX_LAB_STEPS
+        if not _whole(steps) or not 1 <= steps <= most:
+            raise Refusal("steps", f"refused: steps is a whole number in [1, {most}]")
         return Request(op, request.id, steps=steps)
-    if op == "set":
+    if op in ("set", "lab_set"):
+        known = bodies if op == "set" else lab_bodies or {}
         body, key, value = message["body"], message["key"], message["value"]
-        if not isinstance(body, str) or body not in bodies:
-            raise Refusal("body", f"refused: no body {str(body)[:40]!r}")
-        if not isinstance(key, str) or key not in LESSON_KEYS[bodies[body]]:
-            raise Refusal("key", f"refused: {bodies[body]} key {str(key)[:40]!r} is not one a lesson changes "
-                                 f"({', '.join(LESSON_KEYS[bodies[body]])})")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        if not isinstance(body, str) or body not in known:
+            raise Refusal("body", f"refused: no body {str(body)[:40]!r}{' in this lab' if op == 'lab_set' else ''}")
+        if not isinstance(key, str) or key not in LESSON_KEYS[known[body]]:
+            raise Refusal("key", f"refused: {known[body]} key {str(key)[:40]!r} is not one a lesson changes "
+                                 f"({', '.join(LESSON_KEYS[known[body]])})")
+        if not _finite_number(value):
             raise Refusal("value", f"refused: {key} is a finite number")
         return Request(op, request.id, body=body, key=key, value=float(value))
     return request
@@ -185,6 +333,19 @@ def events_message(records: Sequence[Mapping[str, Any]], whole: bool) -> str:
     shortest round-trip form, a value that is not finite as null (JSON has no NaN)."""
     events = [{**r, "values": _finite(r["values"]), "state": _finite(r["state"])} for r in records]
     return json.dumps({"type": "events", "all": whole, "events": events}, separators=(",", ":"), allow_nan=False)
+
+
+def lab_frame_message(lab: str, seq: int, states: Mapping[str, List[Dict[str, Any]]]) -> str:
+    """A lab's frame: its samples since its last, as frame_message's."""
+    return json.dumps({"type": "lab_frame", "lab": lab, "seq": seq, "states": states}, separators=(",", ":"),
+                      allow_nan=False)
+
+
+def lab_events_message(lab: str, records: Sequence[Mapping[str, Any]], whole: bool) -> str:
+    """A lab's events, as events_message's (`whole`: its run's, which replace the page's)."""
+    events = [{**r, "values": _finite(r["values"]), "state": _finite(r["state"])} for r in records]
+    return json.dumps({"type": "lab_events", "lab": lab, "all": whole, "events": events}, separators=(",", ":"),
+                      allow_nan=False)
 
 
 class EventLog:

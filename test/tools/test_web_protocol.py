@@ -10,18 +10,21 @@ Usage: test_web_protocol.py"""
 import json
 import math
 import unittest
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Tuple
 
 from rigid_body_sim import description
-from rigid_body_sim.web_protocol import (EVENTS_KEPT, LESSON_KEYS, MAX_REQUEST_BYTES, MAX_STEPS, EventLog,
-                                         FrameQueue, Refusal, Request, event_roles, events_message, frame_message,
+from rigid_body_sim.web_protocol import (EVENTS_KEPT, LAB_OPS, LESSON_KEYS, MAX_LAB_STEPS, MAX_REQUEST_BYTES,
+                                         MAX_STEPS, EventLog, FrameQueue, Refusal, Request, event_roles,
+                                         events_message, frame_message, lab_events_message, lab_frame_message,
                                          parse_request)
 
 BODIES = {"rod": "rod", "sphere": "roller"}
+LAB_BODIES = {"ring": "roller", "crate": "block"}  # a page's own lab's
 
 
-def parse(message: object, control: bool = True) -> Request:
-    return parse_request(message if isinstance(message, (str, bytes)) else json.dumps(message), control, BODIES)
+def parse(message: object, control: bool = True, lab: object = LAB_BODIES) -> Request:
+    text = message if isinstance(message, (str, bytes)) else json.dumps(message)
+    return parse_request(text, control, BODIES, (), lab if isinstance(lab, dict) else None)
 
 
 class Requests(unittest.TestCase):
@@ -40,10 +43,20 @@ class Requests(unittest.TestCase):
             for key in keys:
                 self.assertEqual(parse({"op": "set", "id": 0, "body": body, "key": key, "value": -0.5}).key, key)
 
-    def refused(self, message: object, kind: str, control: bool = True) -> str:
+    def refused(self, message: object, kind: str, control: bool = True, lab: object = LAB_BODIES) -> str:
         with self.assertRaises(Refusal) as caught:
-            parse(message, control)
+            parse(message, control, lab)
         self.assertEqual(caught.exception.kind, kind, str(caught.exception))
+        # Its reply names the request: the id, where the message had a well-formed one.
+        given = message.get("id") if isinstance(message, dict) else None
+        if isinstance(message, str) and len(message.encode()) <= MAX_REQUEST_BYTES:  # an oversized one is not read
+            try:
+                decoded = json.loads(message, parse_constant=lambda name: math.nan)
+                given = decoded.get("id") if isinstance(decoded, dict) else None
+            except (ValueError, RecursionError):
+                pass
+        whole = isinstance(given, int) and not isinstance(given, bool) and 0 <= given < 2**53
+        self.assertEqual(caught.exception.id, given if whole else None, message)
         line = str(caught.exception)
         self.assertTrue(line.startswith("refused") and "\n" not in line and len(line) < 200, line)
         return line
@@ -89,6 +102,72 @@ class Requests(unittest.TestCase):
         # a malformed request is refused for what it is, whoever sends it
         self.refused({"op": "pause"}, "keys", control=False)
 
+    def test_lab_ops(self) -> None:
+        # Any page: its own lab's ops and its answer; the teacher's page: the class's.
+        for control in (False, True):
+            self.assertEqual(parse({"op": "lab_open", "id": 1, "from": "now", "name": "  Ada L.  "}, control, None),
+                             Request("lab_open", 1, source="now", name="Ada L."))
+            self.assertEqual(parse({"op": "lab_open", "id": 2, "from": "start", "name": "x" * 40}, control),
+                             Request("lab_open", 2, source="start", name="x" * 40))
+            for op in LAB_OPS:
+                if op not in ("lab_step", "lab_set"):
+                    self.assertEqual(parse({"op": op, "id": 3}, control), Request(op, 3))
+            self.assertEqual(parse({"op": "lab_step", "id": 4, "steps": MAX_LAB_STEPS}, control),
+                             Request("lab_step", 4, steps=MAX_LAB_STEPS))
+            self.assertEqual(parse({"op": "lab_set", "id": 5, "body": "crate", "key": "mu_d", "value": 0.25},
+                                   control), Request("lab_set", 5, body="crate", key="mu_d", value=0.25))
+            self.assertEqual(parse({"op": "answer", "id": 6, "answer": " ring "}, control, None),
+                             Request("answer", 6, answer="ring"))
+            self.assertEqual(parse({"op": "answer", "id": 7, "answer": 2}, control), Request("answer", 7, answer=2.0))
+        self.assertEqual(parse({"op": "ask", "id": 8, "question": "Which first?", "choices": ["ring", "crate"],
+                                "unit": ""}), Request("ask", 8, question="Which first?", choices=("ring", "crate")))
+        self.assertEqual(parse({"op": "ask", "id": 9, "question": "Its lap time?", "choices": None, "unit": "s"}),
+                         Request("ask", 9, question="Its lap time?", unit="s"))
+        self.assertEqual(parse({"op": "reveal", "id": 10}), Request("reveal", 10))
+        self.assertEqual(parse({"op": "show_lab", "id": 11, "lab": "0a1b2c3d"}),
+                         Request("show_lab", 11, lab="0a1b2c3d"))
+        self.assertEqual(parse({"op": "show_lab", "id": 12, "lab": None}), Request("show_lab", 12))
+        self.assertEqual(parse({"op": "class_clear", "id": 13}), Request("class_clear", 13))
+
+    def test_lab_ops_refused(self) -> None:
+        for op in LAB_OPS:
+            extra: Dict[str, Any] = {"steps": 1} if op == "lab_step" else (
+                {"body": "ring", "key": "mu_d", "value": 1} if op == "lab_set" else {})
+            self.refused({"op": op, "id": 1, **extra}, "no lab", lab=None)
+        for name in ("", "   ", "x" * 41, "a\tb", "a\nb", 7, None):
+            self.refused({"op": "lab_open", "id": 1, "from": "now", "name": name}, "name")
+        for source in ("later", "", None, 1):
+            self.refused({"op": "lab_open", "id": 1, "from": source, "name": "Ada"}, "from")
+        self.refused({"op": "lab_open", "id": 1, "name": "Ada"}, "keys")
+        for steps in (0, MAX_LAB_STEPS + 1, 2.5, True):
+            self.refused({"op": "lab_step", "id": 1, "steps": steps}, "steps")
+        self.refused({"op": "lab_set", "id": 1, "body": "rod", "key": "k", "value": 1}, "body")  # the class's, not its
+        self.refused({"op": "lab_set", "id": 1, "body": "crate", "key": "omega0", "value": 1}, "key")
+        self.refused('{"op": "lab_set", "id": 1, "body": "ring", "key": "mu_d", "value": NaN}', "value")
+        for answer in (None, True, [1], "", "x" * 41, 1e400):
+            self.refused({"op": "answer", "id": 1, "answer": answer}, "answer")
+        self.refused('{"op": "answer", "id": 1, "answer": Infinity}', "answer")
+        teachers: List[Tuple[str, Dict[str, Any]]] = [
+            ("ask", {"question": "Q?", "choices": None, "unit": ""}), ("reveal", {}), ("show_lab", {"lab": None}),
+            ("class_clear", {})]
+        for op, extra in teachers:
+            self.refused({"op": op, "id": 1, **extra}, "control", control=False)
+        for question in ("", "q" * 201, None):
+            self.refused({"op": "ask", "id": 1, "question": question, "choices": None, "unit": ""}, "question")
+        for choices in (["one"], ["a", "a"], ["a", ""], [f"c{n}" for n in range(9)], "a,b", [1, 2]):
+            self.refused({"op": "ask", "id": 1, "question": "Q?", "choices": choices, "unit": ""}, "choices")
+        self.refused({"op": "ask", "id": 1, "question": "Q?", "choices": None, "unit": "u" * 21}, "unit")
+        for lab in ("../x", "ABC", 5, ""):
+            self.refused({"op": "show_lab", "id": 1, "lab": lab}, "lab")
+
+    def test_every_refusal_names_its_request(self) -> None:
+        # However early a request is refused, its reply carries its id, where it had a well-formed one.
+        self.refused({"op": "launch", "id": 41}, "op")
+        self.refused({"op": "pause", "id": 42, "extra": 0}, "keys")
+        self.refused({"op": "step", "id": 43, "steps": 0}, "steps")
+        self.refused({"op": "pause", "id": 44}, "control", control=False)
+        self.refused({"op": "pause", "id": 1.5, "x": 1}, "keys")  # no whole id: null
+
 
 class Frames(unittest.TestCase):
     def test_full_queue_drops_the_oldest(self) -> None:
@@ -107,6 +186,16 @@ class Frames(unittest.TestCase):
         self.assertEqual(frame["states"]["sphere"][0]["t"].hex(), (0.1 + 0.2).hex())
         with self.assertRaises(ValueError):
             frame_message(8, {"sphere": [{"t": float("nan")}]})
+
+    def test_lab_messages(self) -> None:
+        state = {"t": 0.1 + 0.2, "x": 1 / 3, "mode": "rolling"}
+        self.assertEqual(json.loads(lab_frame_message("ab12", 3, {"ring": [state]})),
+                         {"type": "lab_frame", "lab": "ab12", "seq": 3, "states": {"ring": [state]}})
+        record = {"t": 1.5, "body": "ring", "type": "roller", "kind": "finished",
+                  "values": {"lap_time": 1.5, "closed_form": math.nan}, "state": {"x": 5.0}}
+        sent = json.loads(lab_events_message("ab12", [record], True))
+        self.assertEqual((sent["type"], sent["lab"], sent["all"]), ("lab_events", "ab12", True))
+        self.assertIsNone(sent["events"][0]["values"]["closed_form"])
 
 
 ROLES = event_roles(description.body_types())

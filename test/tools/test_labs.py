@@ -1,0 +1,338 @@
+#!/usr/bin/env python3
+"""The web view's labs (rigid_body_sim.labs) without ROS or a network, against the truth:
+- a lab run in real time (an injected clock), paused and stepped by any count, equals a core.World of its
+  config run as long and `simulate` of its config, bit for bit: every sample (t, each state field) and event;
+  after a change of a key it starts again from t = 0 and equals simulate of its new config;
+- a refused change answers the core's one line (World.set's ValueError) and changes nothing;
+- the caps: one lab a cookie, ~max_labs, ~labs_per_address (the loopback exempt), names 1..40 printable;
+- a lab ends after its idle time with no page attached (the injected clock), never while one is;
+- the class's outcomes against the closed forms: each roller's slip -> roll instant against
+  t = (v0 + omega0 R) / (mu_d g cos(phi) (1 + c) / c - g sin(phi)), its lap time against the finish event's
+  closed_form; the curve over a key's grid passes through each lab's point exactly and follows the closed form;
+- the poll: choices counted, numbers listed, one answer a voter, refusals.
+Usage: test_labs.py [SIMULATE_EXE]   (with the package's devel or install space sourced; without the argument,
+simulate is found as catkin finds it)"""
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+from typing import Any, Dict, List, Tuple
+
+import numpy
+import yaml
+
+import rigid_body_sim.core as core
+from rigid_body_sim import labs, runs
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CONFIG_DIR = os.path.join(HERE, "..", "..", "config")
+SIMULATE = sys.argv.pop(1) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else labs.find_simulate()
+
+
+def config_text(name: str) -> str:
+    with open(os.path.join(CONFIG_DIR, name)) as file:
+        return file.read()
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 100.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+class Collected:
+    """What a lab's page gets: its samples and events, as the page keeps them (a restart replaces)."""
+
+    def __init__(self) -> None:
+        self.samples: Dict[str, List[Dict[str, Any]]] = {}
+        self.events: List[Dict[str, Any]] = []
+
+    def take(self, lab: labs.Lab) -> None:
+        whole, events = lab.take_events()
+        if whole:
+            self.samples, self.events = {}, []
+        self.events += events
+        for body, states in lab.take_samples().items():
+            self.samples.setdefault(body, []).extend(states)
+
+
+def simulate_run(config: str, duration: float) -> Tuple[Dict[str, Dict[str, numpy.ndarray]], List[Dict[str, Any]]]:
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "config.yaml")
+        with open(path, "w") as file:
+            file.write(config)
+        subprocess.run([SIMULATE, path, "--duration", repr(duration), "--out-dir", folder], check=True,
+                       capture_output=True)
+        return runs.read_run(folder), runs.read_events(folder)
+
+
+class Runs(unittest.TestCase):
+    def assert_run_is_simulate(self, lab: labs.Lab, got: Collected) -> None:
+        duration = lab.sampled_t
+        theirs, their_events = simulate_run(lab.config, duration)
+        mine, my_events = core.World(lab.config).run(duration, events=True)
+        self.assertEqual(sorted(theirs), sorted(got.samples))
+        for body, states in got.samples.items():
+            for field, column in theirs[body].items():
+                values = [state[field] for state in states]
+                self.assertEqual(len(values), len(column), (body, field))
+                if column.dtype.kind == "f":
+                    self.assertEqual([v.hex() for v in values], [float(c).hex() for c in column], (body, field))
+                    self.assertEqual([v.hex() for v in values], [float(c).hex() for c in mine[body][field]])
+                else:
+                    self.assertEqual(values, list(column), (body, field))
+        kept = [e for e in got.events if e["t"] <= duration]
+        self.assertEqual(kept, their_events)
+        self.assertEqual(kept, my_events)
+        self.assertTrue(kept, "a run with events")
+
+    def test_real_time_paused_stepped_and_changed(self) -> None:
+        clock = Clock()
+        room = labs.LabRoom(clock=clock)
+        lab, _ = room.open("cookie", "10.0.0.5", "Ada", "start", config_text("race_slip.yaml"))
+        got = Collected()
+        for _ in range(130):  # 2.6 s in frames of 20 ms
+            clock.now += 0.02
+            room.tick()
+            got.take(lab)
+        self.assertAlmostEqual(lab.t, 2.6, delta=0.0011)
+        lab.pause()
+        clock.now += 5.0
+        room.tick()
+        self.assertAlmostEqual(lab.t, 2.6, delta=0.0011, msg="paused: no steps")
+        lab.step(333)  # not a whole number of samples: the next ones fall where simulate's do
+        got.take(lab)
+        lab.run(clock.now)
+        for _ in range(20):
+            clock.now += 0.05
+            room.tick()
+            got.take(lab)
+        self.assert_run_is_simulate(lab, got)
+        # A change: from t = 0 with the new config, which is World.set's, and simulate's run of it.
+        line = lab.set("ring", "mu_d", 0.25, clock.now)
+        self.assertIn("mu_d = 0.25", line)
+        self.assertEqual(lab.t, 0.0)
+        trial = core.World(config_text("race_slip.yaml"))
+        trial.set("ring", mu_d=0.25)
+        self.assertEqual(lab.config, trial.config())
+        self.assertEqual(lab.varied(), {"ring.mu_d": 0.25})
+        got.take(lab)
+        lab.pause()
+        lab.step(2500)
+        got.take(lab)
+        self.assert_run_is_simulate(lab, got)
+
+    def test_a_refused_change_changes_nothing(self) -> None:
+        clock = Clock()
+        room = labs.LabRoom(clock=clock)
+        lab, _ = room.open("cookie", "10.0.0.5", "Ada", "now", config_text("race_slip.yaml"))
+        lab.pause()
+        lab.step(700)
+        before = (lab.config, lab.t, lab.world.steps, lab.world.state("sphere"), lab.varied())
+        for key, value in (("mu_d", -1.0), ("incline_angle", 2.0), ("mu_s", math.inf)):
+            with self.assertRaises(ValueError) as core_says:
+                core.World(lab.config).set("sphere", **{key: value})
+            with self.assertRaises(labs.LabRefusal) as refused:
+                lab.set("sphere", key, value, clock.now)
+            line = str(refused.exception)
+            self.assertEqual(line, str(core_says.exception))
+            self.assertNotIn("\n", line)
+            self.assertIn("'sphere'", line)
+            self.assertIn(f"'{key}'", line)
+            self.assertEqual((lab.config, lab.t, lab.world.steps, lab.world.state("sphere"), lab.varied()), before)
+        with self.assertRaises(labs.LabRefusal):
+            lab.set("hoop", "mu_d", 0.1, clock.now)
+        with self.assertRaises(labs.LabRefusal):
+            lab.set("sphere", "radius", 0.2, clock.now)  # not a lesson key
+        lab.run(clock.now)
+        with self.assertRaises(labs.LabRefusal):
+            lab.step(10)  # running: no step
+        self.assertEqual(lab.t, before[1])
+
+
+class Room(unittest.TestCase):
+    def test_caps(self) -> None:
+        room = labs.LabRoom(max_labs=4, per_address=2, clock=Clock())
+        text = config_text("rod.yaml")
+        first, _ = room.open("a1", "10.0.0.7", "  Ann  ", "now", text)
+        self.assertEqual(first.name, "Ann")
+        room.open("a2", "10.0.0.7", "Ann again", "now", text)
+        with self.assertRaisesRegex(labs.LabRefusal, r"^refused: 2 labs from 10\.0\.0\.7 already"):
+            room.open("a3", "10.0.0.7", "Ann thrice", "now", text)
+        # The same cookie: its lab replaced, never a second one.
+        again, old = room.open("a1", "10.0.0.7", "Ann", "now", text)
+        self.assertIs(old, first)
+        self.assertEqual(len(room.labs), 2)
+        self.assertIsNone(room.by_id.get(first.id))
+        self.assertIs(room.by_id[again.id], again)
+        self.assertNotEqual(again.id, again.cookie)
+        # The loopback is exempt from the address's cap, not from the class's.
+        room.open("l1", "127.0.0.1", "Teacher", "now", text)
+        room.open("l2", "::ffff:127.0.0.1", "Teacher 2", "now", text)
+        with self.assertRaisesRegex(labs.LabRefusal, r"^refused: the class has 4 labs already"):
+            room.open("l3", "::1", "Teacher 3", "now", text)
+        room.close("l2")
+        room.open("l3", "::1", "Teacher 3", "now", text)
+        for name in ("", "   ", "x" * 41, "tab\there", "new\nline"):
+            with self.assertRaisesRegex(labs.LabRefusal, "^refused: a name is 1 to 40 printable characters$"):
+                room.open("n1", "10.0.0.9", name, "now", text)
+        self.assertEqual(labs.clean_name(" " + "x" * 40 + " "), "x" * 40)
+        with self.assertRaisesRegex(labs.LabRefusal, "^refused: no lab cookie"):
+            room.open("", "10.0.0.9", "Ann", "now", text)
+        broken = yaml.safe_load(text)
+        broken["bodies"]["rod"]["k"] = -5
+        with self.assertRaises(ValueError) as core_says:
+            core.World(broken)
+        room.close("l3")
+        with self.assertRaises(labs.LabRefusal) as refused:
+            room.open("n1", "10.0.0.9", "Ann", "now", broken)
+        self.assertEqual(str(refused.exception), str(core_says.exception))
+        self.assertNotIn("n1", room.labs)
+
+    def test_idle_expiry(self) -> None:
+        clock = Clock()
+        room = labs.LabRoom(idle=labs.IDLE, clock=clock)
+        text = config_text("rod.yaml")
+        watched, _ = room.open("w", "10.0.0.1", "Watched", "now", text)
+        left, _ = room.open("l", "10.0.0.2", "Left", "now", text)
+        room.attach("w")
+        clock.now += labs.IDLE - 1
+        self.assertEqual(room.expire(), [])
+        room.touch(left)  # a request
+        clock.now += labs.IDLE - 1
+        self.assertEqual(room.expire(), [])
+        clock.now += 1
+        self.assertEqual(room.expire(), [left])
+        clock.now += 10 * labs.IDLE
+        self.assertEqual(room.expire(), [], "a lab with its page attached stays")
+        room.detach("w")
+        clock.now += labs.IDLE - 1
+        self.assertEqual(room.expire(), [])
+        clock.now += 1
+        self.assertEqual(room.expire(), [watched])
+        self.assertEqual((room.labs, room.by_id), ({}, {}))
+
+
+def slip_to_roll_time(body: Dict[str, Any], g: float) -> float:
+    """The closed form of a roller's slip -> roll instant, launched with backspin."""
+    c, phi = body["inertia_factor"], body["incline_angle"]
+    return ((body["v0"] + body["omega0"] * body["radius"])
+            / (body["mu_d"] * g * math.cos(phi) * (1 + c) / c - g * math.sin(phi)))
+
+
+class Class(unittest.TestCase):
+    def test_outcomes_and_curves_against_the_closed_forms(self) -> None:
+        clock = Clock()
+        room = labs.LabRoom(clock=clock)
+        lesson = config_text("race_slip.yaml")
+        opened = []
+        for n, mu_d in enumerate((None, 0.15, 0.25, 0.12)):
+            lab, _ = room.open(f"c{n}", f"10.0.0.{n}", f"student {n}", "start", lesson)
+            if mu_d is not None:
+                lab.set("sphere", "mu_d", mu_d, clock.now)
+            lab.pause()
+            lab.step(4000)
+            opened.append(lab)
+        results = room.class_results()
+        self.assertEqual([r["varied"] for r in results],
+                         [{}, {"sphere.mu_d": 0.15}, {"sphere.mu_d": 0.25}, {"sphere.mu_d": 0.12}])
+        for lab, result in zip(opened, results):
+            config = yaml.safe_load(lab.config)
+            outcomes = {(o["body"], o["kind"], o["value_name"]): o for o in result["outcomes"]}
+            for name, body in config["bodies"].items():
+                slip = outcomes[(name, "slip_to_roll", "t")]["value"]
+                self.assertAlmostEqual(slip, slip_to_roll_time(body, config["gravity"]), delta=1e-9 * slip, msg=name)
+                finish = [e for e in lab.events if e["body"] == name and e["kind"] == "finished"][0]
+                lap = outcomes[(name, "finished", "lap_time")]["value"]
+                self.assertEqual(lap, finish["values"]["lap_time"])
+                self.assertAlmostEqual(lap, finish["values"]["closed_form"], delta=1e-9 * lap, msg=name)
+        by_id = dict(room.by_id)
+        base = labs.lesson_of(results, by_id) or ""
+        self.assertEqual(base, opened[0].origin)
+        computed = labs.Curves().compute(base, results)
+        self.assertEqual(computed["lesson"], {"sphere.mu_d": 0.2})
+        self.assertEqual(set(computed["curves"]), {"sphere.mu_d"})
+        curves = computed["curves"]["sphere.mu_d"]
+        self.assertEqual(set(curves), {"sphere.slip_to_roll.t", "sphere.finished.lap_time"})
+        slip = curves["sphere.slip_to_roll.t"]
+        xs, ys = slip["x"], slip["y"]
+        self.assertEqual(xs, sorted(xs))
+        self.assertGreaterEqual(len(xs), labs.CURVE_POINTS)
+        # Each lab's point is on the curve, bit for bit: the same core, the same config, that body alone.
+        for lab, result in zip(opened, results):
+            x = result["varied"].get("sphere.mu_d", 0.2)
+            mine = {(o["kind"], o["value_name"]): o["value"] for o in result["outcomes"] if o["body"] == "sphere"}
+            self.assertEqual(ys[xs.index(x)], mine[("slip_to_roll", "t")], x)
+            lap = curves["sphere.finished.lap_time"]
+            self.assertEqual(lap["y"][lap["x"].index(x)], mine[("finished", "lap_time")], x)
+        # And everywhere on the grid, the closed form (a value the core refuses has no point: None).
+        sphere = yaml.safe_load(base)["bodies"]["sphere"]
+        checked = 0
+        for x, y in zip(xs, ys):
+            if y is None:
+                with self.assertRaises(ValueError):
+                    core.World(base).set("sphere", mu_d=x)
+                continue
+            self.assertAlmostEqual(y, slip_to_roll_time({**sphere, "mu_d": x}, 9.8), delta=1e-9 * y, msg=x)
+            checked += 1
+        self.assertGreater(checked, labs.CURVE_POINTS // 2)
+        # Cleared: outcomes forgotten, the labs go on.
+        room.clear_results()
+        self.assertEqual(room.class_results(), [], "a lab without an outcome is no result")
+        self.assertEqual(len(room.labs), 4)
+
+    def test_block_comes_to_rest(self) -> None:
+        """A block's came_to_rest: its instant and where it stopped, against the closed form of a block
+        launched up... or down a slope it cannot slide down: v0 / (g (mu_d cos(phi) - sin(phi)))."""
+        config = {"rate": 1000, "publish_rate": 50, "bodies": {"block": {
+            "type": "block", "incline_angle": 0.1, "mu_s": 0.5, "mu_d": 0.4, "v0": 2.0, "incline_length": 10.0}}}
+        room = labs.LabRoom(clock=Clock())
+        lab, _ = room.open("c", "10.0.0.1", "Bo", "now", config)
+        lab.pause()
+        lab.step(3000)
+        result = room.class_results()[0]
+        outcomes = {(o["kind"], o["value_name"]): o["value"] for o in result["outcomes"]}
+        g, phi = 9.8, 0.1
+        decel = g * (0.4 * math.cos(phi) - math.sin(phi))
+        self.assertAlmostEqual(outcomes[("came_to_rest", "t")], 2.0 / decel, delta=1e-9)
+        self.assertAlmostEqual(outcomes[("came_to_rest", "x")], 2.0 ** 2 / (2 * decel), delta=1e-9)
+
+
+class Polls(unittest.TestCase):
+    def test_poll(self) -> None:
+        poll = labs.Poll()
+        with self.assertRaisesRegex(labs.LabRefusal, "^refused: no open question$"):
+            poll.answer("a", "sphere")
+        poll.ask("Which finishes first?", ["sphere", "ring"], "")
+        self.assertEqual(poll.question_message(), {"type": "question", "question": "Which finishes first?",
+                                                   "choices": ["sphere", "ring"], "unit": "", "open": True})
+        poll.answer("a", "ring")
+        poll.answer("a", "sphere")  # a voter's latest answer counts
+        poll.answer("b", "sphere")
+        with self.assertRaisesRegex(labs.LabRefusal, "^refused: the answer is one of sphere, ring$"):
+            poll.answer("c", "cube")
+        with self.assertRaisesRegex(labs.LabRefusal, "^refused: no lab cookie"):
+            poll.answer("", "ring")
+        self.assertEqual(poll.answers_message(), {"type": "answers", "n": 2, "counts": {"sphere": 2, "ring": 0}})
+        poll.reveal()
+        self.assertFalse(poll.question_message()["open"])
+        with self.assertRaises(labs.LabRefusal):
+            poll.answer("c", "ring")
+        poll.ask("The sphere's lap time?", None, "s")
+        self.assertEqual(poll.answers_message(), {"type": "answers", "n": 0, "values": []})
+        poll.answer("a", 1.9)
+        poll.answer("b", 2)
+        for bad in ("two", math.nan, math.inf, True):
+            with self.assertRaises(labs.LabRefusal):
+                poll.answer("c", bad)  # type: ignore[arg-type]  # True: a bool, which JSON's true would be
+        self.assertEqual(poll.answers_message(), {"type": "answers", "n": 2, "values": [1.9, 2.0]})
+
+
+if __name__ == "__main__":
+    if not SIMULATE:
+        sys.exit("test_labs: simulate not found: give its path, or source the devel space")
+    unittest.main()
