@@ -39,6 +39,10 @@ const BODY_TYPES = {
     },
     potentialZero: "floor level",
     drawPanel(ctx, rect, name, b, s, lineH, type, size) { drawFloorPanel(ctx, rect, name, b, s, lineH, type, size); },
+    // The least height of its panel `w` wide: its label, the floor's band, and the rod's world three texts high.
+    minHeight(ctx, name, b, w, lineH, size) {
+      return 8 + floorLabel(ctx, name, b, null, w, size).kept * lineH + floorBandPx() + 3 * textPx() + 4;
+    },
   },
 
   roller: {
@@ -115,25 +119,40 @@ const BODY_TYPES = {
   },
 };
 
-// The rod from the side (section 16.3.3): the floor's band with its metre marks, followed along x (a bounded
-// floor whole where it fits), the rod with its end A marked; `size` names the panel's size (keepLines).
-function drawFloorPanel(ctx, rect, name, b, s, lineH, type, size) {
-  const mode = s ? type.mode(b, s) : "\u2013";
+// The floor's band, with the metre marks (px).
+function floorBandPx() { return 1.6 * textPx() + 10; }
+
+// A rod's label in its panel `w` wide: its lines, and the lines kept for it (keepLines, under `size`).
+function floorLabel(ctx, name, b, s, w, size) {
+  const mode = s ? BODY_TYPES.rod.mode(b, s) : "\u2013";
   const energy = s ? `E = ${fixed3(s.energy)} J \u00b7` : "E = \u2013 \u00b7";
-  const head = wrap(ctx, [`${titleOf(name, b)}: ${mode}`], rect.w - 12, true);
-  const info = wrap(ctx, [energy, `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`], rect.w - 12,
-                   false);
+  const head = wrap(ctx, [`${titleOf(name, b)}: ${mode}`], w - 12, true);
+  const info = wrap(ctx, [energy, `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`], w - 12, false);
   // Room for its label in either mode, at an energy of three digits: the scale stays when the mode changes.
-  const heads = ["on the floor", "in the air"].map((m) => wrap(ctx, [`${titleOf(name, b)}: ${m}`], rect.w - 12, true));
+  const heads = ["on the floor", "in the air"].map((m) => wrap(ctx, [`${titleOf(name, b)}: ${m}`], w - 12, true));
   const infos = wrap(ctx, ["E = -888.888 J \u00b7", `k = ${withUnit(b, "k")} \u00b7`, `L = ${withUnit(b, "length")}`],
-                     rect.w - 12, false);
+                     w - 12, false);
   const widest = Math.max(...heads.map((h) => h.length)) + infos.length;
-  const kept = keepLines(size, Math.max(widest, head.length + info.length));
+  return { head, info, kept: keepLines(size, Math.max(widest, head.length + info.length)) };
+}
+
+// A metre marks' step: 1, 2 or 5 times a power of ten metres, the least at least `least` m (marks no closer
+// than a label's width, so a frame draws as many as fit its width, whatever its scale).
+function markStep(least) {
+  const power = Math.pow(10, Math.floor(Math.log10(Math.max(least, 1))));
+  return [1, 2, 5, 10].map((n) => n * power).find((n) => n >= least);
+}
+
+// The rod from the side (section 16.3.3): the floor's band with its metre marks, followed along x (a bounded
+// floor whole where it fits), the rod with its end A marked; `size` names the panel's size (keepLines). The
+// panel is at least its type's minHeight high (drawScene).
+function drawFloorPanel(ctx, rect, name, b, s, lineH, type, size) {
+  const { head, info, kept } = floorLabel(ctx, name, b, s, rect.w, size);
   const areaTop = panelFrame(ctx, rect, head, info, lineH, kept);
   const area = { x: rect.x + 6, y: areaTop, w: rect.w - 12, h: rect.y + rect.h - areaTop - 4 };
   const top = Math.max(b.y0 + 0.5 * b.length, 1.5) * 1.1;
-  const floorPx = 1.6 * textPx() + 10; // the floor's band, with the metre marks
-  const scale = Math.max(1e-6, Math.min((area.h - floorPx) / top, area.w / (2.5 * b.length)));
+  const floorPx = floorBandPx();
+  const scale = Math.min(Math.max(area.h - floorPx, textPx()) / top, area.w / (2.5 * b.length));
   const floorDepth = floorPx / scale;
   const span = area.w / scale;
   const x = s ? s.x : b.x0;
@@ -157,7 +176,7 @@ function drawFloorPanel(ctx, rect, name, b, s, lineH, type, size) {
   // The metre marks, every metre or every few where they would crowd; a label only where it fits whole.
   ctx.strokeStyle = "#c9ced6";
   ctx.lineWidth = 0.7 * stroke();
-  const every = [1, 2, 5, 10, 20, 50].find((n) => n * scale >= width(ctx, "-88 m", false) + 12) || 100;
+  const every = markStep((width(ctx, `${-Math.ceil(Math.abs(left) + span)} m`, false) + 12) / scale);
   let lastRight = -Infinity;
   for (let m = Math.ceil(floorFrom / every) * every; m <= floorTo; m += every) {
     if (X(m) < area.x || X(m) > area.x + area.w) continue;

@@ -18,21 +18,39 @@ const FINISH_DASH = [3, 5]; // a finish's dotted line
 // lose what came before it, and their time axis counts from it.
 const RUN_STARTS = ["reset", "config"];
 
-const events = {}; // body -> its events of the run (the node's, through the server), oldest first
-const eventKeys = new Set();
+// A world the page can show: the class's (the node's, through the server), the student's own lab, or the lab the
+// teacher shows the class (lab.js). Each keeps what it was sent; the page draws one of them, `showing`.
+function newStore(kind) {
+  return {
+    kind,
+    world: null, // {source, paused, settings, bodies: {name: its keys}, parts, part}
+    paused: false,
+    latest: {}, // body -> its last state
+    points: {}, // body -> [{t, ...the plotted values}] of its states
+    events: {}, // body -> its events of the run, oldest first
+    eventKeys: new Set(),
+    resetT: -Infinity, // the run's start (a reset): no state at or before it is plotted
+  };
+}
+const stores = { class: newStore("class"), lab: newStore("lab"), shown: newStore("shown") };
+let showing = stores.class;
 const rbs = {
-  frames: 0, lastFrame: null, world: null, paused: false, control: false, line: "", lineOk: true,
+  frames: 0, lastFrame: null, control: false, line: "", lineOk: true,
   drawn: {}, plotLast: {}, panels: {}, replies: [], sent: [], finishes: {}, texts: [], ended: false,
-  shared: {}, description: null, events,
+  shared: {}, description: null, stores, showing: "class",
 };
+// What is drawn: the shown world, its pause and its events.
+Object.defineProperty(rbs, "world", { get: () => showing.world, enumerable: true });
+Object.defineProperty(rbs, "paused", { get: () => showing.paused, enumerable: true });
+Object.defineProperty(rbs, "events", { get: () => showing.events, enumerable: true });
 window.rbs = rbs;
 // The plotted states' t, a reset's earlier ones gone.
-rbs.times = (body) => (points[body] || []).map((p) => p.t);
+rbs.times = (body) => (showing.points[body] || []).map((p) => p.t);
 
-const latest = {}; // body -> its last state
-const points = {}; // body -> [{t, ...the plotted values}] of its states
-let resetT = -Infinity; // the run's start (a reset): no state at or before it is plotted
 const keptLines = {}; // the most lines each panel's label had at its size (keepLines)
+const messageHooks = []; // lab.js's and class.js's: each message after view.js took it (onMessage)
+const drawHooks = []; // theirs: each drawing of the page (onDraw)
+const linesShownElsewhere = new Set(); // ops whose replies lab.js shows in its own line
 let socket = null;
 let nextId = 1;
 let drawPending = false;
@@ -75,11 +93,24 @@ function connect() {
   socket.onmessage = (event) => receive(JSON.parse(event.data));
   socket.onclose = () => {
     // A replay's end may end the web view with it: the last frame stays, and says so.
-    if (rbs.world && (rbs.world.source === "replay" || rbs.world.source === "ended")) rbs.ended = true;
+    const world = stores.class.world;
+    if (world && (world.source === "replay" || world.source === "ended")) rbs.ended = true;
     else setStatus("disconnected: the web view is gone (retrying)", true);
     scheduleDraw();
     setTimeout(connect, 2000);
   };
+}
+
+function onMessage(hook) { messageHooks.push(hook); }
+
+// The page shows `store` (one of stores): its world is drawn and plotted.
+function showStore(store) {
+  showing = store;
+  rbs.showing = store.kind;
+  rbs.drawn = {};
+  rbs.panels = {};
+  if (store.world) fillSelects();
+  scheduleDraw();
 }
 
 function receive(m) {
@@ -87,7 +118,7 @@ function receive(m) {
     rbs.frames += 1;
     rbs.lastFrame = m;
     rbs.ended = false;
-    for (const [body, states] of Object.entries(m.states)) for (const s of states) addState(body, s);
+    for (const [body, states] of Object.entries(m.states)) for (const s of states) addState(stores.class, body, s);
   } else if (m.type === "hello") {
     rbs.control = m.control;
     rbs.description = m.description; // the core's body_types.json: every key's unit, whether a type races
@@ -96,10 +127,10 @@ function receive(m) {
     showAddresses(m.addresses || []);
     rbs.shared = m.view || {};
   } else if (m.type === "world") {
-    rbs.world = m;
-    rbs.paused = m.paused;
+    stores.class.world = m;
+    stores.class.paused = m.paused;
     rbs.ended = m.source === "ended";
-    for (const body of Object.keys(latest)) if (!(body in m.bodies)) delete latest[body];
+    for (const body of Object.keys(stores.class.latest)) if (!(body in m.bodies)) delete stores.class.latest[body];
     fillSelects();
     showPart(m.parts || [], m.part || "");
   } else if (m.type === "view") {
@@ -111,34 +142,48 @@ function receive(m) {
       followTeacher();
     }
   } else if (m.type === "events") {
-    if (m.all) { // the run's events as the server keeps them: they replace this page's
-      for (const body of Object.keys(events)) delete events[body];
-      eventKeys.clear();
-      resetT = -Infinity;
-    }
-    for (const e of m.events) addEvent(e);
+    setEvents(stores.class, m.events, m.all);
   } else if (m.type === "paused") {
-    rbs.paused = m.paused;
+    stores.class.paused = m.paused;
   } else if (m.type === "reply") {
     rbs.replies.push(m);
     if (!m.ok) showKeyValue(); // a refused value: the field shows the one that runs again
-    showLine(m.line, m.ok);
+    const sent = rbs.sent.find((r) => r.id === m.id);
+    if (!sent || !linesShownElsewhere.has(sent.op)) showLine(m.line, m.ok);
   } else if (m.type === "line") {
     showLine(m.line, false); // the node's WARN line: sent to the teacher's page alone
   }
+  for (const hook of messageHooks) hook(m);
   scheduleDraw();
 }
 
-function addState(body, s) {
-  latest[body] = s;
-  const b = rbs.world && rbs.world.bodies[body];
+// Events for a store: `all`, the run's events as the server keeps them, which replace the store's.
+function setEvents(store, records, all) {
+  if (all) {
+    for (const body of Object.keys(store.events)) delete store.events[body];
+    store.eventKeys.clear();
+    store.resetT = -Infinity;
+  }
+  for (const e of records) addEvent(store, e);
+}
+
+// A store's world starts again at t = 0 (a lab's change or reset): what it had goes.
+function restartStore(store) {
+  for (const key of ["latest", "points", "events"]) for (const body of Object.keys(store[key])) delete store[key][body];
+  store.eventKeys.clear();
+  store.resetT = -Infinity;
+}
+
+function addState(store, body, s) {
+  store.latest[body] = s;
+  const b = store.world && store.world.bodies[body];
   const type = b && typeOf(b);
   // A reset's restarts come on their own topic, and may overtake states from before it: those are not plotted.
-  if (!type || s.t <= resetT) return;
-  const list = (points[body] = points[body] || []);
+  if (!type || s.t <= store.resetT) return;
+  const list = (store.points[body] = store.points[body] || []);
   list.push(plotted(type, b, s, s.t));
   while (list.length && list[0].t < s.t - KEEP) list.shift();
-  trimEvents(body, s.t - KEEP);
+  trimEvents(store, body, s.t - KEEP);
 }
 
 // A plotted point of a state at t: what the body's plots show of it, the energy split into its parts.
@@ -163,16 +208,18 @@ function eventKey(e) {
 
 // Each event once (the server's replay of the run and the topic may both bring it), in time order; a run's
 // start takes what came before it away.
-function addEvent(e) {
+function addEvent(store, e) {
   const key = eventKey(e);
-  if (eventKeys.has(key) || e.t < resetT) return;
-  eventKeys.add(key);
+  if (store.eventKeys.has(key) || e.t < store.resetT) return;
+  store.eventKeys.add(key);
+  const events = store.events;
   const list = (events[e.body] = events[e.body] || []);
   let i = list.length;
   while (i > 0 && list[i - 1].t > e.t) i -= 1;
   list.splice(i, 0, e);
-  if (startsRun(e) && e.t > resetT) {
-    resetT = e.t;
+  if (startsRun(e) && e.t > store.resetT) {
+    store.resetT = e.t;
+    const points = store.points;
     for (const body of Object.keys(points)) points[body] = points[body].filter((p) => p.t > e.t);
     // At its instant too, what came before it is of the run before (the step that ended at the reset).
     for (const body of Object.keys(events)) events[body] = events[body].filter((f) => f.t > e.t || f === e);
@@ -181,8 +228,8 @@ function addEvent(e) {
 
 // Before `cutoff`, only its last finish and last restart (the finish a waiting racer shows; where the time
 // axis of its plots counts from).
-function trimEvents(body, cutoff) {
-  const list = events[body];
+function trimEvents(store, body, cutoff) {
+  const list = store.events[body];
   if (!list || !list.length || list[0].t >= cutoff) return;
   const last = new Set();
   const kept = [];
@@ -192,15 +239,15 @@ function trimEvents(body, cutoff) {
       kept.push(list[i]);
       if (list[i].t < cutoff) last.add(role);
     } else {
-      eventKeys.delete(eventKey(list[i]));
+      store.eventKeys.delete(eventKey(list[i]));
     }
   }
-  events[body] = kept.reverse();
+  store.events[body] = kept.reverse();
 }
 
 // The finish a body's label shows: its last since its lap started (a racer waiting at the end of its slope).
 function finishOf(name) {
-  const list = events[name] || [];
+  const list = showing.events[name] || [];
   for (let i = list.length - 1; i >= 0; i -= 1) {
     const role = roleOf(list[i]);
     if (role === "restart") return null;
@@ -252,8 +299,10 @@ function showAddresses(urls) {
 
 // --- controls ----------------------------------------------------------------------------------------------
 function fillSelects() {
-  const names = Object.keys(rbs.world.bodies);
-  for (const id of ["set-body", "plot-body"]) {
+  // The teacher's keys are the class world's; the plots, the shown world's.
+  for (const [id, world] of [["set-body", stores.class.world], ["plot-body", showing.world]]) {
+    if (!world) continue;
+    const names = Object.keys(world.bodies);
     const sel = $(id);
     const was = sel.value;
     sel.replaceChildren(...names.map((n) => new Option(n, n)));
@@ -276,11 +325,12 @@ function showPart(parts, part) {
 
 function followTeacher() {
   const body = rbs.shared.plot_body;
-  if (body && rbs.world && body in rbs.world.bodies) $("plot-body").value = body;
+  if (body && showing.world && body in showing.world.bodies) $("plot-body").value = body;
 }
 
 function fillKeys() {
-  const b = rbs.world && rbs.world.bodies[$("set-body").value];
+  const world = stores.class.world;
+  const b = world && world.bodies[$("set-body").value];
   if (!b) return;
   const sel = $("set-key");
   const was = sel.value;
@@ -292,7 +342,8 @@ function fillKeys() {
 
 function showKeyValue() {
   // The value that runs, unless the teacher is typing one (a world update comes whenever anything changes).
-  const b = rbs.world && rbs.world.bodies[$("set-body").value];
+  const world = stores.class.world;
+  const b = world && world.bodies[$("set-body").value];
   const key = $("set-key").value;
   if (!b || !key) return;
   if (document.activeElement !== $("set-value")) $("set-value").value = String(b[key]);
@@ -318,7 +369,7 @@ function wireControls() {
                                   value: Number($("set-value").value) });
   $("set-body").onchange = fillKeys;
   $("part-choice").onchange = () => {
-    if (rbs.world.parts.includes($("part-choice").value)) send({ op: "part", part: $("part-choice").value });
+    if (stores.class.world.parts.includes($("part-choice").value)) send({ op: "part", part: $("part-choice").value });
   };
   $("set-key").onchange = showKeyValue;
   $("plot-body").onchange = () => {
@@ -388,7 +439,7 @@ function wrap(ctx, pieces, max, bold) {
   const words = [];
   for (const piece of pieces) {
     if (width(ctx, piece, bold) <= max) words.push(piece);
-    else words.push(...piece.split(" "));
+    else for (const word of piece.split(" ")) words.push(...breakWord(ctx, word, max, bold));
   }
   for (const piece of words) {
     const next = line ? `${line} ${piece}` : piece;
@@ -403,10 +454,31 @@ function wrap(ctx, pieces, max, bold) {
   return lines;
 }
 
+function onDraw(hook) { drawHooks.push(hook); }
+
+// A word in pieces no wider than `max` (a long name in a narrow panel), at least a letter each.
+function breakWord(ctx, word, max, bold) {
+  const pieces = [];
+  let piece = "";
+  for (const letter of word) {
+    if (piece && width(ctx, piece + letter, bold) > max) {
+      pieces.push(piece);
+      piece = "";
+    }
+    piece += letter;
+  }
+  if (piece) pieces.push(piece);
+  return pieces;
+}
+
 function draw() {
-  if (!rbs.world) return;
+  const begun = performance.now();
+  rbs.drawCount = (rbs.drawCount || 0) + 1;
   rbs.texts = [];
+  for (const hook of drawHooks) hook();
+  if (!rbs.world || $("world-view").hidden) return;
   const names = Object.keys(rbs.world.bodies);
+  const latest = showing.latest;
   const ts = names.filter((n) => latest[n]).map((n) => latest[n].t);
   const t = ts.length ? Math.max(...ts) : null;
   $("clock").textContent = t === null ? "t = \u2013" : `t = ${t.toFixed(2)} s`;
@@ -417,15 +489,40 @@ function draw() {
     setStatus(source === "replay" ? `replay of a recording, ${paused}` : source === "none" ? "no simulation found"
               : paused, source === "none");
   }
-  // The scene and the plots take the screen's height below the page's top lines: beside each other on a
-  // wide screen, the scene alone on a narrow one (the plots below it).
-  const wide = $("plots").getBoundingClientRect().top < $("scene").getBoundingClientRect().bottom;
+  // The scene and the plots take the screen's height below the page's top lines: beside each other on a wide
+  // screen where both plots fit there whole at this text size; else the plots below the scene, side by side
+  // on a wide screen (view.css, body.plots-below), and on a narrow one the first of them on the first screen.
+  const fs = textPx();
+  const specs = plotSpecs($("plot-body").value);
+  document.body.classList.remove("plots-below");
+  let beside = $("plots").getBoundingClientRect().top < $("scene").getBoundingClientRect().bottom;
   const top = $("scene").getBoundingClientRect().top + window.scrollY;
-  const room = Math.max(window.innerHeight - top - 0.5 * textPx(), 12 * textPx());
-  drawScene(names, room);
-  const label = $("plot-label").getBoundingClientRect().height;
-  const plotHeight = wide ? (room - label) / 2 - 4 : Math.max(14 * textPx(), 0.45 * window.innerHeight);
-  drawPlots($("plot-body").value, plotHeight);
+  const room = Math.max(window.innerHeight - top - 0.5 * fs, 12 * fs);
+  const label = () => $("plot-label").getBoundingClientRect().height;
+  let need = plotsNeed(specs);
+  if (beside && 2 * (need + 4) + label() > room) {
+    document.body.classList.add("plots-below");
+    beside = false;
+    need = plotsNeed(specs);
+  }
+  const sideBySide = !beside && $("plot-energy").getBoundingClientRect().top < $("plot-motion").getBoundingClientRect().bottom;
+  const plotHeight = beside ? (room - label()) / 2 - 4 : sideBySide ? Math.max(need, window.innerHeight - label() - fs)
+    : need;
+  const sceneRoom = beside || sideBySide ? room : room - label() - plotHeight - fs;
+  const sceneHeight = drawScene(names, sceneRoom);
+  drawPlots(specs, plotHeight);
+  rbs.sceneLayout = { beside, sideBySide, room: sceneRoom, height: sceneHeight, plotHeight, plotNeed: need };
+  rbs.drawMs = performance.now() - begun;
+}
+
+// The height a chart of each of the plots takes at least: its title and legend as wrapped at its width, and an
+// area for its lines five texts high.
+function plotsNeed(specs) {
+  const canvas = $("plot-motion");
+  const ctx = canvas.getContext("2d");
+  const W = canvas.clientWidth;
+  const fs = textPx();
+  return Math.max(...[specs.motion, specs.energy].map((spec) => chartHead(ctx, spec, W, false) + 1.25 * fs + 7.1 * fs + 8));
 }
 
 // --- the scene ---------------------------------------------------------------------------------------------
@@ -458,7 +555,7 @@ const WIDEST_FINISH = { lap_time: 88.8888, speed: -88.88, closed_form: 88.8888 }
 // Its label's lines; `widest`, the widest its label takes in a lesson (a racer's at its finish, an energy of
 // three digits and three decimals), for the room kept for it (slopeLinesKept).
 function slopeLines(ctx, name, b, max, widest) {
-  const s = latest[name];
+  const s = showing.latest[name];
   const type = typeOf(b);
   const title = titleOf(name, b);
   const finish = rbs.finishes[name];
@@ -487,52 +584,76 @@ function slopeLinesKept(ctx, name, b, max, size) {
 function drawScene(names, room) {
   const canvas = $("scene-canvas");
   const W = canvas.clientWidth;
-  const ctx = fitCanvas(canvas, room);
+  const ctx = canvas.getContext("2d"); // to measure the labels: the canvas is fitted to the panels' height after
+  const fs = textPx();
   const scene = (n) => (typeOf(rbs.world.bodies[n]) || {}).scene;
   const slopes = names.filter((n) => scene(n) === "slope");
   const floors = names.filter((n) => scene(n) === "floor");
   const gap = 6;
-  const lineH = 1.25 * textPx();
+  const lineH = 1.25 * fs;
   // The panels' size: a label keeps its lines while it stays (keepLines).
-  const size = JSON.stringify([W, room, textPx(), rbs.world.bodies]);
+  const size = JSON.stringify([W, room, fs, rbs.world.bodies]);
+  // Only the world's bodies: one deleted is no longer drawn, so no longer where it was.
+  for (const name of Object.keys(rbs.drawn)) if (!names.includes(name)) delete rbs.drawn[name];
   rbs.finishes = {};
   for (const name of names) {
     const f = finishOf(name);
     if (f) rbs.finishes[name] = { t: f.t, ...f.values };
   }
   // The floors in one band at the bottom (a third of the height beside slopes, all of it alone), the slopes
-  // in the grid of columns that draws them largest.
-  const floorBand = floors.length ? (slopes.length ? room / 3 : room) : 0;
+  // in the grid of columns that draws them largest. Every panel has room for its label and its drawing: where
+  // the height has not that room, the scene is higher than it (the page scrolls).
+  const floorNeed = floors.map((n) => {
+    const b = rbs.world.bodies[n];
+    return typeOf(b).minHeight(ctx, n, b, W, lineH, `${size}|${n}`);
+  });
+  const floorShare = ((slopes.length ? room / 3 - gap : room) - (floors.length - 1) * gap) / Math.max(1, floors.length);
+  const floorH = floors.length ? Math.max(floorShare, ...floorNeed) : 0;
+  const floorBand = floors.length ? floors.length * floorH + (floors.length - 1 + (slopes.length ? 1 : 0)) * gap : 0;
   const slopeRoom = room - floorBand;
+  // At least ten texts wide (a label's words whole), and high enough for the label, the line of a body drawn
+  // larger than to scale, and the slope a text and a half high.
+  const minW = Math.min(W, 10 * fs);
   let best = null;
-  for (let cols = 1; cols <= Math.max(1, slopes.length); cols += 1) {
+  for (let cols = 1; cols <= slopes.length; cols += 1) {
     const rows = Math.ceil(slopes.length / cols);
     const w = (W - (cols - 1) * gap) / cols;
-    const h = (slopeRoom - (rows - 1) * gap) / rows;
-    let scale = Infinity;
+    if (cols > 1 && w < minW) break;
     let headLines = 0;
     for (const name of slopes) {
       headLines = Math.max(headLines, slopeLinesKept(ctx, name, rbs.world.bodies[name], w - 12, size));
     }
+    const h = Math.max((slopeRoom - (rows - 1) * gap) / rows, 12 + (headLines + 1) * lineH + 4 * MIN_RADIUS + 1.5 * fs);
+    let scale = Infinity;
     for (const name of slopes) {
       const box = slopeBox(rbs.world.bodies[name]);
       scale = Math.min(scale, (w - 12) / box.w, (h - headLines * lineH - 10) / box.h);
     }
-    if (!best || scale > best.scale) best = { cols, w, h, scale, headLines };
+    const over = Math.max(0, rows * h + (rows - 1) * gap - slopeRoom);
+    if (!best || over < best.over - 0.5 || (over <= best.over + 0.5 && scale > best.scale)) {
+      best = { cols, rows, w, h, scale, headLines, over };
+    }
   }
+  const slopeHeight = slopes.length ? best.rows * best.h + (best.rows - 1) * gap : 0;
+  const height = Math.max(room, slopeHeight + floorBand);
   rbs.layout = best && { cols: best.cols, w: best.w, h: best.h, scale: best.scale, lines: best.headLines };
+  rbs.sceneNeed = slopeHeight + floorBand;
+  fitCanvas(canvas, height);
+  // The last row's panels share its width (no empty cell), each slope drawn no larger than in a cell of the
+  // others' width: a race's slopes at one scale.
   slopes.forEach((name, i) => {
-    const rect = { x: (i % best.cols) * (best.w + gap), y: Math.floor(i / best.cols) * (best.h + gap),
-                   w: best.w, h: best.h };
-    drawSlopePanel(ctx, rect, name, rbs.world.bodies[name], latest[name], lineH, best.headLines);
+    const row = Math.floor(i / best.cols);
+    const inRow = row === best.rows - 1 ? slopes.length - row * best.cols : best.cols;
+    const w = (W - (inRow - 1) * gap) / inRow;
+    const rect = { x: (i % best.cols) * (w + gap), y: row * (best.h + gap), w, h: best.h };
+    drawSlopePanel(ctx, rect, name, rbs.world.bodies[name], showing.latest[name], lineH, best.headLines, best.w);
   });
   floors.forEach((name, i) => {
-    const h = (floorBand - (slopes.length ? gap : 0)) / floors.length;
-    const rect = { x: 0, y: room - floorBand + (slopes.length ? gap : 0) + i * h, w: W,
-                   h: h - (i < floors.length - 1 ? gap : 0) };
+    const rect = { x: 0, y: height - floorBand + (slopes.length ? gap : 0) + i * (floorH + gap), w: W, h: floorH };
     const b = rbs.world.bodies[name];
-    typeOf(b).drawPanel(ctx, rect, name, b, latest[name], lineH, typeOf(b), `${size}|${name}`);
+    typeOf(b).drawPanel(ctx, rect, name, b, showing.latest[name], lineH, typeOf(b), `${size}|${name}`);
   });
+  return height;
 }
 
 // The panel's label, and the top of what is drawn below it: below `keep` lines (keepLines) or its own, if more.
@@ -545,26 +666,29 @@ function panelFrame(ctx, rect, head, info, lineH, keep) {
   return Math.max(y, rect.y + 4 + (keep || 0) * lineH) + 4;
 }
 
-function drawSlopePanel(ctx, rect, name, b, s, lineH, keep) {
+// `cellW`: the width its scale is fitted to (a wider panel of a last row draws its slope as large as the others).
+function drawSlopePanel(ctx, rect, name, b, s, lineH, keep, cellW) {
   const phi = b.incline_angle;
   const L = b.incline_length;
   const R = typeOf(b).halfSize(b);
   const box = slopeBox(b);
   const lines = slopeLines(ctx, name, b, rect.w - 12);
-  const scale0 = Math.min((rect.w - 12 - 2 * MIN_RADIUS) / box.w, (rect.h - keep * lineH - 10 - MIN_RADIUS) / box.h);
+  const fitW = Math.min(rect.w, cellW || rect.w) - 12 - 2 * MIN_RADIUS;
+  const scale0 = Math.min(fitW / box.w, (rect.h - keep * lineH - 10 - 3 * MIN_RADIUS) / box.h);
   // A body smaller than MIN_RADIUS px is drawn that large (on its slope), and its panel says so where that
   // shows (5 % or more): a line more kept for it.
   let kept = keep;
-  if (R * scale0 * 1.05 <= MIN_RADIUS) {
+  if (scale0 > 0 && R * scale0 * 1.05 <= MIN_RADIUS) {
     lines.info = wrap(ctx, [...lines.info, `(body drawn \u00d7${(MIN_RADIUS / (R * scale0)).toFixed(1)})`],
                       rect.w - 12, false);
     kept += 1;
   }
   const areaTop = panelFrame(ctx, rect, lines.head, lines.info, lineH, kept);
-  // Inset by the smallest drawn radius: a body drawn larger than to scale stays inside the panel too.
-  const area = { x: rect.x + 6 + MIN_RADIUS, y: areaTop, w: rect.w - 12 - 2 * MIN_RADIUS,
-                 h: rect.y + rect.h - areaTop - 4 - MIN_RADIUS };
-  const scale = Math.max(1e-6, Math.min(area.w / box.w, area.h / box.h));
+  // Inset by the smallest drawn radius (below the label, by its diameter: a body at the slope's top sits on
+  // it): a body drawn larger than to scale stays inside the panel and off its label too.
+  const area = { x: rect.x + 6 + MIN_RADIUS, y: areaTop + 2 * MIN_RADIUS, w: rect.w - 12 - 2 * MIN_RADIUS,
+                 h: rect.y + rect.h - areaTop - 4 - 3 * MIN_RADIUS };
+  const scale = Math.min(fitW / box.w, area.h / box.h); // positive: drawScene gave the panel its room
   // Side view: the slope's top at the origin, downhill to the right; canvas y grows downwards. The slope in
   // the middle of its area.
   const ox = area.x + 0.5 * (area.w - box.w * scale) - box.x0 * scale;
@@ -620,10 +744,11 @@ function angleLabel(ctx, phi, topX, topY, footX, footY) {
 // A body's plots: its states of the last PLOT_WINDOW s since the run's start, and its state at each of its
 // events there that its plots show: a restart (where a new line starts), a finish, a mark of its entry's
 // (`marks`: a dot). In a race a finish is a dotted line too. Every one stays while its window holds it.
-function drawPlots(name, height) {
+function plotSpecs(name) {
   const b = rbs.world.bodies[name];
   const type = b && typeOf(b);
-  const list = points[name] || [];
+  const resetT = showing.resetT;
+  const list = showing.points[name] || [];
   const start = isFinite(resetT) ? resetT : 0;
   const last = list.length ? list[list.length - 1].t : start;
   const t0 = Math.max(start, last - PLOT_WINDOW);
@@ -634,7 +759,7 @@ function drawPlots(name, height) {
   const instants = [];
   const dotted = [];
   const finishes = [];
-  for (const e of type ? events[name] || [] : []) {
+  for (const e of type ? showing.events[name] || [] : []) {
     const role = roleOf(e);
     if (role === "restart" && (race || startsRun(e)) && e.t > origins[origins.length - 1]) origins.push(e.t);
     const mark = type.marks && type.marks[e.kind];
@@ -670,10 +795,16 @@ function drawPlots(name, height) {
       if (newest && line.key in newest) lastPoints[line.key] = [newest.t, newest[line.key]];
     }
   }
+  return { name, motion, energy, t0, axis, lastPoints };
+}
+
+function drawPlots(specs, height) {
+  const { name, motion, energy, t0, axis, lastPoints } = specs;
+  rbs.charts = {};
   const ticks = chart($("plot-motion"), height, motion, t0, axis);
   chart($("plot-energy"), height, energy, t0, axis);
-  rbs.plotLast = { body: name, points: lastPoints, t0, origins, axis: axis.title, ticks, finishes,
-                   marks: motion.dots.map(([t, v, words]) => ({ t, v, name: words })) };
+  rbs.plotLast = { body: name, points: lastPoints, t0, origins: axis.origins, axis: axis.title, ticks,
+                   finishes: motion.finishes, marks: motion.dots.map(([t, v, words]) => ({ t, v, name: words })) };
 }
 
 function niceStep(span, count) {
@@ -683,19 +814,14 @@ function niceStep(span, count) {
   return (norm < 1.5 ? 1 : norm < 3.5 ? 2 : norm < 7.5 ? 5 : 10) * mag;
 }
 
-// A chart of spec's lines over [t0, t0 + PLOT_WINDOW], its time axis counting from each of axis.origins; the
-// [t, label] of each time tick labelled.
-function chart(canvas, height, spec, t0, axis) {
-  const ctx = fitCanvas(canvas, height);
-  const W = canvas.clientWidth;
+// A chart's title with its unit, then its legend's entries, wrapped to its width W: drawn, or only measured;
+// the height they take.
+function chartHead(ctx, spec, W, drawn) {
   const fs = textPx();
   const lineH = 1.25 * fs;
-  ctx.fillStyle = "#1d2129";
-  ctx.fillRect(0, 0, W, height);
-  // The title with its unit, then the legend's entries, wrapped to the width.
   let y = 4;
   for (const line of wrap(ctx, [`${spec.title} (${spec.unit})`], W - 12, true)) {
-    text(ctx, line, 6, y, "#f2f2f2", true);
+    if (drawn) text(ctx, line, 6, y, "#f2f2f2", true);
     y += lineH;
   }
   const entries = spec.lines.map((l) => ({ name: l.name, draw: (x, cy) => legendLine(ctx, x, cy, l.colour, l.dash) }));
@@ -711,14 +837,30 @@ function chart(canvas, height, spec, t0, axis) {
   for (const entry of entries) {
     const w = key + 0.3 * fs + width(ctx, entry.name, false);
     if (x > 6 && x + w > W - 6) { x = 6; y += lineH; }
-    entry.draw(x, y + 0.5 * fs);
-    text(ctx, entry.name, x + key + 0.3 * fs, y, "#e8e8e8", false);
+    if (drawn) {
+      entry.draw(x, y + 0.5 * fs);
+      text(ctx, entry.name, x + key + 0.3 * fs, y, "#e8e8e8", false);
+    }
     x += w + 0.7 * fs;
   }
   y += lineH + 0.4 * fs;
+  return y;
+}
+
+// A chart of spec's lines over [t0, t0 + PLOT_WINDOW], its time axis counting from each of axis.origins; the
+// [t, label] of each time tick labelled.
+function chart(canvas, height, spec, t0, axis) {
+  const ctx = fitCanvas(canvas, height);
+  const W = canvas.clientWidth;
+  const fs = textPx();
+  const lineH = 1.25 * fs;
+  ctx.fillStyle = "#1d2129";
+  ctx.fillRect(0, 0, W, height);
+  let y = chartHead(ctx, spec, W, true);
   // The value axis' ticks at the left, its unit above them; the time axis' below, its title at its right end.
   const tickW = width(ctx, "-88.8", false) + 10;
   const area = { x: tickW, y: y + lineH + 0.5 * fs, w: W - tickW - 10, h: height - y - lineH - 2.1 * fs - 8 };
+  rbs.charts[canvas.id] = { area, lines: [], ticks: 0, text: fs };
   if (area.h < 2 * fs || area.w < 4 * fs) return [];
   let lo = Infinity;
   let hi = -Infinity;
@@ -733,15 +875,21 @@ function chart(canvas, height, spec, t0, axis) {
   text(ctx, spec.unit, 6, y, "#c9ced6", false);
   ctx.strokeStyle = "#3a404c";
   ctx.lineWidth = Math.max(1, 0.05 * fs);
-  // As many ticks as fit a text's height and a half apart, at most 5.
+  // As many ticks as fit a text's height and a half apart, at most 5, and at least 2: an axis with one tick
+  // tells no scale.
+  const ticksOf = (step) => Math.floor(hi / step) - Math.ceil(lo / step) + 1;
   let yStep = niceStep(hi - lo, 5);
-  for (let n = 4; n >= 1 && (yStep / (hi - lo)) * area.h < 1.5 * fs; n -= 1) yStep = niceStep(hi - lo, n);
+  for (let n = 4; n >= 1 && (yStep / (hi - lo)) * area.h < 1.5 * fs; n -= 1) {
+    if (ticksOf(niceStep(hi - lo, n)) < 2) break;
+    yStep = niceStep(hi - lo, n);
+  }
   for (let v = Math.ceil(lo / yStep) * yStep; v <= hi; v += yStep) {
     ctx.beginPath();
     ctx.moveTo(area.x, Y(v));
     ctx.lineTo(area.x + area.w, Y(v));
     ctx.stroke();
     const words = Math.abs(v) < 1e-12 ? "0" : Number(v.toPrecision(3)).toString();
+    rbs.charts[canvas.id].ticks += 1;
     text(ctx, words, area.x - 6 - width(ctx, words, false), Y(v) - 0.5 * fs, "#c9ced6", false);
   }
   // Each stretch of the time axis counts from its origin (the run's start, a lap's): ticks at whole steps from
@@ -786,6 +934,9 @@ function chart(canvas, height, spec, t0, axis) {
     ctx.beginPath();
     line.pts.forEach((p, i) => (i && !p[2] ? ctx.lineTo(X(p[0]), Y(p[1])) : ctx.moveTo(X(p[0]), Y(p[1]))));
     ctx.stroke();
+    // What the test reads: each line's points inside the area.
+    rbs.charts[canvas.id].lines.push({ key: line.key, points: line.pts.filter((p) => X(p[0]) >= area.x - 0.5
+      && X(p[0]) <= area.x + area.w + 0.5 && Y(p[1]) >= area.y - 0.5 && Y(p[1]) <= area.y + area.h + 0.5).length });
   }
   ctx.setLineDash([]);
   for (const t of spec.finishes || []) instantLine(ctx, X(t), area.y, area.y + area.h, FINISH_DASH);
@@ -829,5 +980,9 @@ function instantLine(ctx, x, y1, y2, dash) {
   ctx.setLineDash([]);
 }
 
+// The teacher's link, /?token=..., comes here by the server's redirect (its cookie set): the tab's history has
+// this address alone. An address with a query (a link without the redirect) is replaced by this one.
+if (location.search || location.hash) history.replaceState(null, "", location.pathname);
 wireControls();
-connect();
+// Once every script of the page has run (lab.js and class.js hook into the messages).
+document.addEventListener("DOMContentLoaded", connect);

@@ -37,12 +37,17 @@ import tempfile
 import threading
 import time
 import unittest
+import xmlrpc.client
 from typing import Any, Dict, List, Optional
 
+import random
+
+import rosgraph
 import rospy
+import yaml
 from rigid_body_sim import description
 from rigid_body_sim.runs import event_record
-from rigid_body_sim.srv import GetEvents, Step
+from rigid_body_sim.srv import Delete, GetEvents, Spawn, Step
 from rigid_body_sim.sim_tools import (INERTIA_FACTORS, free_port, load_config, rospy_on_python39, wait_for,
                                       with_defaults)
 from rigid_body_sim.web_protocol import event_roles, part_config
@@ -65,6 +70,14 @@ SIZES = {"phone": (390, 844, 3, True), "laptop": (1366, 768, 1, False), "project
 PARTS = ("below", "above", "slip", "block", "rod")  # lesson.launch's
 WIDTHS = (360, 768, 1280, 2560, 3840)
 ANGLES = (0.02, 1.55)  # rad: the sphere's slope set from the teacher's page, part:=below
+# The screens of test_text_sizes_and_worlds (a phone's narrowest, a phone, a tablet, a laptop, a projector, 4K),
+# each at every text size the page's A- / A+ offer (view.js TEXT_SCALES), and the generated worlds there: of each
+# type COUNTS bodies (and mixed worlds), sizes drawn from SEED.
+SCREENS = ((360, 740), (390, 844), (768, 1024), (1366, 768), (1600, 900), (3840, 2160))
+TEXT_SCALES = (0.8, 1.0, 1.25, 1.5, 2.0)
+COUNTS = (1, 3, 7, 30)
+SEED = 20240601
+MAX_DRAW_MS = 100.0  # a drawing of the page, as the page measures it (rbs.drawMs)
 
 
 def min_text(width: int, height: int) -> float:
@@ -123,16 +136,60 @@ RULES = r"""((minText) => {
   for (const [name, d] of Object.entries(rbs.drawn)) {
     if (d.r === undefined) continue;
     if (2 * d.r < 20) bad.push(`${name} ${2 * d.r} px across`);
+    if (!rbs.panels[name]) { bad.push(`${name} drawn without a panel`); continue; }
     const p = rbs.panels[name].rect;
     if (d.cx - d.r < p.x || d.cx + d.r > p.x + p.w || d.cy - d.r < p.y || d.cy + d.r > p.y + p.h) {
       bad.push(`${name} out of its panel`);
     }
   }
   const scene = document.getElementById("scene-canvas").getBoundingClientRect();
+  const line = parseFloat(getComputedStyle(document.body).fontSize);  // the page's text, as the reader sized it
   const room = window.innerHeight - (scene.top + window.scrollY);
-  if (scene.height < room - 1.5 * minText) bad.push(`scene ${scene.height} px high in ${room}`);
+  const layout = rbs.sceneLayout;
+  if (layout.beside || layout.sideBySide) {
+    if (scene.height < room - 1.5 * line) bad.push(`scene ${scene.height} px high in ${room}`);
+  } else {  // a narrow screen: the scene, then the first plot on the first screen (unless the scene is at its least)
+    const plot = document.getElementById("plot-motion").getBoundingClientRect().bottom + window.scrollY;
+    if (plot > window.innerHeight + 1 && scene.height > rbs.sceneNeed + 1) {
+      bad.push(`the first plot ends ${plot} px down, below the first screen (${window.innerHeight} px)`);
+    }
+    if (plot < window.innerHeight - 1.5 * line) bad.push(`the scene and a plot ${plot} px in ${window.innerHeight}`);
+  }
   return bad;
 })"""
+
+# What every drawing of every world at every size and text size keeps (rbs.* as drawn): both plots with their
+# axes (at least two value ticks, an area of two texts' height) and every line's points inside it; every panel's
+# scale positive and finite; every body drawn where a number says; every scene text inside a panel; no body
+# "drawn x" a number below 1.
+DRAWN = r"""(() => {
+  const bad = [];
+  const charts = rbs.charts || {};
+  for (const id of ["plot-motion", "plot-energy"]) {
+    const c = charts[id];
+    if (!c) { bad.push(`${id} not drawn`); continue; }
+    if (c.area.h < 2 * c.text || c.area.w < 4 * c.text) {
+      bad.push(`${id}: an area of ${Math.round(c.area.w)}x${Math.round(c.area.h)} px for its lines`);
+    }
+    if (c.ticks < 2) bad.push(`${id}: ${c.ticks} value ticks`);
+    if (!c.lines.length || c.lines.some((l) => l.points < 1)) bad.push(`${id}: lines ${JSON.stringify(c.lines)}`);
+  }
+  for (const [name, p] of Object.entries(rbs.panels)) {
+    if (!(p.scale > 0 && isFinite(p.scale))) bad.push(`${name}: scale ${p.scale}`);
+  }
+  for (const name of Object.keys(rbs.world.bodies)) {
+    const d = rbs.drawn[name];
+    if (!d || !isFinite(d.cx) || !isFinite(d.cy)) bad.push(`${name} not drawn`);
+  }
+  const rects = Object.values(rbs.panels).map((p) => p.rect);
+  for (const b of rbs.texts) {
+    if (b.canvas !== "scene-canvas") continue;
+    if (!rects.some((r) => b.x >= r.x - 0.5 && b.y >= r.y - 0.5 && b.x + b.w <= r.x + r.w + 0.5 &&
+                           b.y + b.h <= r.y + r.h + 0.5)) bad.push(`"${b.text}" outside its panel`);
+    if (/\u00d7-|\u00d70\./.test(b.text)) bad.push(`"${b.text}"`);
+  }
+  return bad;
+})()"""
 
 
 class Layout(unittest.TestCase):
@@ -202,9 +259,11 @@ class Layout(unittest.TestCase):
                      " && new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(() => done(true))))",
                      DEADLINE)
 
-    def check(self, browser: Browser, where: str, width: int, height: int) -> None:
-        """The rules' breaches, kept to be told all at once (every part and size: the whole picture)."""
-        self.breaches += [f"{where}: {line}" for line in browser.evaluate(f"{RULES}({min_text(width, height)})")]
+    def check(self, browser: Browser, where: str, width: int, height: int, text_scale: float = 1.0) -> None:
+        """The rules' breaches, kept to be told all at once (every part and size: the whole picture); at a text
+        size the reader made smaller, texts as much smaller."""
+        least = round(min_text(width, height) * min(1.0, text_scale), 6)  # 14 x 0.8 is 11.2, not 11.200000000000001
+        self.breaches += [f"{where}: {line}" for line in browser.evaluate(f"{RULES}({least})")]
 
     def test_every_part(self) -> None:
         begun = time.monotonic()
@@ -272,6 +331,166 @@ class Layout(unittest.TestCase):
                 checks += 1
         print(f"{checks} layouts checked in {time.monotonic() - begun:.1f} s", file=sys.stderr)
         self.assertEqual(self.breaches, [], "\n".join(self.breaches))
+
+    def test_text_sizes_and_worlds(self) -> None:
+        """Every screen at every text size, then generated worlds at every screen: both plots with their axes
+        and lines, every body drawn at a positive scale, every text whole inside its panel, no text over
+        another, and a drawing in under MAX_DRAW_MS (a world that hung the page would time this out)."""
+        begun = time.monotonic()
+        rng = random.Random(SEED)
+        first = {"first": self.generated("rod", 0, rng)}
+        link = self.start_generated({"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "bodies": first})
+        rospy.init_node("web_layout_test", anonymous=True, disable_signals=True)
+        rospy.wait_for_service("/gen/sim/step", timeout=DEADLINE)
+        self.step = rospy.ServiceProxy("/gen/sim/step", Step)
+        self.spawn = rospy.ServiceProxy("/gen/sim/spawn", Spawn)
+        self.delete = rospy.ServiceProxy("/gen/sim/delete", Delete)
+        self.browser = browser = Browser(1600, 900)
+        browser.resize(1600, 900, 1, False)
+        browser.navigate(link)
+        browser.wait("the page", "window.rbs && rbs.world && rbs.control", DEADLINE)
+        # The lesson's race of three and a block: every screen at every text size.
+        race = {shape: self.lesson_roller(shape) for shape in ("sphere", "cylinder", "ring")}
+        race["block"] = {"type": "block", "size": 0.25, "incline_angle": 0.349, "incline_length": 5.0, "mu_s": 0.2,
+                         "mu_d": 0.15}
+        self.become(browser, race, steps=400)
+        checks = 0
+        for width, height in SCREENS:
+            for scale in TEXT_SCALES:
+                self.show(browser, width, height, scale)
+                self.check_drawn(browser, f"the race at {width}x{height}, text x{scale}", width, height, scale)
+                checks += 1
+                if width == 390 and scale == 1.0:  # a phone: a plot on its first screen, whatever the scene needs
+                    bottom = browser.evaluate("document.getElementById('plot-motion').getBoundingClientRect().bottom")
+                    self.assertLessEqual(bottom, height + 1, "the phone's first screen shows no whole plot")
+                if scale in (0.8, 2.0) and width in (360, 1366, 3840):
+                    browser.screenshot(os.path.join(ARGS.out_dir, f"web_text{scale}_{width}x{height}.png"))
+        # Generated worlds: each type alone, COUNTS bodies of it; three rods and a roller; a mix of 30.
+        kinds_of_worlds = [[kind] * count for kind in ("rod", "roller", "block") for count in COUNTS]
+        kinds_of_worlds += [["rod"] * 3 + ["roller"], [rng.choice(("rod", "roller", "block")) for _ in range(30)]]
+        # Each world's names its own (w<n>...): its bodies spawned before the last world's are deleted.
+        worlds = [{f"w{n}{kind}{i:02d}": self.generated(kind, i, rng) for i, kind in enumerate(kinds)}
+                  for n, kinds in enumerate(kinds_of_worlds)]
+        for world in worlds:
+            self.become(browser, world, steps=100)
+            kinds = sorted({b["type"] for b in world.values()})
+            for width, height in ((1200, 800),) + SCREENS:
+                scales = (1.0, 2.0) if len(world) in (1, 30) and width in (360, 1366) else (1.0,)
+                for scale in scales:
+                    self.show(browser, width, height, scale)
+                    self.check_drawn(browser, f"{len(world)} bodies ({', '.join(kinds)}) at {width}x{height}, "
+                                     f"text x{scale}", width, height, scale)
+                    checks += 1
+            if len(world) == 30 or len(kinds) == 2 and len(world) == 4:
+                browser.screenshot(os.path.join(ARGS.out_dir, f"web_world_{len(world)}_{'_'.join(kinds)}.png"))
+        print(f"{checks} drawings checked in {time.monotonic() - begun:.1f} s", file=sys.stderr)
+        self.assertEqual(self.breaches, [], "\n".join(self.breaches))
+
+    @staticmethod
+    def lesson_roller(shape: str) -> Dict[str, Any]:
+        return {"type": "roller", "shape": shape, "radius": 0.15, "incline_angle": 0.349, "incline_length": 5.0,
+                "mu_s": 0.2, "mu_d": 0.15}
+
+    @staticmethod
+    def generated(kind: str, i: int, rng: random.Random) -> Dict[str, Any]:
+        """A body of `kind` of sizes from a millimetre to a kilometre, at any slope the keys allow."""
+        def size(lo: float, hi: float) -> float:
+            return float(f"{10 ** rng.uniform(math.log10(lo), math.log10(hi)):.4g}")
+        if kind == "rod":
+            length = size(0.01, 100.0)
+            floor = rng.choice((0.0, size(1.0, 1000.0)))
+            # On a bounded floor x0 is a place on it, [0, floor_length] (the core refuses any other).
+            x0 = rng.uniform(0.0, floor) if floor else rng.uniform(-10.0, 10.0)
+            return {"type": "rod", "length": length, "y0": float(f"{rng.uniform(0.5, 3.0) * length:.4g}"),
+                    "x0": min(float(f"{x0:.4g}"), floor) if floor else float(f"{x0:.4g}"),
+                    "vx0": float(f"{rng.uniform(-3.0, 3.0):.3g}"), "theta0": float(f"{rng.uniform(0.0, 6.28):.3g}"),
+                    "floor_length": floor}
+        body: Dict[str, Any] = {"type": kind, "incline_angle": float(f"{rng.uniform(0.0, 1.55):.3g}"),
+                                "incline_length": size(0.1, 1000.0), "mu_s": 0.3, "mu_d": 0.2}
+        if kind == "roller":
+            body.update(shape=rng.choice(("sphere", "cylinder", "ring", "spherical_shell")), radius=size(0.001, 10.0))
+        else:
+            body["size"] = size(0.001, 10.0)
+        return body
+
+    def start_generated(self, config: Dict[str, Any]) -> str:
+        """sim.launch with `config` in ns:=gen, paused at t = 0, with its web view: the teacher's link."""
+        path = os.path.join(self.tmp, "generated.yaml")
+        with open(path, "w") as out:
+            yaml.safe_dump(config, out)
+        port, web_port = free_port(), free_port()
+        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
+                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
+        env.pop("ROS_HOSTNAME", None)
+        os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
+        self.master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL, text=True)
+        wait_for("the master", lambda: subprocess.run(["rosnode", "list"], env=env, capture_output=True)
+                 .returncode == 0, DEADLINE, period=0.2)
+        log: List[str] = []
+        self.launches["gen"] = subprocess.Popen(
+            ["roslaunch", "rigid_body_sim", "sim.launch", f"config:={path}", "ns:=gen", "start_paused:=true",
+             "web:=true", f"web_port:={web_port}", "web_control:=true"],
+            env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        threading.Thread(target=self.read_log, args=(self.launches["gen"], log), daemon=True).start()
+        pattern = re.compile(rf"(http://127\.0\.0\.1:{web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
+        links: List[str] = []
+
+        def printed() -> bool:
+            links.extend(m.group(1) for m in map(pattern.search, list(log)) if m)
+            return bool(links)
+        try:
+            wait_for("the control link", printed, DEADLINE)
+        except TimeoutError:
+            print("".join(log), file=sys.stderr)
+            raise
+        return links[0]
+
+    def become(self, browser: Browser, world: Dict[str, Dict[str, Any]], steps: int) -> None:
+        """The node's world made `world` (these spawned, its bodies, of other names, deleted), run `steps` steps
+        and drawn."""
+        before = browser.evaluate("Object.keys(rbs.world.bodies)")
+        for name, body in world.items():  # first: a world is never empty
+            answer = self.spawn(name, json.dumps(body))  # YAML's flow style
+            self.assertTrue(answer.success, f"{name} {body}: {answer.message}")
+        for name in before:
+            answer = self.delete(name)
+            self.assertTrue(answer.success, answer.message)
+        master = rosgraph.Master("/web_layout_test")
+
+        def followed() -> bool:  # the node's connections to the web view for the new states, before it sends them
+            node: Any = xmlrpc.client.ServerProxy(master.lookupNode("/gen/sim"))
+            _, _, bus = node.getBusInfo("/web_layout_test")
+            connected = {row[4] for row in bus if row[1] == "/gen/web" and row[2] == "o"}
+            return all(f"/gen/sim/{name}/state" in connected for name in world)
+        wait_for("the web view following every new body", followed, DEADLINE)
+        t = self.step(steps).t
+        browser.wait(f"{len(world)} bodies drawn at t = {t}", f"Object.keys(rbs.world.bodies).sort().join() === "
+                     f"{json.dumps(','.join(sorted(world)))} && Object.keys(rbs.world.bodies).every((n) => "
+                     f"rbs.drawn[n] && rbs.drawn[n].t === {t!r})", DEADLINE)
+
+    def show(self, browser: Browser, width: int, height: int, text_scale: float) -> None:
+        """The page at width x height, its text at `text_scale` as the reader's A- / A+ make it, laid out."""
+        browser.resize(width, height, 1, width < 1024)
+        for _ in range(len(TEXT_SCALES)):
+            now = browser.evaluate("Number(localStorage.getItem('rbs_text_scale'))")
+            if now == text_scale:
+                break
+            browser.click("text-larger" if now < text_scale else "text-smaller")
+            browser.wait("the text size", f"Number(localStorage.getItem('rbs_text_scale')) !== {now!r}", DEADLINE)
+        browser.evaluate("window.scrollTo(0, 0)")
+        self.laid_out(browser, width, height, 1)
+
+    def check_drawn(self, browser: Browser, where: str, width: int, height: int, text_scale: float) -> None:
+        """The page's rules and DRAWN's, and a drawing's time: the page drawn again as it stands, measured."""
+        self.check(browser, where, width, height, text_scale)
+        self.breaches += [f"{where}: {line}" for line in browser.evaluate(DRAWN)]
+        frames = browser.evaluate("rbs.drawCount")
+        browser.evaluate("dispatchEvent(new Event('resize'))")
+        browser.wait("a drawing", f"rbs.drawCount > {frames}", DEADLINE)
+        took = browser.evaluate("rbs.drawMs")
+        if not took < MAX_DRAW_MS:
+            self.breaches.append(f"{where}: a drawing took {took:.0f} ms")
 
     def set_angle(self, browser: Browser, angle: float) -> None:
         """The teacher's Set of the sphere's incline_angle, drawn (the world's keys, then its panel)."""

@@ -533,6 +533,7 @@ class WebView(unittest.TestCase):
         for e in firsts:
             self.assertEqual((e["t"], e["values"]["cause"]), (reset_t, "reset"), e)
         self.assertTrue(all(e["t"] >= reset_t for e in truth))
+
         # By order, not instant: an event of the step that ended at the reset is at reset_t too, in the run before.
         def since_reset() -> List[Dict[str, Any]]:
             events = list(node.events)

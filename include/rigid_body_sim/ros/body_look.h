@@ -75,15 +75,15 @@ struct RosBodyType {
 
 // Declares a body type's ROS side in its ros/types/<type>_ros.h (inside namespace rigid_body_sim): its
 // messages, and the three functions its src/ros/types/<type>_ros.cpp defines.
-#define RBS_ROS_BODY_TYPE(TYPE, STATE_MSG, RECONFIGURE)                   \
-  template <>                                                             \
-  struct RosMessages<TYPE> {                                              \
-    using StateMsg = STATE_MSG;                                           \
-    using Reconfigure = RECONFIGURE;                                      \
-  };                                                                      \
-  template <>                                                             \
-  BodyLook RosBodyType<TYPE>::look(const TYPE::Model& model);             \
-  template <>                                                             \
-  BodyShape RosBodyType<TYPE>::shape(const TYPE::Model& model);           \
-  template <>                                                             \
+#define RBS_ROS_BODY_TYPE(TYPE, STATE_MSG, RECONFIGURE)         \
+  template <>                                                   \
+  struct RosMessages<TYPE> {                                    \
+    using StateMsg = STATE_MSG;                                 \
+    using Reconfigure = RECONFIGURE;                            \
+  };                                                            \
+  template <>                                                   \
+  BodyLook RosBodyType<TYPE>::look(const TYPE::Model& model);   \
+  template <>                                                   \
+  BodyShape RosBodyType<TYPE>::shape(const TYPE::Model& model); \
+  template <>                                                   \
   BodyHandles RosBodyType<TYPE>::handles(const TYPE::Config& config)
