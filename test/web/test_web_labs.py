@@ -35,13 +35,11 @@ import io
 import json
 import math
 import os
-import re
 import shutil
 import signal
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 import unittest
 import urllib.request
@@ -52,6 +50,7 @@ import websocket
 from rigid_body_sim.sim_tools import INERTIA_FACTORS, free_port, load_config, wait_for, with_defaults
 
 from browser import Browser, end
+from ros_launching import control_link, launch_reading, ros_env
 
 ARGS: Any = None
 DEADLINE = 60.0  # s for any one wait
@@ -148,30 +147,10 @@ class Labs(unittest.TestCase):
         """lesson.launch part:=slip with the web view (control on), paused, on ports of its own: the teacher's
         link it prints."""
         port = free_port()
-        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
-                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
-        env.pop("ROS_HOSTNAME", None)
-        self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(port), "rigid_body_sim", "lesson.launch", "part:=slip", "rviz:=false",
-             "start_paused:=true", "web:=true", f"web_port:={self.web_port}", "web_control:=true"],
-            env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        threading.Thread(target=self.read_log, daemon=True).start()
-        pattern = re.compile(rf"(http://[^/\s]+:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
-        found: List[str] = []
-
-        def printed() -> bool:
-            found[:] = [m.group(1) for m in (pattern.search(line) for line in list(self.log)) if m]
-            return bool(found)
-        try:
-            wait_for("the web view's control link in the launch's log", printed, DEADLINE)
-        except TimeoutError as error:
-            raise AssertionError(f"{error}; the launch's log:\n" + "".join(list(self.log)[-60:])) from None
-        return found[0]
-
-    def read_log(self) -> None:
-        assert self.launch is not None and self.launch.stdout is not None
-        for line in self.launch.stdout:
-            self.log.append(line)
+        self.launch = launch_reading(
+            ["-p", str(port), "rigid_body_sim", "lesson.launch", "part:=slip", "rviz:=false", "start_paused:=true",
+             "web:=true", f"web_port:={self.web_port}", "web_control:=true"], ros_env(port, self.tmp), self.log)
+        return control_link(self.log, self.web_port)
 
     def test_labs(self) -> None:
         started = time.monotonic()

@@ -53,6 +53,7 @@ from rigid_body_sim.sim_tools import (INERTIA_FACTORS, free_port, load_config, r
 from rigid_body_sim.web_protocol import event_roles, part_config
 
 from browser import Browser, end
+from ros_launching import ros_env, start_master
 
 rospy_on_python39()
 ARGS: Any = None
@@ -216,14 +217,9 @@ class Layout(unittest.TestCase):
         """Every part at once on one master, each lesson.launch in its namespace (ns:=PART), paused at t = 0,
         with its web view: {part: the teacher's link}."""
         port = free_port()
-        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
-                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
-        env.pop("ROS_HOSTNAME", None)
+        env = ros_env(port, self.tmp)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
-        self.master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                                       stderr=subprocess.DEVNULL, text=True)
-        wait_for("the master", lambda: subprocess.run(["rosnode", "list"], env=env, capture_output=True)
-                 .returncode == 0, DEADLINE, period=0.2)
+        self.master = start_master(env)
         logs: Dict[str, List[str]] = {}
         patterns = {}
         for part in PARTS:
@@ -419,14 +415,9 @@ class Layout(unittest.TestCase):
         with open(path, "w") as out:
             yaml.safe_dump(config, out)
         port, web_port = free_port(), free_port()
-        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
-                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
-        env.pop("ROS_HOSTNAME", None)
+        env = ros_env(port, self.tmp)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
-        self.master = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
-                                       stderr=subprocess.DEVNULL, text=True)
-        wait_for("the master", lambda: subprocess.run(["rosnode", "list"], env=env, capture_output=True)
-                 .returncode == 0, DEADLINE, period=0.2)
+        self.master = start_master(env)
         log: List[str] = []
         self.launches["gen"] = subprocess.Popen(
             ["roslaunch", "rigid_body_sim", "sim.launch", f"config:={path}", "ns:=gen", "start_paused:=true",

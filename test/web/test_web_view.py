@@ -44,7 +44,6 @@ import http.client
 import json
 import math
 import os
-import re
 import shutil
 import signal
 import socket
@@ -70,6 +69,7 @@ from rigid_body_sim.sim_tools import (free_port, load_config, rospy_on_python39,
                                       with_defaults)
 
 from browser import Browser, end
+from ros_launching import control_link, launch_reading, ros_env
 
 rospy_on_python39()
 ARGS: Any = None
@@ -199,22 +199,11 @@ class WebView(unittest.TestCase):
         """roslaunch rigid_body_sim WORDS... with the web view (control on) on a port of its own, and a master
         of its own; this process joins that master (one test per process: rospy joins one master)."""
         port = free_port()
-        # PYTHONUNBUFFERED: roslaunch and the web view write their lines into a pipe here, which Python would
-        # otherwise fill in blocks: the control link would come only when the launch ends.
-        env = dict(os.environ, ROS_MASTER_URI=f"http://127.0.0.1:{port}", ROS_HOME=self.tmp, ROS_IP="127.0.0.1",
-                   PATH="/usr/bin:" + os.environ.get("PATH", ""), PYTHONUNBUFFERED="1")
-        env.pop("ROS_HOSTNAME", None)
+        env = ros_env(port, self.tmp)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
-        self.launch = subprocess.Popen(
-            ["roslaunch", "-p", str(port), "rigid_body_sim", *words,
-             *(["web:=true"] if words[0] != "web.launch" else []), f"web_port:={self.web_port}",
-             "web_control:=true"], env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        threading.Thread(target=self.read_log, daemon=True).start()
-
-    def read_log(self) -> None:
-        assert self.launch is not None and self.launch.stdout is not None
-        for line in self.launch.stdout:
-            self.log.append(line)
+        self.launch = launch_reading(
+            ["-p", str(port), "rigid_body_sim", *words, *(["web:=true"] if words[0] != "web.launch" else []),
+             f"web_port:={self.web_port}", "web_control:=true"], env, self.log)
 
     def tearDown(self) -> None:
         if self.browser:
@@ -227,17 +216,7 @@ class WebView(unittest.TestCase):
         return [line for line in list(self.log) if words in line]
 
     def control_url(self) -> str:
-        pattern = re.compile(rf"(http://[^/\s]+:{self.web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
-        found: List[str] = []
-
-        def printed() -> bool:
-            found[:] = [m.group(1) for m in (pattern.search(line) for line in list(self.log)) if m]
-            return bool(found)
-        try:
-            wait_for("the web view's control link in the launch's log", printed, DEADLINE)
-        except TimeoutError as error:
-            raise AssertionError(f"{error}; the launch's log:\n" + "".join(list(self.log)[-60:])) from None
-        return found[0]
+        return control_link(self.log, self.web_port)
 
     def test_node(self) -> None:
         """The page follows and drives sim_node (the module's docstring)."""
