@@ -57,8 +57,9 @@ def roles() -> Dict[str, Dict[str, str]]:
 
 
 ROLES = roles()
-# An outcome besides its instant: what the kind's event carries that a student compares.
-EXTRA_OUTCOMES: Dict[str, Tuple[str, ...]] = {"came_to_rest": ("x",), "contact_began": ("count",)}
+# Outcomes of every kind besides its instant, named by no kind: where the body was then (the state field x
+# every type has: where a block came to rest, where a ball gripped) and how often it happened so far.
+EXTRA_OUTCOMES: Tuple[str, ...] = ("x", "count")
 # Outcomes that grow as a run goes on: no curve (a grid run has no duration of the lab's).
 RUNNING_OUTCOMES = ("count",)
 
@@ -122,13 +123,13 @@ def outcomes_of(records: Iterable[Record], first: Optional[Dict[Tuple[str, str],
 def outcome_list(first: Mapping[Tuple[str, str], Record], counts: Mapping[Tuple[str, str], int]
                  ) -> List[Dict[str, Any]]:
     """[{body, kind, value_name, value, t}]: each first event's outcomes (a finish's lap_time, any other's
-    instant t; came_to_rest's x where it stopped; contact_began's count so far), in time order."""
+    instant t; the body's x then; how many of the kind so far), in time order."""
     out = []
     for (body, kind), record in sorted(first.items(), key=lambda item: (item[1]["t"], item[0])):
         role = ROLES.get(record["type"], {}).get(kind, "")
         main = ("lap_time", record["values"].get("lap_time", math.nan)) if role == "finish" else ("t", record["t"])
         values = [main] + [(extra, counts.get((body, kind), 0) if extra == "count" else record["state"].get(extra))
-                           for extra in EXTRA_OUTCOMES.get(kind, ())]
+                           for extra in EXTRA_OUTCOMES]
         for name, value in values:
             if isinstance(value, (int, float)) and math.isfinite(value):
                 out.append({"body": body, "kind": kind, "value_name": name, "value": value, "t": record["t"]})

@@ -224,6 +224,12 @@ def slip_to_roll_time(body: Dict[str, Any], g: float) -> float:
             / (body["mu_d"] * g * math.cos(phi) * (1 + c) / c - g * math.sin(phi)))
 
 
+def slip_to_roll_place(body: Dict[str, Any], g: float) -> float:
+    """Where it grips: x0 + v0 t + a t^2 / 2 at that instant, a = g sin(phi) - mu_d g cos(phi) while it slips."""
+    t, phi = slip_to_roll_time(body, g), body["incline_angle"]
+    return body.get("x0", 0.0) + body["v0"] * t + 0.5 * (g * math.sin(phi) - body["mu_d"] * g * math.cos(phi)) * t * t
+
+
 class Class(unittest.TestCase):
     def test_outcomes_and_curves_against_the_closed_forms(self) -> None:
         clock = Clock()
@@ -257,7 +263,8 @@ class Class(unittest.TestCase):
         self.assertEqual(computed["lesson"], {"sphere.mu_d": 0.2})
         self.assertEqual(set(computed["curves"]), {"sphere.mu_d"})
         curves = computed["curves"]["sphere.mu_d"]
-        self.assertEqual(set(curves), {"sphere.slip_to_roll.t", "sphere.finished.lap_time"})
+        self.assertEqual(set(curves), {"sphere.slip_to_roll.t", "sphere.slip_to_roll.x", "sphere.finished.lap_time",
+                                       "sphere.finished.x"})
         slip = curves["sphere.slip_to_roll.t"]
         xs, ys = slip["x"], slip["y"]
         self.assertEqual(xs, sorted(xs))
@@ -269,6 +276,8 @@ class Class(unittest.TestCase):
             self.assertEqual(ys[xs.index(x)], mine[("slip_to_roll", "t")], x)
             lap = curves["sphere.finished.lap_time"]
             self.assertEqual(lap["y"][lap["x"].index(x)], mine[("finished", "lap_time")], x)
+            place = curves["sphere.slip_to_roll.x"]
+            self.assertEqual(place["y"][place["x"].index(x)], mine[("slip_to_roll", "x")], x)
         # And everywhere on the grid, the closed form (a value the core refuses has no point: None).
         sphere = yaml.safe_load(base)["bodies"]["sphere"]
         checked = 0
@@ -278,6 +287,8 @@ class Class(unittest.TestCase):
                     core.World(base).set("sphere", mu_d=x)
                 continue
             self.assertAlmostEqual(y, slip_to_roll_time({**sphere, "mu_d": x}, 9.8), delta=1e-9 * y, msg=x)
+            where = curves["sphere.slip_to_roll.x"]["y"][xs.index(x)]
+            self.assertAlmostEqual(where, slip_to_roll_place({**sphere, "mu_d": x}, 9.8), delta=1e-9, msg=x)
             checked += 1
         self.assertGreater(checked, labs.CURVE_POINTS // 2)
         # Cleared: outcomes forgotten, the labs go on.
