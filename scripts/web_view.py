@@ -194,6 +194,8 @@ class Page(tornado.websocket.WebSocketHandler):
 
     def open(self, *args: str, **kwargs: str) -> None:
         Page.pages_opened += 1
+        # Each reply at once: with Nagle's algorithm a small reply waited for the page's delayed ack (40 ms).
+        self.set_nodelay(True)
         self.number = Page.pages_opened
         self.frames = FrameQueue(self.view.queue_bound)
         self.replies: List[str] = []

@@ -37,7 +37,7 @@ from rigid_body_sim.web_protocol import MAX_LAB_STEPS, MAX_NAME, printable_text
 MAX_LABS = 60
 LABS_PER_ADDRESS = 8
 IDLE = 30 * 60.0  # s without a request and without a page attached: the lab ends
-MAX_EVENTS = 10_000  # of a lab's run, kept (the oldest go)
+MAX_EVENTS = 1_000  # of a lab's run, kept (the oldest go): some 2 MB of records at most
 SAMPLES_KEPT = 500  # a lab's samples not yet sent, per body (the oldest go): a page plots the last 10 s
 MAX_BEHIND = 0.5  # s of simulated time a running lab catches up at once; behind more, it slows instead
 CURVE_POINTS = 25  # grid values of a curve's key, besides the class's own and the lesson's
@@ -214,11 +214,14 @@ class Lab:
                 self.results_changed = True
 
     def advance(self, now: float) -> None:
-        """While it runs: the steps real time has brought since it started running (at most MAX_BEHIND s at
-        once: a lab that fell behind slows, never bursts)."""
+        """While it runs: the steps real time has brought since it started running, to the nearest sample (at
+        most MAX_BEHIND s at once: a lab that fell behind slows, never bursts). To the nearest sample, not the
+        last step due: the frame timer's jitter then never leaves a frame without a sample and the next with
+        two (a lab page a frame short a second, now and then)."""
         if self.paused:
             return
-        due = math.floor((now - self.wall_start) * self.rate) + self.steps_at_start
+        exact = (now - self.wall_start) * self.rate + self.steps_at_start
+        due = round(exact / self.steps_per_sample) * self.steps_per_sample
         cap = self.world.steps + max(1, int(MAX_BEHIND * self.rate))
         if due > cap:
             self.wall_start, self.steps_at_start, due = now, cap, cap

@@ -67,7 +67,7 @@ The labs' (rigid_body_sim.labs):
            publish_rate steps, t = k / publish_rate, the first at t = 0; at most 500 a body, the newest), to its
            pages, or to every page while it is shown
   lab_events {lab, all, events: [record, ...]}: its events (as World.events() gives them; a value that is not
-           finite as null); all: true after each (re)start and at attach (its run's, at most 10000: replace)
+           finite as null); all: true after each (re)start and at attach (its run's last 1000: replace)
   lab_closed {lab, line}: it ended (lab_close, a new lab_open, 30 idle minutes)
   shown_lab  {the fields of `lab`} | {lab: null}: the lab the teacher shows (again when it changes; its
            lab_frame and lab_events then go to every page)
