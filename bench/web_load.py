@@ -47,7 +47,8 @@ import time
 import urllib.request
 from typing import Any, Dict, List, Optional
 
-from rigid_body_sim.sim_tools import free_port, node_pid, resident_kib, rospy_on_python39, wait_for
+from rigid_body_sim.sim_tools import (body_type, free_port, load_config, node_pid, resident_kib, rospy_on_python39,
+                                      state_message, wait_for)
 
 from run_bench import cpu_seconds
 
@@ -85,12 +86,12 @@ class Launch:
 class Gaps:
     """Arrival times of a body's states (/sim/<body>/state) at this process's subscriber."""
 
-    def __init__(self, body: str = "rod", message_type: str = "RodState") -> None:
+    def __init__(self, config: str, body: str) -> None:
         import rospy
-        from rigid_body_sim import msg
         self.arrivals: List[float] = []
-        rospy.Subscriber(f"/sim/{body}/state", getattr(msg, message_type),
-                         lambda _: self.arrivals.append(time.monotonic()), queue_size=100)
+        message = state_message(body_type(load_config(config), body))  # its type's state message
+        rospy.Subscriber(f"/sim/{body}/state", message, lambda _: self.arrivals.append(time.monotonic()),
+                         queue_size=100)
 
     def since(self, index: int) -> List[float]:
         times = self.arrivals[index:]
@@ -213,7 +214,7 @@ def main() -> None:
                  .returncode == 0, 60, period=0.2)
         rospy.init_node("web_load", anonymous=True, disable_signals=True)
         if not args.labs_only:
-            gaps = Gaps()
+            gaps = Gaps(os.path.join(ROOT, "config", "demo.yaml"), "rod")
             launch = Launch(False, web_port, env)
             try:
                 wait_for("states", lambda: len(gaps.arrivals) > 100, 60)
@@ -228,7 +229,8 @@ def main() -> None:
         if args.labs:
             launch = Launch(True, web_port, env, os.path.join(ROOT, "config", "race_below.yaml"))
             try:
-                lab_rows = with_labs(launch, Gaps("sphere", "RollerState"), web_port, args)
+                lab_rows = with_labs(launch, Gaps(os.path.join(ROOT, "config", "race_below.yaml"), "sphere"), web_port,
+                                     args)
             finally:
                 launch.stop()
     finally:
