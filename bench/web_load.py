@@ -261,9 +261,8 @@ def main() -> None:
         sys.exit(1)
 
 
-def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace,
-             notes: List[str]) -> List[Dict[str, Any]]:
-    import rospy
+def wait_serving(web_port: int) -> None:
+    """Until the web view answers its page."""
     url = f"http://127.0.0.1:{web_port}/"
 
     def serving() -> bool:
@@ -273,6 +272,12 @@ def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace
         except OSError:
             return False
     wait_for("the web view", serving, 60, period=0.2)
+
+
+def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace,
+             notes: List[str]) -> List[Dict[str, Any]]:
+    import rospy
+    wait_serving(web_port)
     first = len(gaps.arrivals)
     wait_for("states again", lambda: len(gaps.arrivals) > first + 100, 60)
     sim, web = node_pid("/sim", rospy.get_name()), node_pid("/web", rospy.get_name())
@@ -303,15 +308,7 @@ def with_web(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace
 def with_labs(launch: Launch, gaps: Gaps, web_port: int, args: argparse.Namespace) -> List[Dict[str, Any]]:
     """Windows 5 and 6: the lab pages and the probe without labs, then with a lab each."""
     import rospy
-    url = f"http://127.0.0.1:{web_port}/"
-
-    def serving() -> bool:
-        try:
-            with urllib.request.urlopen(url, timeout=2) as answer:
-                return bool(answer.status == 200)
-        except OSError:
-            return False
-    wait_for("the web view", serving, 60, period=0.2)
+    wait_serving(web_port)
     wait_for("the sphere's states", lambda: len(gaps.arrivals) > 100, 60)
     sim, web = node_pid("/sim", rospy.get_name()), node_pid("/web", rospy.get_name())
     ws = f"ws://127.0.0.1:{web_port}/ws"
