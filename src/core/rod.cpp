@@ -48,15 +48,11 @@ RodStepEvents Rod::step(double dt) {
   const bool same = last_contacts_.length == params_.length && last_contacts_.y == state_.y &&
                     last_contacts_.theta == state_.theta;
   const unsigned before = same ? last_contacts_.ends : contacts();
-  const int n = substepsFor(dt);
-  const double h = dt / n;  // n == 1 leaves dt bit-exact, so the text's run is unchanged
-  for (int i = 0; i < n; ++i) {
-    switch (params_.integrator) {
-      case Integrator::EulerCromer: state_ = eulerCromerStep(params_, state_, h); break;
-      case Integrator::VelocityVerlet: state_ = velocityVerletStep(params_, state_, h); break;
-      case Integrator::Rk4: state_ = rk4Step(params_, state_, h); break;
-    }
+  if (!(dt == substeps_.dt)) {
+    const int n = substepsFor(dt);
+    substeps_ = {dt, n, dt / n};  // n == 1 leaves dt bit-exact, so the text's run is unchanged
   }
+  advanceRod(params_, state_, substeps_.h, substeps_.count);
   const bool restarted = !onFloor();
   if (restarted) state_ = initial_;  // off the end of a bounded floor: a new run from the initial conditions
   const unsigned after = contacts();
@@ -75,7 +71,10 @@ bool Rod::onFloor() const {
   return params_.floor_length <= 0.0 || (state_.x >= 0.0 && state_.x <= params_.floor_length);
 }
 
-void Rod::setParams(const RodParams& params) { params_ = params; }
+void Rod::setParams(const RodParams& params) {
+  params_ = params;
+  substeps_ = {};
+}
 
 void Rod::setInitial(const RodMotion& initial) {
   initial_ = initial;

@@ -232,4 +232,16 @@ RodMotion rk4Step(const RodParams& p, const RodMotion& s, double dt) {
   return stepOnFloor<rk4Conservative, rk4WithFriction>(p, s, dt);
 }
 
+void advanceRod(const RodParams& p, RodMotion& s, double dt, int steps) {
+  for (int i = 0; i < steps; ++i) {
+    switch (p.integrator) {
+      case Integrator::EulerCromer: s = stepOnFloor<eulerCromer<false>, eulerCromer<true>>(p, s, dt); break;
+      case Integrator::VelocityVerlet:
+        s = stepOnFloor<velocityVerlet<false>, velocityVerlet<true>>(p, s, dt);
+        break;
+      case Integrator::Rk4: s = stepOnFloor<rk4Conservative, rk4WithFriction>(p, s, dt); break;
+    }
+  }
+}
+
 }  // namespace rigid_body_sim

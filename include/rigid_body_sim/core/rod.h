@@ -8,6 +8,8 @@
 // restarts from its initial conditions at the end of that step, as a roller does at a slope's end.
 #pragma once
 
+#include <limits>
+
 #include <optional>
 #include <string>
 
@@ -83,7 +85,7 @@ class Rod {
   void setState(const RodMotion& state);      // moves it there now; the initial state is kept
 
   // Everything a step changes (for a rod, its motion): kept and put back exactly, a few bytes instead of
-  // the whole body (the node's guard keeps one after every step).
+  // the whole body (what the node's guard keeps).
   using Progress = RodMotion;
   const Progress& progress() const { return state_; }
   void restore(const Progress& progress) { state_ = progress; }
@@ -118,6 +120,14 @@ class Rod {
     unsigned ends = 0;
   };
   Contacts last_contacts_;
+  // The sub-steps of the last step's dt, until the parameters change (a square root and two divisions a
+  // step, otherwise).
+  struct Substeps {
+    double dt = std::numeric_limits<double>::quiet_NaN();  // none yet: equal to no dt
+    int count = 1;
+    double h = 0.0;  // dt / count
+  };
+  Substeps substeps_;
 };
 
 }  // namespace rigid_body_sim

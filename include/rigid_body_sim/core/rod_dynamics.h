@@ -28,5 +28,8 @@ RodAcceleration rodAcceleration(const RodParams& params, const RodMotion& state)
 RodMotion eulerCromerStep(const RodParams& params, const RodMotion& state, double dt);
 RodMotion velocityVerletStep(const RodParams& params, const RodMotion& state, double dt);
 RodMotion rk4Step(const RodParams& params, const RodMotion& state, double dt);
+// `steps` steps of params.integrator, the same operations, in place: each result is stored field by field
+// (a returned motion copied back waited on store forwarding, a fifth of a rod's step).
+void advanceRod(const RodParams& params, RodMotion& state, double dt, int steps);
 
 }  // namespace rigid_body_sim
