@@ -1,10 +1,16 @@
 // The node's NaN guard (run/finite_guard): which quantity is non-finite, holding a body at its last
 // finite state while the others go on exactly as without it, reporting each fault once, releasing.
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "rigid_body_sim/core/body_types.h"
+#include "rigid_body_sim/core/state_fields.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/run/finite_guard.h"
 #include "test_util.h"
@@ -144,7 +150,7 @@ TEST(DescribeBody, ListsEveryKeyAndTheState) {
 TEST(FiniteGuard, HoldsTheFaultyBodyAndLetsTheOthersGoOn) {
   World world(rodAndSphere());
   World reference(rodAndSphere());
-  FiniteGuard guard(world.bodies());
+  FiniteGuard guard(world.bodies(), world.dt());
   for (int i = 0; i < 100; ++i) {
     world.step();
     reference.step();
@@ -170,9 +176,121 @@ TEST(FiniteGuard, HoldsTheFaultyBodyAndLetsTheOthersGoOn) {
   }
 }
 
+// The guard as World::step's observer, with a fault in body 0 right after its step to `fault_step` (its x
+// NaN, as a step gone wrong would leave it: test/faults/fault_injection.h does the same in the node).
+class FaultyStep : public BodyStepObserver {
+ public:
+  FaultyStep(const World& world, std::int64_t fault_step)
+      : guard(world.bodies(), world.dt()), world_(world), fault_step_(fault_step) {}
+  void afterBodyStep(std::size_t index, Body& body) override {
+    if (index == 0 && world_.stepCount() + 1 == fault_step_) {
+      std::visit(
+          [](auto& model) {
+            auto state = model.state();
+            state.x = kNaN;
+            model.setState(state);
+          },
+          body.model);
+    }
+    guard.afterBodyStep(index, body);
+  }
+  void movedByWorld(std::size_t index, Body& body) override { guard.movedByWorld(index, body); }
+
+  FiniteGuard guard;
+
+ private:
+  const World& world_;
+  std::int64_t fault_step_;
+};
+
+// Every state field of a body, numbers and texts, for exact comparison whatever its type.
+std::vector<std::string> fieldsOf(const Body& body) {
+  std::vector<std::string> out;
+  std::visit(
+      [&](const auto& model) {
+        for (const auto& field : stateFields(model)) {
+          std::ostringstream text;
+          text << field.name << '=' << std::hexfloat << field.number << field.text;  // every bit
+          out.push_back(text.str());
+        }
+      },
+      body.model);
+  return out;
+}
+
+// The guard keeps a body's progress every kStepsPerKeep steps only and steps it again to the last finite
+// state at a fault: for every body type and faults at and around the keeping points, the body is held at
+// its state of the step before the fault, that of a world without a guard, bit for bit, and stays there.
+TEST(FiniteGuard, HoldsEveryTypeAtItsStateOfTheStepBeforeTheFault) {
+  const std::int64_t keep = FiniteGuard::kStepsPerKeep;
+  for (const std::int64_t fault :
+       {std::int64_t{1}, std::int64_t{2}, keep - 1, keep, keep + 1, 3 * keep + 17, 40 * keep + 5}) {
+    BodyTypes::forEach([&](auto type) {
+      using Type = decltype(type);
+      WorldConfig config;
+      typename Type::Config body{};
+      if constexpr (std::is_same_v<Type, RollerType>) body.initial.v0 = 3.0;  // slipping first
+      config.bodies = {{"body", body}, {"other", RodConfig{}}};
+      World world(config);
+      World reference(config);
+      FaultyStep observer(world, fault);
+      for (std::int64_t i = 0; i + 1 < fault; ++i) {
+        world.step(&observer);
+        reference.step();
+      }
+      ASSERT_TRUE(observer.guard.takeNewlyHeld().empty()) << Type::kName;
+      const auto held_at = fieldsOf(reference.bodies()[0]);
+      for (int i = 0; i < 3; ++i) {
+        world.step(&observer);
+        reference.step();
+        ASSERT_EQ(held_at, fieldsOf(world.bodies()[0])) << Type::kName << ", fault at step " << fault;
+        ASSERT_EQ(fieldsOf(reference.bodies()[1]), fieldsOf(world.bodies()[1])) << Type::kName;
+      }
+      const auto faults = observer.guard.takeNewlyHeld();
+      ASSERT_EQ(1u, faults.size()) << Type::kName;
+      EXPECT_EQ("x", faults[0].field);
+    });
+  }
+}
+
+// A race's next lap moves the racers in World::step, after their steps were observed: a fault just after
+// it holds a racer at its state in the new lap, not at one stepped on from the lap before.
+TEST(FiniteGuard, HoldsARacerAtItsStateInTheLapAfterARestart) {
+  WorldConfig config;
+  config.race = true;
+  RollerConfig racer;
+  racer.params.incline_length = 0.3;
+  config.bodies = {{"sphere", racer}};
+  racer.params.shape = Shape::Ring;
+  racer.params.inertia_factor = inertiaFactorOf(Shape::Ring);
+  config.bodies.push_back({"ring", racer});
+  World probe(config);
+  std::int64_t restart = 0;  // the step whose end restarted the race
+  while (restart == 0 && probe.time() < 20.0) {
+    probe.step();
+    for (const auto& event : probe.takeEvents()) {
+      const EventValue* cause = findValue(event.values, "cause");
+      if (cause && cause->text == "race") restart = probe.stepCount();
+    }
+  }
+  ASSERT_GT(restart, 0) << "no race restart within 20 s";
+  for (const std::int64_t after : {1, 2, 30}) {
+    World world(config);
+    World reference(config);
+    FaultyStep observer(world, restart + after);
+    while (world.stepCount() + 1 < restart + after) {
+      world.step(&observer);
+      reference.step();
+    }
+    world.step(&observer);
+    ASSERT_EQ(1u, observer.guard.takeNewlyHeld().size());
+    EXPECT_EQ(fieldsOf(reference.bodies()[0]), fieldsOf(world.bodies()[0])) << after << " steps after";
+  }
+}
+
 TEST(FiniteGuard, ReleasedBodyRunsAgain) {
   World world(rodAndSphere());
-  FiniteGuard guard(world.bodies());
+  FiniteGuard guard(world.bodies(), world.dt());
   std::get<Rod>(world.bodies()[0].model).setInitial({kNaN, 4, 0.3, 2, 0, 0});
   ASSERT_EQ(1u, guard.afterStep(world.bodies()).size());
   world.reset();  // back to the initial conditions, which are the NaN ones here
@@ -186,7 +304,7 @@ TEST(FiniteGuard, ReleasedBodyRunsAgain) {
 
 TEST(FiniteGuard, ReleasingANonFiniteBodyHoldsItAgainWithoutLosingItsLastFiniteState) {
   World world(rodAndSphere());
-  FiniteGuard guard(world.bodies());
+  FiniteGuard guard(world.bodies(), world.dt());
   const std::vector<double> initial = stateOf(world.bodies()[0]);
   std::get<Rod>(world.bodies()[0].model).setInitial({0, kNaN, 0.3, 2, 0, 0});
   ASSERT_EQ(1u, guard.afterStep(world.bodies()).size());

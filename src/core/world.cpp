@@ -259,7 +259,7 @@ void World::step(BodyStepObserver* observer) {
   if (!config_.race || !raceOver()) return;
   if (!race_over_step_) race_over_step_ = steps_;
   if (static_cast<double>(steps_ - *race_over_step_) < kRaceResultsShown * rate_) return;
-  restartRace("race");
+  restartRace("race", observer);
 }
 
 template <class Model, class Happened>
@@ -281,8 +281,10 @@ void World::record(std::size_t index, double t, std::size_t kind, const Model& a
   Body& body = bodies_[index];
   const EventKind& what = Type::kEventKinds[kind];
   BodyEvent event{t, body.name, Type::kName, what.name, {}, std::move(values)};
-  for (const auto& field : stateFields(at))
-    event.state.push_back(EventValue{field.name, field.number, field.text});
+  const auto fields = stateFields(at);
+  event.state.reserve(fields.size());
+  for (const auto& field : fields) event.state.push_back(EventValue{field.name, field.number, field.text});
+  event.values.reserve(event.values.size() + 3);  // room for a lap_time, a closed_form and a place
   if (what.role == EventRole::Finish) event.values.push_back(EventValue{"lap_time", t - body.lap_start});
   // The kind's instant in closed form since the lap's start, as its type computes it (none for most kinds):
   // it holds only while the lap runs as configured.
@@ -367,7 +369,7 @@ bool World::raceOver() const {
   return any;
 }
 
-bool World::restartRace(const char* cause) {
+bool World::restartRace(const char* cause, BodyStepObserver* observer) {
   if (!config_.race) return false;
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     std::visit(
@@ -375,6 +377,7 @@ bool World::restartRace(const char* cause) {
           if constexpr (TypeOfModel<decltype(model)>::kRaces) {
             model.restartLap();
             restarted(i, cause);
+            if (observer) observer->movedByWorld(i, bodies_[i]);
           }
         },
         bodies_[i].model);

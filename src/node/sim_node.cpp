@@ -57,7 +57,7 @@ SimNode::SimNode(ros::NodeHandle node, ros::NodeHandle private_node)
       options_(parseNodeOptions(start_params_)),
       session_(sessionOf(parseNodeConfig(start_params_))),
       after_step_([this](World& world) { afterStep(world); }),
-      guard_(world().bodies()),
+      guard_(world().bodies(), world().dt()),
       pacer_(world().rate(), options_.real_time_factor),
       use_sim_time_(ros::param::param("/use_sim_time", false)),
       publisher_(node_, private_node_, options_, world(), use_sim_time_, stepper_tasks_),
@@ -141,16 +141,17 @@ ChangeAnswer SimNode::applyHere(const std::string& kind, const std::string& body
 
 void SimNode::followWorld(const WorldCommand& command, std::size_t index) {
   switch (command.kind) {
-    case WorldCommand::Kind::Spawn: guard_.add(world().bodies().back()); return;
-    case WorldCommand::Kind::Delete: guard_.remove(index); return;
+    case WorldCommand::Kind::Spawn: guard_.add(world().bodies().back()); break;
+    case WorldCommand::Kind::Delete: guard_.remove(index); break;
     case WorldCommand::Kind::Reconfigure:
     case WorldCommand::Kind::SetState:
       if (guard_.held(index)) ROS_INFO_STREAM("body '" << command.body << "' runs again");
       guard_.release(index, world().bodies()[index]);
-      return;
-    case WorldCommand::Kind::Reset: guard_.releaseAll(world().bodies()); return;
-    case WorldCommand::Kind::Config: return;  // the node applies none after its start
+      break;
+    case WorldCommand::Kind::Reset: guard_.releaseAll(world().bodies()); break;
+    case WorldCommand::Kind::Config: break;  // the node applies none after its start
   }
+  guard_.keepCurrent(world().bodies());  // a racer's change restarts every racer
 }
 
 // A request to a body's server that changes nothing (the server's first call, a dynparam set of the same
@@ -231,6 +232,8 @@ void SimNode::anchor() {
   pacer_.restart(wallNow(), world().stepCount());
   publisher_.anchor(world().time());
 }
+
+void SimNode::movedByWorld(std::size_t index, Body& body) { guard_.movedByWorld(index, body); }
 
 void SimNode::afterBodyStep(std::size_t index, Body& body) {
 #ifdef RBS_FAULT_INJECTION  // sim_node_faults, a test's build only: test/faults/fault_injection.h

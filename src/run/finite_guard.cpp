@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <new>
 #include <sstream>
 #include <type_traits>
 #include <utility>
@@ -45,23 +44,6 @@ std::optional<std::string> nonFiniteField(const Body& body) {
       body.model);
 }
 
-namespace {
-// The settable fields are the motion; the rest follow from it. std::abs(NaN) <= bound is false: a NaN is
-// never surely finite. The members are picked at compile time: the check after every step runs over these
-// alone, unrolled, instead of over the table asking each field whether it is settable.
-template <class Model>
-bool surelyFiniteModel(const Model& model) {
-  static constexpr auto kMembers = settableMembers<TypeOfModel<Model>>();
-  bool finite = true;
-  for (const auto member : kMembers) finite &= std::abs(model.state().*member) <= kSurelyFiniteMotion;
-  return finite;
-}
-}  // namespace
-
-bool surelyFinite(const Body& body) {
-  return std::visit([](const auto& model) { return surelyFiniteModel(model); }, body.model);
-}
-
 std::string describeBody(const Body& body) {
   std::ostringstream out;
   std::visit(
@@ -80,44 +62,48 @@ FiniteGuard::Progress FiniteGuard::progressOf(const Body& body) {
   return std::visit([](const auto& model) -> Progress { return model.progress(); }, body.model);
 }
 
-FiniteGuard::FiniteGuard(const std::vector<Body>& bodies) : held_(bodies.size(), 0) {
-  for (const auto& body : bodies) last_finite_.push_back(progressOf(body));
+FiniteGuard::FiniteGuard(const std::vector<Body>& bodies, double dt)
+    : dt_(dt), steps_since_(bodies.size(), 0), held_(bodies.size(), 0) {
+  for (const auto& body : bodies) kept_.push_back(progressOf(body));
 }
 
 namespace {
-// The model's progress built in its slot, not assigned from a temporary: a Progress just built on the stack
-// and copied in wider moves stalled on store forwarding, most of the guard's cost.
+// The model's last finite state: `kept` stepped again `steps` times, as it went on since.
 template <class Model>
-void keepProgress(typename Model::Progress& slot, const Model& model) {
-  using Progress = typename Model::Progress;
-  static_assert(std::is_trivially_destructible_v<Progress>);
-  ::new (static_cast<void*>(&slot)) Progress(model.progress());
+void stepAgain(Model& model, const typename Model::Progress& kept, std::uint32_t steps, double dt) {
+  model.restore(kept);
+  for (std::uint32_t n = 0; n < steps; ++n) model.step(dt);
 }
 }  // namespace
 
-void FiniteGuard::afterBodyStep(std::size_t i, Body& body) {
-  // One visit a body, its progress kept in place: a body keeps its type, so its last finite progress is of
-  // its own type (three visits and a variant's construction a body-step were a third of the node's CPU).
+void FiniteGuard::afterUnsureStep(std::size_t i, Body& body) {
   std::visit(
       [&](auto& model) {
         using Progress = typename std::decay_t<decltype(model)>::Progress;
-        Progress& last = std::get<Progress>(last_finite_[i]);
+        Progress& kept = std::get<Progress>(kept_[i]);  // a body keeps its type: its progress is of it
         if (!held_[i]) {
-          if (surelyFiniteModel(model)) {
-            keepProgress(last, model);
-            return;
-          }
           const std::optional<std::string> field = nonFiniteField(body);
-          if (!field) {
-            keepProgress(last, model);
+          if (!field) {  // finite, only larger than surelyFinite's bound
+            if (++steps_since_[i] == kStepsPerKeep) keep(i, body);
             return;
           }
           newly_held_.push_back({i, *field});
           held_[i] = 1;
+          stepAgain(model, kept, steps_since_[i], dt_);
+          keep(i, body);
         }
-        model.restore(last);  // held: whatever the step did to it is undone
+        model.restore(kept);  // held: whatever the step did to it is undone
       },
       body.model);
+}
+
+void FiniteGuard::movedByWorld(std::size_t i, Body& body) {
+  if (!held_[i]) keep(i, body);
+}
+
+void FiniteGuard::keep(std::size_t i, const Body& body) {
+  kept_[i] = progressOf(body);
+  steps_since_[i] = 0;
 }
 
 std::vector<NonFinite> FiniteGuard::takeNewlyHeld() {
@@ -133,21 +119,30 @@ std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
 
 void FiniteGuard::release(std::size_t index, const Body& body) {
   held_[index] = 0;
-  if (finiteState(body)) last_finite_[index] = progressOf(body);
+  if (finiteState(body)) keep(index, body);
 }
 
 void FiniteGuard::releaseAll(const std::vector<Body>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) release(i, bodies[i]);
 }
 
+void FiniteGuard::keepCurrent(const std::vector<Body>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!held_[i] && finiteState(bodies[i])) keep(i, bodies[i]);
+  }
+}
+
 void FiniteGuard::add(const Body& body) {
-  last_finite_.push_back(progressOf(body));
+  kept_.push_back(progressOf(body));
+  steps_since_.push_back(0);
   held_.push_back(0);
 }
 
 void FiniteGuard::remove(std::size_t index) {
-  last_finite_.erase(last_finite_.begin() + static_cast<std::ptrdiff_t>(index));
-  held_.erase(held_.begin() + static_cast<std::ptrdiff_t>(index));
+  const auto at = static_cast<std::ptrdiff_t>(index);
+  kept_.erase(kept_.begin() + at);
+  steps_since_.erase(steps_since_.begin() + at);
+  held_.erase(held_.begin() + at);
 }
 
 }  // namespace rigid_body_sim

@@ -47,7 +47,7 @@ class Block : public InclineBody<Block, BlockParams, BlockInitial, BlockMotion, 
  public:
   Block(const BlockParams& params, const BlockInitial& initial);
 
-  // Everything a step changes, kept and put back exactly (the node's guard keeps one after every step).
+  // Everything a step changes, kept and put back exactly (what the node's guard keeps).
   struct Progress {
     BlockMotion state;
     BlockMode mode;

@@ -72,7 +72,7 @@ class Roller : public InclineBody<Roller, RollerParams, RollerInitial, RollerMot
   Roller(const RollerParams& params, const RollerInitial& initial);
 
   // Everything a step changes (the motion, the mode, the laps): kept and put back exactly, a few bytes
-  // instead of the whole body (the node's guard keeps one after every step).
+  // instead of the whole body (what the node's guard keeps).
   struct Progress {
     RollerMotion state;
     RollMode mode;

@@ -44,6 +44,8 @@ struct EventKindInfo {
 class BodyStepObserver {
  public:
   virtual void afterBodyStep(std::size_t index, Body& body) = 0;
+  // The world itself moved the body in the step, after its step was observed (a race's next lap).
+  virtual void movedByWorld(std::size_t index, Body& body) = 0;
 
  protected:
   ~BodyStepObserver() = default;
@@ -113,7 +115,7 @@ class World {
   bool raceOver() const;
   // Every racer starts a new lap now (a restart event with `cause` each); false, doing nothing, unless the
   // world races.
-  bool restartRace(const char* cause);
+  bool restartRace(const char* cause, BodyStepObserver* observer = nullptr);
 
   WorldConfig config_;
   std::vector<std::string> reserved_names_;
