@@ -24,11 +24,17 @@ constexpr std::uint32_t kCommandQueue = 100000;
 
 template <class Message>
 NodePublisher::CountedPublisher NodePublisher::advertiseCounted(ros::NodeHandle& node,
-                                                                const std::string& topic,
-                                                                std::uint32_t queue) {
+                                                                const std::string& topic, std::uint32_t queue,
+                                                                std::shared_ptr<std::atomic<int>> total) {
   auto count = std::make_shared<std::atomic<int>>(0);
-  const auto connected = [count](const ros::SingleSubscriberPublisher&) { ++*count; };
-  const auto disconnected = [count](const ros::SingleSubscriberPublisher&) { --*count; };
+  const auto connected = [count, total](const ros::SingleSubscriberPublisher&) {
+    ++*count;
+    if (total) ++*total;
+  };
+  const auto disconnected = [count, total](const ros::SingleSubscriberPublisher&) {
+    --*count;
+    if (total) --*total;
+  };
   return {node.advertise<Message>(topic, queue, connected, disconnected), std::move(count)};
 }
 
@@ -77,7 +83,7 @@ void NodePublisher::advertiseState(const Body& body) {
   states_.push_back(std::visit(
       [&](const auto& model) {
         using Msg = typename RosBodyType<TypeOfModel<decltype(model)>>::StateMsg;
-        return advertiseCounted<Msg>(private_node_, topic, kStateQueue);
+        return advertiseCounted<Msg>(private_node_, topic, kStateQueue, state_subscribers_);
       },
       body.model));
   state_bodies_.push_back(body.name);
@@ -142,6 +148,7 @@ void NodePublisher::write(const World& world) {
     last_tf_stamp_ = stamp;
   }
   publishMarkers(world, stamp);
+  if (*state_subscribers_ == 0) return;
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     if (!states_[i].watched()) continue;
     std::visit([&](const auto& msg) { states_[i].publisher.publish(msg); },
@@ -150,8 +157,9 @@ void NodePublisher::write(const World& world) {
 }
 
 void NodePublisher::happened(const std::vector<BodyEvent>& events, const World&) {
+  const bool watched = events_.watched();
   for (const auto& event : events) {
-    events_.publisher.publish(toEventMsg(event, stampOf(event.t)));  // few: built whether or not one listens
+    if (watched) events_.publisher.publish(toEventMsg(event, stampOf(event.t)));
     if (run_events_.size() == kKeptEvents) run_events_.pop_front();
     run_events_.push_back(event);
   }

@@ -67,9 +67,11 @@ class NodePublisher : public SampleSink {
     std::shared_ptr<std::atomic<int>> subscribers;
     bool watched() const { return subscribers && *subscribers > 0; }
   };
+  // `total`, when given, counts the subscribers of every publisher advertised with it as well.
   template <class Message>
   static CountedPublisher advertiseCounted(ros::NodeHandle& node, const std::string& topic,
-                                           std::uint32_t queue);
+                                           std::uint32_t queue,
+                                           std::shared_ptr<std::atomic<int>> total = nullptr);
   void advertiseState(const Body& body);  // at the end of the list
   void publishMarkers(const World& world, const ros::Time& stamp);
   void publishStaticTransforms(double t);
@@ -103,6 +105,8 @@ class NodePublisher : public SampleSink {
   ros::Publisher namespace_tf_static_;     // and <ns>/tf_static
   std::vector<CountedPublisher> states_;   // in the order of the world's bodies
   std::vector<std::string> state_bodies_;  // their names
+  // Of all state topics: none, and a sample looks at no body's publisher.
+  std::shared_ptr<std::atomic<int>> state_subscribers_ = std::make_shared<std::atomic<int>>(0);
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
 };
 
