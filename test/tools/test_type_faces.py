@@ -15,7 +15,7 @@ import os
 import re
 import unittest
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Optional, Set
+from typing import Callable, Dict, List, NamedTuple, Optional, Set
 
 from rigid_body_sim import description, sim_tools
 
@@ -98,8 +98,7 @@ def js_object_keys(path: str, name: str) -> Set[str]:
     return keys
 
 
-@dataclass(frozen=True)
-class Face:
+class Face(NamedTuple):
     """A table that says what one face (the tools, the page) knows of each type: a row a type."""
     slug: str  # in the generated tests' names
     what: str
