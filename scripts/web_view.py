@@ -24,9 +24,11 @@ rebinding); a request's head must come whole within HEAD_TIMEOUT, and an overlon
 answered 414 or 431.
 
 Every page may open a lab of its own (rigid_body_sim.labs): a private rigid_body_sim.core.World of the class's
-config (as it runs now, or its lesson part's file), stepped in real time on a worker thread at the frame timer,
-its frames and events to its page(s) alone; a page acts on its own lab only (the `rbs_lab` cookie, HttpOnly,
-that GET / gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of its run so far).
+config (as it runs now, or its lesson part's file), stepped in real time at the frame timer on the server's loop
+(within LAB_TICK_SHARE of a frame: a lab left out catches up at the next tick), its requests carried out on a
+worker thread, its frames and events to its page(s) alone; a page acts on its own lab only (the `rbs_lab`
+cookie, HttpOnly, that GET / gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of
+its run so far).
 The teacher's page gets the class's results and the curves they lie on, asks the class a question and shows
 one lab to every page. web_protocol's docstring is the protocol.
 
@@ -57,7 +59,7 @@ import tempfile
 import threading
 import time
 import zipfile
-from typing import Any, Dict, List, Optional, Set, Tuple
+from typing import Any, Callable, Dict, List, Optional, Set, Tuple, TypeVar
 
 import qrcode
 import qrcode.image.svg
@@ -104,6 +106,15 @@ LAB_COOKIE = "rbs_lab"
 # The ops that go to the labs (the page's own, the poll, the teacher's lab ops), never to the node.
 LABS_OPS = (*LAB_OPS, "lab_open", "answer", "ask", "reveal", "show_lab", "class_clear")
 CLASS_PERIOD = 1.0  # s: the class's results go to the teacher at most this often
+# Of each frame's time, the loop's CPU time the labs' tick takes at most (those left go first at the next tick);
+# its wall time, a frame at most (a busy machine's other processes take a core from it meanwhile). On the loop,
+# not a worker thread: there a tick waits for the loop's GIL at each core step (some 30 ms for the 2 ms of 60
+# labs' work), and a frame that finds it still running has none for the labs' pages.
+LAB_TICK_SHARE = 0.5
+# Of the time, what the lab thread's requests take at most (after one, it rests three times as long): their
+# Python holds the GIL from the loop, which waits for it at every page's write (a page asking for long steps
+# over and over would take most of every page's frames).
+LAB_THREAD_SHARE = 0.25
 MAX_DOWNLOADS = 2  # simulate runs for downloads at once
 SIMULATE_TIMEOUT = 120.0  # s
 SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
@@ -370,6 +381,7 @@ class Page(tornado.websocket.WebSocketHandler):
 
 # A lab's news of a tick: the lab, its frame, its events, its `lab` and `shown_lab` messages if it changed.
 LabOutput = Tuple[labs.Lab, Optional[bytes], Optional[str], Optional[Tuple[str, str]]]
+T = TypeVar("T")
 
 
 class WebView:
@@ -415,7 +427,8 @@ class WebView:
         self.loop: tornado.ioloop.IOLoop  # the server's loop (serve), to which every ROS callback hands its news
         state_topic = re.escape(self.node) + r"/([A-Za-z][A-Za-z0-9_]*)/state"
         self.state_topic = re.compile(state_topic + "$")
-        # The labs: stepped on their own thread (one at a time, in order), the class's curves on another.
+        # The labs: ticked on the loop, their requests on their own thread (one at a time, in order), the
+        # class's results and curves on another.
         self.room = labs.LabRoom(int(rospy.get_param("~max_labs", labs.MAX_LABS)),
                                  int(rospy.get_param("~labs_per_address", labs.LABS_PER_ADDRESS)))
         self.simulate = str(rospy.get_param("~simulate", "")) or labs.find_simulate()
@@ -423,8 +436,11 @@ class WebView:
         self.lab_thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
         self.class_thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
         self.lab_pages: Dict[str, Set[Page]] = {}  # lab cookie -> its pages
-        self.lab_ticking = False
-        self.tick_seconds = 0.0  # the last lab tick's time on its thread (logged when it nears a frame's)
+        # lab cookie -> its requests (and whole messages) under way on the lab thread: its frames and events
+        # wait for them, so that a page gets a run's `lab` message before the run's samples.
+        self.lab_busy: Dict[str, int] = {}
+        self.tick_budget = LAB_TICK_SHARE / self.frame_rate  # s of CPU time
+        self.lab_thread_rests_until = 0.0  # perf_counter s (paced)
         self.shown: Optional[str] = None  # the lab the teacher shows every page
         self.poll = labs.Poll()
         self.curves = labs.Curves()
@@ -596,13 +612,12 @@ class WebView:
             return None
         return websocket_text_frame(frame_message(self.seq, {b: [s] for b, s in self.latest.items()}))
 
-    def flush(self) -> None:
+    def flush(self, frame_time: float) -> None:
         """One frame of every state since the last, serialised once for every page; the events since the last
-        before it, in one message (a reset's burst of restarts is one reply, not one a body). The labs step
-        on their thread meanwhile (a tick still running is not doubled: the labs catch up in real time)."""
-        if not self.lab_ticking and self.room.labs:
-            self.lab_ticking = True
-            asyncio.ensure_future(self.tick_labs())
+        before it, in one message (a reset's burst of restarts is one reply, not one a body); each lab's
+        frame, the lab stepped to the frame's time on the timer's schedule (frame_timer)."""
+        if self.room.labs:
+            self.tick_labs(frame_time)
         if self.new_events and self.pages:
             self.broadcast_text(events_message(self.new_events, False))
         self.new_events = []
@@ -694,7 +709,33 @@ class WebView:
         rospy.ServiceProxy(f"{self.node}/reset", Empty)()
         return True, f"part {part}: every body's keys set, the race started again"
 
-    # --- labs: every world call on the lab thread -------------------------------------------------------------
+    # --- labs: the tick on the loop, every other world call on the lab thread ----------------------------------
+    async def on_lab_thread(self, cookies: List[str], work: Callable[..., T], *args: Any) -> T:
+        """work(*args) on the lab thread; the labs of these cookies send nothing meanwhile (tick_labs): the
+        caller's messages of its result, sent before it awaits anything else, come before their news."""
+        for cookie in cookies:
+            self.lab_busy[cookie] = self.lab_busy.get(cookie, 0) + 1
+        try:
+            return await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.paced, work, *args)
+        finally:
+            for cookie in cookies:
+                self.lab_busy[cookie] -= 1
+                if not self.lab_busy[cookie]:
+                    del self.lab_busy[cookie]
+
+    def paced(self, work: Callable[..., T], *args: Any) -> T:
+        """On the lab thread: work(*args), once the thread has rested after the work before it (its time times
+        (1 - LAB_THREAD_SHARE) / LAB_THREAD_SHARE)."""
+        rest = self.lab_thread_rests_until - time.perf_counter()
+        if rest > 0:
+            time.sleep(rest)
+        started = time.perf_counter()
+        try:
+            return work(*args)
+        finally:
+            took = time.perf_counter() - started
+            self.lab_thread_rests_until = time.perf_counter() + took * (1.0 - LAB_THREAD_SHARE) / LAB_THREAD_SHARE
+
     def pages_of(self, lab: labs.Lab) -> List[Page]:
         return list(self.lab_pages.get(lab.cookie, ()))
 
@@ -721,7 +762,8 @@ class WebView:
 
     async def send_labs(self, page: Page, own: Optional[labs.Lab], shown: Optional[labs.Lab]) -> None:
         """A page's own lab and the shown one, whole: each lab message and its run's events."""
-        texts = await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.lab_texts, own, shown)
+        texts = await self.on_lab_thread([lab.cookie for lab in (own, shown) if lab is not None], self.lab_texts,
+                                         own, shown)
         if page in self.pages:
             for text in texts:
                 page.reply_text(text)
@@ -770,8 +812,9 @@ class WebView:
         lab.changed = False
         return json.dumps(lab.message("lab")), json.dumps(lab.message("shown_lab"))
 
-    def lab_op(self, lab: labs.Lab, request: Request) -> Tuple[str, Tuple[str, str]]:
-        """On the lab thread: a request of the page's own lab. (its line, its messages)."""
+    def lab_op(self, lab: labs.Lab, request: Request) -> Tuple[str, LabOutput]:
+        """On the lab thread: a request of the page's own lab. (its line, its news: a long step's samples are
+        made into their frame here, not on the loop)."""
         with lab.lock:
             self.room.touch(lab)
             now = self.room.clock()
@@ -785,29 +828,28 @@ class WebView:
                 line = lab.step(request.steps)
             else:
                 line = lab.set(request.body, request.key, request.value, now)
-            return line, self.lab_messages(lab)
+            return line, self.take_news(lab, messages=True)
 
-    def open_lab(self, page: Page, request: Request, config: str) -> Tuple[labs.Lab, Optional[labs.Lab],
-                                                                           Tuple[str, str]]:
-        """On the lab thread: a new lab for the page's cookie."""
+    def open_lab(self, page: Page, request: Request, config: str) -> Tuple[LabOutput, Optional[labs.Lab]]:
+        """On the lab thread: a new lab for the page's cookie (its news, the lab it replaces)."""
         lab, old = self.room.open(page.lab_cookie, page.request.remote_ip or "", request.name, request.source, config)
         with lab.lock:
-            return lab, old, self.lab_messages(lab)
+            return self.take_news(lab, messages=True), old
 
     async def carry_out_lab(self, page: Page, request: Request) -> Tuple[bool, str]:
         """A lab's, the poll's or the class's request: (accepted, its line)."""
-        loop = asyncio.get_running_loop()
         op = request.op
         try:
             if op == "lab_open":
                 config = self.lab_config(request.source)
-                lab, old, texts = await loop.run_in_executor(self.lab_thread, self.open_lab, page, request, config)
+                news, old = await self.on_lab_thread([page.lab_cookie], self.open_lab, page, request, config)
+                lab = news[0]
                 if old is not None:
                     self.lab_gone(old, f"lab {old.id} closed: a new one opened")
                 pages = self.lab_pages.setdefault(lab.cookie, set())
                 pages.update(p for p in self.pages if p.lab_cookie == lab.cookie)
                 lab.attached = len(pages)
-                self.lab_changed(lab, texts)
+                self.send_news(news)
                 return True, f"lab {lab.id} opened from {request.source}: t = 0, running"
             if op == "answer":
                 line = self.poll.answer(page.lab_cookie, request.answer if request.answer is not None else "")
@@ -826,7 +868,7 @@ class WebView:
             if op == "show_lab":
                 return self.show_lab(request.lab)
             if op == "class_clear":
-                await loop.run_in_executor(self.lab_thread, self.room.clear_results)
+                await self.on_lab_thread([], self.room.clear_results)
                 self.class_due = True
                 return True, "the class's results cleared (the labs go on)"
             own = self.room.of(page.lab_cookie)
@@ -836,8 +878,8 @@ class WebView:
                 self.room.close(own.cookie)
                 self.lab_gone(own, f"lab {own.id} closed")
                 return True, f"lab {own.id} closed"
-            line, texts = await loop.run_in_executor(self.lab_thread, self.lab_op, own, request)
-            self.lab_changed(own, texts)
+            line, news = await self.on_lab_thread([own.cookie], self.lab_op, own, request)
+            self.send_news(news)
             return True, line
         except labs.LabRefusal as refusal:
             return False, str(refusal)
@@ -857,53 +899,60 @@ class WebView:
             asyncio.ensure_future(self.send_labs(page, None, lab))
         return True, f"the class sees {lab.name}'s lab"
 
-    async def tick_labs(self) -> None:
-        """Every running lab stepped to now on the lab thread; its frame and events to its pages (the shown
-        lab's to every page); the labs idle past their time ended."""
-        try:
-            gone, out = await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.lab_tick)
-        finally:
-            self.lab_ticking = False
-        for lab in gone:
+    def tick_labs(self, frame_time: float) -> None:
+        """On the loop, at each frame: every running lab stepped to the frame's time (within the tick's budgets,
+        LabRoom.tick), its news to its pages (the shown lab's to every page): its messages if it changed, its
+        frame, its events; the labs idle past their time ended."""
+        started, cpu = time.perf_counter(), time.thread_time()
+        for lab in self.room.expire():
             self.lab_gone(lab, f"lab {lab.id} ended: {labs.IDLE / 60:g} minutes idle")
             self.lab_pages.pop(lab.cookie, None)
-        for lab, frame, events, texts in out:
-            everyone = self.shown == lab.id
-            pages = list(self.pages) if everyone else self.pages_of(lab)
-            for page in pages:
-                if frame is not None:
-                    page.offer(frame)
-                if events is not None:
-                    page.reply_text(events)
-            if texts is not None:
-                self.lab_changed(lab, texts)
-            if lab.results_changed:
-                self.class_due = True
+        out: List[Optional[LabOutput]] = self.room.tick(self.lab_news, frame_time, self.tick_budget,
+                                                        1.0 / self.frame_rate)
+        for news in out:
+            if news is not None:
+                self.send_news(news)
+        seconds, cpu = time.perf_counter() - started, time.thread_time() - cpu
+        if cpu >= self.tick_budget or seconds >= 1.0 / self.frame_rate:
+            rospy.logwarn_throttle(60, f"web view: a tick of {len(out)} of {len(self.room.labs)} labs took "
+                                       f"{1000 * seconds:.1f} ms, {1000 * cpu:.1f} ms of CPU time (its budget "
+                                       f"{1000 * self.tick_budget:.0f} ms, a frame's {1000 / self.frame_rate:.0f} "
+                                       "ms of wall time at most)")
         if self.class_due and not self.class_busy and any(page.control for page in self.pages):
             self.class_due, self.class_busy = False, True
             asyncio.ensure_future(self.send_class())
 
-    def lab_tick(self) -> Tuple[List[labs.Lab], List[LabOutput]]:
-        """On the lab thread: (the labs ended, [(a lab, its frame, its events, its messages if it changed)])."""
-        started = time.perf_counter()
-        gone = self.room.expire()
-        out = []
-        for lab in self.room.tick():
-            with lab.lock:
-                samples = lab.take_samples()
-                frame = None
-                if samples:
-                    lab.seq += 1
-                    frame = websocket_text_frame(lab_frame_message(lab.id, lab.seq, samples))
-                whole, records = lab.take_events()
-                events = lab_events_message(lab.id, records, whole) if whole or records else None
-                texts = self.lab_messages(lab) if lab.changed else None
-            out.append((lab, frame, events, texts))
-        self.tick_seconds = time.perf_counter() - started
-        if self.tick_seconds > 0.5 / self.frame_rate:
-            rospy.logwarn_throttle(60, f"web view: a tick of {len(out)} labs took {1000 * self.tick_seconds:.1f} ms "
-                                       f"(a frame is {1000 / self.frame_rate:.0f} ms)")
-        return gone, out
+    def lab_news(self, lab: labs.Lab) -> Optional[LabOutput]:
+        """Its lock held (LabRoom.tick): its news, or None while the lab thread works for it (they wait:
+        on_lab_thread)."""
+        return None if lab.cookie in self.lab_busy else self.take_news(lab)
+
+    def send_news(self, news: LabOutput) -> None:
+        """A lab's news to its pages (the shown lab's to every page): its messages if it changed, then its
+        frame and its events."""
+        lab, frame, events, texts = news
+        if texts is not None:
+            self.lab_changed(lab, texts)
+        pages = list(self.pages) if self.shown == lab.id else self.pages_of(lab)
+        for page in pages:
+            if frame is not None:
+                page.offer(frame)
+            if events is not None:
+                page.reply_text(events)
+        if lab.results_changed:
+            self.class_due = True
+
+    def take_news(self, lab: labs.Lab, messages: bool = False) -> LabOutput:
+        """Its lock held: its frame of the samples since its last, its events, its messages if it changed (or
+        `messages`: after each request of it)."""
+        samples = lab.take_samples()
+        frame = None
+        if samples:
+            lab.seq += 1
+            frame = websocket_text_frame(lab_frame_message(lab.id, lab.seq, samples))
+        whole, records = lab.take_events()
+        events = lab_events_message(lab.id, records, whole) if whole or records else None
+        return lab, frame, events, self.lab_messages(lab) if lab.changed or messages else None
 
     async def send_class(self) -> None:
         """The class's results and curves (on the class thread) to the teacher's pages, at most every
@@ -1169,6 +1218,27 @@ def listening_sockets(host: str, port: int) -> List[socket.socket]:
     return sockets
 
 
+def frame_timer(view: WebView) -> None:
+    """view.flush at every frame of ~frame_rate, given the frame's time on the timer's schedule (the loop's
+    monotonic clock, the labs' too): a call the loop delays steps the labs to its frame's time all the same,
+    so that each frame brings a running lab the same count of samples whatever the delay (stepped to its call's
+    time, a lab whose samples fall near the frames' times would get two in one frame, none in the next). A call
+    late by a whole frame skips to the schedule's next, as tornado's PeriodicCallback does."""
+    loop = asyncio.get_running_loop()
+    period = 1.0 / view.frame_rate
+    start = loop.time()
+
+    def frame(index: int) -> None:
+        try:
+            view.flush(start + index * period)
+        except Exception:  # the frames go on, as a PeriodicCallback's do
+            tornado.log.app_log.error("web view: a frame failed", exc_info=True)
+        index = max(index + 1, math.floor((loop.time() - start) / period) + 1)
+        loop.call_at(start + index * period, frame, index)
+
+    loop.call_at(start + period, frame, 1)
+
+
 async def serve(view: WebView) -> None:
     """Runs the server on this thread's event loop until ROS shuts down."""
     view.loop = tornado.ioloop.IOLoop.current()
@@ -1186,7 +1256,7 @@ async def serve(view: WebView) -> None:
     server.add_sockets(sockets)
     view.offer_only({s.family for s in sockets})
     view.start_ros()
-    tornado.ioloop.PeriodicCallback(view.flush, 1000.0 / view.frame_rate).start()
+    frame_timer(view)
     watch, control = view.urls()
     rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
     if view.host not in ("127.0.0.1", "localhost"):

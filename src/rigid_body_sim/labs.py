@@ -14,9 +14,11 @@ and the keys it varied from the config it was opened from; `curves` runs the cor
 values (that config, that body alone) for the same outcomes: the curve the class's points lie on. A Poll is
 the teacher's question and the class's answers.
 
-Thread use: the web view steps labs on a worker thread; a Lab's world is used under its `lock` alone, the
-room's tables under the room's. What the server's loop reads of a lab (its id, name, config, `t`, `paused`)
-are attributes each replaced whole."""
+Thread use: a Lab's world is used under its `lock` alone, the room's tables under the room's. The web view
+ticks the labs on its server's loop and carries out their requests on a worker thread: `LabRoom.tick` never
+waits for a lock (a lab whose lock a request holds is left to the next tick, which catches it up) and stops
+within its budgets of time. What the loop reads of a lab besides (its id, name, config, `t`, `paused`) are
+attributes each replaced whole."""
 from __future__ import annotations
 
 import collections
@@ -101,7 +103,11 @@ def canonical(config: Union[str, Dict[str, Any]]) -> str:
 
 def lesson_values(config_text: str) -> Dict[str, float]:
     """{"body.key": value} of every lesson key of every body of a config (as the core wrote it)."""
-    config = yaml.safe_load(config_text) or {}
+    return lesson_values_of(yaml.safe_load(config_text) or {})
+
+
+def lesson_values_of(config: Mapping[str, Any]) -> Dict[str, float]:
+    """lesson_values of a config parsed."""
     keys = description.lesson_keys()
     return {f"{name}.{key}": body[key] for name, body in (config.get("bodies") or {}).items()
             for key in keys.get(body.get("type"), []) if key in body}
@@ -158,12 +164,15 @@ class Lab:
         self.changed = True  # its `lab` message is to be sent
         self.results_changed = True
         self._start(now)
+        self.origin_values = self.values  # of the config it was opened from
 
     # --- the run -------------------------------------------------------------------------------------------
     def _start(self, now: float) -> None:
         """From t = 0 with its config: its samples from the first, its events afresh."""
         self.world = core.World(self.config)
         parsed = yaml.safe_load(self.config) or {}
+        # Its lesson keys' values, parsed once a run (the class's results ask for them often; a parse takes ms).
+        self.values = lesson_values_of(parsed)
         self.settings: Dict[str, Dict[str, Any]] = dict(parsed.get("bodies") or {})
         self.world_settings = {key: value for key, value in parsed.items() if key != "bodies"}
         self.bodies = {name: str(body["type"]) for name, body in self.settings.items()}
@@ -194,7 +203,16 @@ class Lab:
         self.sampled_t = t
 
     def _step(self, n: int) -> None:
-        """n steps, a sample at every multiple of steps_per_sample, the events they bring."""
+        """n steps, a sample at every multiple of steps_per_sample, the events they bring. Of more samples than
+        SAMPLES_KEPT, those it would push out before any page got them are not taken (counted in `dropped`):
+        a long lab_step costs the samples kept, not the steps' (their Python would hold the GIL from the loop)."""
+        per = self.steps_per_sample
+        unsent = (self.world.steps + n) // per - self.world.steps // per - SAMPLES_KEPT
+        if unsent > 0:  # straight to the last sample not kept, untaken
+            skipped = (self.world.steps // per + unsent) * per - self.world.steps
+            self.world.step(skipped)
+            n -= skipped
+            self.dropped += unsent * len(self.samples)
         while n > 0:
             to_sample = self.steps_per_sample - self.world.steps % self.steps_per_sample
             chunk = min(n, to_sample)
@@ -215,9 +233,9 @@ class Lab:
 
     def advance(self, now: float) -> None:
         """While it runs: the steps real time has brought since it started running, to the nearest sample (at
-        most MAX_BEHIND s at once: a lab that fell behind slows, never bursts). To the nearest sample, not the
-        last step due: the frame timer's jitter then never leaves a frame without a sample and the next with
-        two (a lab page a frame short a second, now and then)."""
+        most MAX_BEHIND s at once: a lab that fell behind slows, never bursts). Whole samples: times a frame
+        apart (the web view's frame timer's schedule) then bring the same count of samples each, whatever
+        steps a frame has (a step due a hair before a sample's would leave it to the next frame)."""
         if self.paused:
             return
         exact = (now - self.wall_start) * self.rate + self.steps_at_start
@@ -285,8 +303,7 @@ class Lab:
 
     def varied(self) -> Dict[str, float]:
         """{"body.key": value} of its lesson keys that differ from the config it was opened from."""
-        origin = lesson_values(self.origin)
-        return {mark: value for mark, value in lesson_values(self.config).items() if origin.get(mark) != value}
+        return {mark: value for mark, value in self.values.items() if self.origin_values.get(mark) != value}
 
     def message(self, kind: str = "lab") -> Dict[str, Any]:
         return {"type": kind, "lab": self.id, "name": self.name, "config": self.config, "bodies": self.bodies,
@@ -310,6 +327,7 @@ class LabRoom:
         self.lock = threading.Lock()
         self.labs: Dict[str, Lab] = {}  # by cookie
         self.by_id: Dict[str, Lab] = {}
+        self.turn = 0  # the lab a tick begins with: those its budgets left out go first the next time
 
     def of(self, cookie: Optional[str]) -> Optional[Lab]:
         return self.labs.get(cookie) if cookie else None
@@ -381,14 +399,33 @@ class LabRoom:
                 self.by_id.pop(lab.id, None)
         return gone
 
-    def tick(self) -> List[Lab]:
-        """Every running lab advanced to now; returns the labs (each stepped under its lock)."""
-        now = self.clock()
+    def tick(self, news: Optional[Callable[[Lab], Any]] = None, now: Optional[float] = None,
+             cpu_budget: Optional[float] = None, wall_budget: Optional[float] = None) -> List[Any]:
+        """Every running lab advanced to now (the clock's, or the frame's time given) and `news` of it taken,
+        under its lock; [news of each] (without `news`, the labs advanced). Never waits: a lab whose lock is
+        held (a request of it, on another thread) is left out, and so are the labs still to go once the tick
+        has taken `cpu_budget` s of its thread's CPU time or `wall_budget` s of wall time (the first is always
+        tried); the labs left out go first at the next tick, which catches them up."""
+        now = self.clock() if now is None else now
         labs = self.all()
-        for lab in labs:
-            with lab.lock:
+        if labs:
+            first = self.turn % len(labs)
+            labs = labs[first:] + labs[:first]
+        out: List[Any] = []
+        cpu, wall = time.thread_time(), time.perf_counter()
+        for done, lab in enumerate(labs):
+            if done and ((cpu_budget is not None and time.thread_time() - cpu >= cpu_budget)
+                         or (wall_budget is not None and time.perf_counter() - wall >= wall_budget)):
+                self.turn = (self.turn + done) % len(labs)
+                return out
+            if not lab.lock.acquire(blocking=False):
+                continue
+            try:
                 lab.advance(now)
-        return labs
+                out.append(news(lab) if news is not None else lab)
+            finally:
+                lab.lock.release()
+        return out
 
     def class_results(self) -> List[Dict[str, Any]]:
         """Each lab's result that has an outcome (a lab that found nothing yet, or since a clear, is none)."""
@@ -444,10 +481,11 @@ class Curves:
         parsed = yaml.safe_load(config) or {}
         parsed["bodies"] = {body: {**parsed["bodies"][body], key: value}}
         found: Dict[Tuple[str, str], float] = {}
+        world: Optional[core.World] = None
         try:
             world = core.World(parsed)
         except ValueError:
-            world = None
+            pass
         first: Dict[Tuple[str, str], Record] = {}
         counts: Dict[Tuple[str, str], int] = {}
         chunk = max(1, round(1.0 / world.dt)) if world else 0

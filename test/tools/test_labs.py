@@ -3,6 +3,11 @@
 - a lab run in real time (an injected clock), paused and stepped by any count, equals a core.World of its
   config run as long and `simulate` of its config, bit for bit: every sample (t, each state field) and event;
   after a change of a key it starts again from t = 0 and equals simulate of its new config;
+- a tick waits for no lab (one whose lock a request holds is left out) and keeps to its budgets of CPU and wall
+  time (one lab a tick with none), the labs it left out going first and caught up at the next: the run still
+  equals simulate;
+- a step of more samples than a lab keeps: its last ones, simulate's, and every event;
+- ticks at the frame timer's times (a frame apart) bring a lab one sample each, whatever its phase against them;
 - a refused change answers the core's one line (World.set's ValueError) and changes nothing;
 - the caps: one lab a cookie, ~max_labs, ~labs_per_address (the loopback exempt), names 1..40 printable;
 - a lab ends after its idle time with no page attached (the injected clock), never while one is;
@@ -125,6 +130,81 @@ class Runs(unittest.TestCase):
         lab.step(2500)
         got.take(lab)
         self.assert_run_is_simulate(lab, got)
+
+    def test_a_tick_waits_for_no_lab_and_keeps_to_its_budgets(self) -> None:
+        clock = Clock()
+        room = labs.LabRoom(clock=clock)
+        opened = [room.open(f"c{n}", "10.0.0.5", f"s{n}", "start", config_text("race_slip.yaml"))[0]
+                  for n in range(3)]
+        held = opened[1]
+        got = Collected()
+        got.take(held)
+        clock.now += 0.02
+        with held.lock:  # a request of it under way: the tick leaves it out, waiting for nothing
+            self.assertEqual(room.tick(lambda lab: lab.id), [opened[0].id, opened[2].id])
+        self.assertEqual((opened[0].t, held.t), (0.02, 0.0))
+        got.take(held)
+        clock.now += 0.02
+        room.tick()
+        self.assertEqual([lab.t for lab in opened], [0.04] * 3, "caught up at the next tick")
+        got.take(held)
+        # No time left: one lab a tick, each in turn, each caught up when its turn comes.
+        clock.now += 0.02
+        turns = [room.tick(lambda lab: lab.id, cpu_budget=0.0) for _ in range(3)]
+        self.assertEqual(sorted(id for ids in turns for id in ids), sorted(lab.id for lab in opened))
+        self.assertEqual([len(ids) for ids in turns], [1, 1, 1])
+        self.assertEqual([lab.t for lab in opened], [0.06] * 3)
+        got.take(held)
+        for _ in range(150):  # 3 s: past its slip -> roll
+            clock.now += 0.02
+            room.tick(wall_budget=0.0)
+            got.take(held)
+        self.assert_run_is_simulate(held, got)
+
+    def test_frames_a_frame_apart_bring_one_sample_each(self) -> None:
+        # The web view's frame timer: frame k at start + k / 50 s. Labs opened at every phase of a sample
+        # against it (one at a frame's very time) each get one sample a frame, never none then two.
+        start, period = 1234.5678, 1.0 / 50.0
+        phases = [n / 15 for n in range(15)]
+        clock = Clock()
+        room = labs.LabRoom(clock=clock)
+        opened = []
+        for n, phase in enumerate(phases):
+            clock.now = start + phase * period
+            opened.append(room.open(f"c{n}", "127.0.0.1", f"s{n}", "start", config_text("race_below.yaml"))[0])
+            opened[-1].take_samples()
+        room.tick(lambda lab: lab.take_samples(), now=start + period)  # the first: one, or none yet
+        for k in range(2, 501):
+            counts = room.tick(lambda lab: {len(states) for states in lab.take_samples().values()},
+                               now=start + k * period)
+            self.assertEqual(counts, [{1}] * len(opened), f"frame {k}")
+        for lab, phase in zip(opened, phases):  # real time, to the nearest sample
+            self.assertLessEqual(abs(lab.t - (10.0 - phase * period)), period / 2)
+
+    def test_a_long_step_keeps_the_last_samples(self) -> None:
+        # More samples than a lab keeps: the last SAMPLES_KEPT, simulate's bit for bit, and every event.
+        room = labs.LabRoom(clock=Clock())
+        lab, _ = room.open("cookie", "10.0.0.5", "Ada", "start", config_text("race_slip.yaml"))
+        lab.pause()
+        got = Collected()
+        got.take(lab)
+        steps = 3 * labs.SAMPLES_KEPT * lab.steps_per_sample + 7
+        lab.step(steps)
+        self.assertEqual(lab.world.steps, steps)
+        got.take(lab)
+        theirs, their_events = simulate_run(lab.config, lab.sampled_t)
+        for body, states in got.samples.items():
+            self.assertEqual(len(states), labs.SAMPLES_KEPT + 1, body)  # and t = 0's, taken before
+            for field, column in theirs[body].items():
+                values = [state[field] for state in states[1:]]
+                tail = list(column[-labs.SAMPLES_KEPT:])
+                if column.dtype.kind == "f":
+                    self.assertEqual([v.hex() for v in values], [float(c).hex() for c in tail], (body, field))
+                else:
+                    self.assertEqual(values, tail, (body, field))
+        kept = [e for e in got.events if e["t"] <= lab.sampled_t]
+        self.assertEqual(kept, their_events)
+        self.assertTrue(kept, "a run with events")
 
     def test_a_refused_change_changes_nothing(self) -> None:
         clock = Clock()
