@@ -297,7 +297,7 @@ def shade_mode(ax: Any, t: np.ndarray, mode: np.ndarray, shaded: str) -> None:
     inside = np.asarray(mode) == shaded
     edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
     for start, end in zip(edges[::2], edges[1::2]):
-        ax.axvspan(t[start], t[min(end, len(t) - 1)], color="0.9", lw=0)
+        ax.axvspan(t[start], t[min(int(end), len(t) - 1)], color="0.9", lw=0)
 
 
 def mark_instants(ax: Any, happened: List[Event]) -> List[Event]:
