@@ -234,9 +234,10 @@ class Labs(unittest.TestCase):
             act(student, f"choose('lab-body', 'sphere'); choose('lab-key', 'mu_d'); el('lab-value').value = '{mu}'; "
                          "el('lab-set').click();")
         for student, mu in zip(students, MU_D):
-            student.wait("the lab with the student's mu_d",
-                         f"rbs.lab.info.settings.sphere.mu_d === {mu} && rbs.world.bodies.sphere.mu_d === {mu}",
-                         DEADLINE)
+            # The lab's new run comes before the change's reply: the line is the reply's.
+            student.wait("the lab with the student's mu_d, and the change's reply",
+                         f"rbs.lab.info.settings.sphere.mu_d === {mu} && rbs.world.bodies.sphere.mu_d === {mu} && "
+                         "rbs.replies.some((r) => r.ok && r.line.startsWith('lab: sphere: mu_d'))", DEADLINE)
             self.assertEqual(student.evaluate("rbs.lab.line"), student.evaluate(
                 "rbs.replies.filter((r) => r.ok).map((r) => r.line).pop()"))
 
