@@ -176,23 +176,48 @@ TEST(FiniteGuard, HoldsTheFaultyBodyAndLetsTheOthersGoOn) {
   }
 }
 
+// The guard as World::step's own observer: the world names it a body that its step left non-finite (here
+// an energy beyond a double), which it holds at its state of the step before, while the other runs on.
+TEST(FiniteGuard, TheWorldNamesItABodyItsStepLeftNonFinite) {
+  World world(rodAndSphere());
+  World reference(rodAndSphere());
+  FiniteGuard guard(world.bodies(), world.dt());
+  for (int i = 0; i < 70; ++i) {
+    world.step(&guard);
+    reference.step();
+  }
+  ASSERT_TRUE(guard.takeNewlyHeld().empty());
+  const std::vector<double> held_at = stateOf(reference.bodies()[0]);
+  std::get<Rod>(world.bodies()[0].model).setInitial({0, 4, 0.3, 1e200, 0, 0});  // what a bad step would leave
+  world.step(&guard);
+  reference.step();
+  const auto faults = guard.takeNewlyHeld();
+  ASSERT_EQ(1u, faults.size());
+  EXPECT_EQ("energy", faults[0].field);
+  EXPECT_TRUE(guard.held(0));
+  EXPECT_EQ(held_at, stateOf(world.bodies()[0]));
+  EXPECT_EQ(stateOf(reference.bodies()[1]), stateOf(world.bodies()[1]));
+}
+
 // The guard as World::step's observer, with a fault in body 0 right after its step to `fault_step` (its x
 // NaN, as a step gone wrong would leave it: test/faults/fault_injection.h does the same in the node).
 class FaultyStep : public BodyStepObserver {
  public:
   FaultyStep(const World& world, std::int64_t fault_step)
       : guard(world.bodies(), world.dt()), world_(world), fault_step_(fault_step) {}
-  void afterBodyStep(std::size_t index, Body& body) override {
-    if (index == 0 && world_.stepCount() + 1 == fault_step_) {
+  void afterUnsureStep(std::size_t index, Body& body) override { guard.afterUnsureStep(index, body); }
+  void afterBodiesStep(std::vector<Body>& bodies) override {
+    if (world_.stepCount() + 1 == fault_step_) {
       std::visit(
           [](auto& model) {
             auto state = model.state();
             state.x = kNaN;
             model.setState(state);
           },
-          body.model);
+          bodies[0].model);
+      guard.afterUnsureStep(0, bodies[0]);
     }
-    guard.afterBodyStep(index, body);
+    guard.afterBodiesStep(bodies);
   }
   void movedByWorld(std::size_t index, Body& body) override { guard.movedByWorld(index, body); }
 

@@ -245,10 +245,11 @@ void World::step(BodyStepObserver* observer) {
         [&](auto& model) {
           const auto happened = model.step(dt_);
           report(i, t0, model, happened);
+          if (observer && !surelyFiniteModel(model)) observer->afterUnsureStep(i, bodies_[i]);
         },
         bodies_[i].model);
-    if (observer) observer->afterBodyStep(i, bodies_[i]);
   }
+  if (observer) observer->afterBodiesStep(bodies_);
   ++steps_;
   if (events_.size() != first_event) {
     // In time order: bodies stepped one after another may have their events in either order within a step.

@@ -235,11 +235,16 @@ void SimNode::anchor() {
 
 void SimNode::movedByWorld(std::size_t index, Body& body) { guard_.movedByWorld(index, body); }
 
-void SimNode::afterBodyStep(std::size_t index, Body& body) {
+void SimNode::afterUnsureStep(std::size_t index, Body& body) { guard_.afterUnsureStep(index, body); }
+
+void SimNode::afterBodiesStep(std::vector<Body>& bodies) {
 #ifdef RBS_FAULT_INJECTION  // sim_node_faults, a test's build only: test/faults/fault_injection.h
-  injectFault(body, static_cast<double>(world().stepCount() + 1) / world().rate());
+  const double t = static_cast<double>(world().stepCount() + 1) / world().rate();
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (injectFault(bodies[i], t)) guard_.afterUnsureStep(i, bodies[i]);
+  }
 #endif
-  guard_.afterBodyStep(index, body);
+  guard_.afterBodiesStep(bodies);
 }
 
 void SimNode::afterStep(World& world) {

@@ -63,38 +63,54 @@ FiniteGuard::Progress FiniteGuard::progressOf(const Body& body) {
 }
 
 FiniteGuard::FiniteGuard(const std::vector<Body>& bodies, double dt)
-    : dt_(dt), steps_since_(bodies.size(), 0), held_(bodies.size(), 0) {
+    : dt_(dt), kept_at_(bodies.size(), 0), held_(bodies.size(), 0) {
   for (const auto& body : bodies) kept_.push_back(progressOf(body));
 }
 
 namespace {
 // The model's last finite state: `kept` stepped again `steps` times, as it went on since.
 template <class Model>
-void stepAgain(Model& model, const typename Model::Progress& kept, std::uint32_t steps, double dt) {
+void stepAgain(Model& model, const typename Model::Progress& kept, std::uint64_t steps, double dt) {
   model.restore(kept);
-  for (std::uint32_t n = 0; n < steps; ++n) model.step(dt);
+  for (std::uint64_t n = 0; n < steps; ++n) model.step(dt);
 }
 }  // namespace
 
 void FiniteGuard::afterUnsureStep(std::size_t i, Body& body) {
+  if (held_[i]) return;  // afterBodiesStep undoes whatever the step did to it
+  const std::optional<std::string> field = nonFiniteField(body);
+  if (!field) return;  // finite, only larger than surelyFiniteModel's bound
+  newly_held_.push_back({i, *field});
+  held_[i] = 1;
+  ++held_count_;
   std::visit(
       [&](auto& model) {
         using Progress = typename std::decay_t<decltype(model)>::Progress;
-        Progress& kept = std::get<Progress>(kept_[i]);  // a body keeps its type: its progress is of it
-        if (!held_[i]) {
-          const std::optional<std::string> field = nonFiniteField(body);
-          if (!field) {  // finite, only larger than surelyFinite's bound
-            if (++steps_since_[i] == kStepsPerKeep) keep(i, body);
-            return;
-          }
-          newly_held_.push_back({i, *field});
-          held_[i] = 1;
-          stepAgain(model, kept, steps_since_[i], dt_);
-          keep(i, body);
-        }
-        model.restore(kept);  // held: whatever the step did to it is undone
+        // A body keeps its type: its progress is of it. The last finite state is the one before this step.
+        stepAgain(model, std::get<Progress>(kept_[i]), steps_ - kept_at_[i], dt_);
       },
       body.model);
+  keep(i, body);
+}
+
+void FiniteGuard::afterBodiesStep(std::vector<Body>& bodies) {
+  ++steps_;
+  if (held_count_ != 0) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      if (!held_[i]) continue;
+      std::visit(
+          [&](auto& model) {
+            using Progress = typename std::decay_t<decltype(model)>::Progress;
+            model.restore(std::get<Progress>(kept_[i]));
+          },
+          bodies[i].model);
+      kept_at_[i] = steps_;  // held at it: a release that fails again steps nothing again
+    }
+  }
+  if (steps_ % kStepsPerKeep != 0) return;
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!held_[i]) keep(i, bodies[i]);
+  }
 }
 
 void FiniteGuard::movedByWorld(std::size_t i, Body& body) {
@@ -103,7 +119,7 @@ void FiniteGuard::movedByWorld(std::size_t i, Body& body) {
 
 void FiniteGuard::keep(std::size_t i, const Body& body) {
   kept_[i] = progressOf(body);
-  steps_since_[i] = 0;
+  kept_at_[i] = steps_;
 }
 
 std::vector<NonFinite> FiniteGuard::takeNewlyHeld() {
@@ -113,11 +129,15 @@ std::vector<NonFinite> FiniteGuard::takeNewlyHeld() {
 }
 
 std::vector<NonFinite> FiniteGuard::afterStep(std::vector<Body>& bodies) {
-  for (std::size_t i = 0; i < bodies.size(); ++i) afterBodyStep(i, bodies[i]);
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!surelyFinite(bodies[i])) afterUnsureStep(i, bodies[i]);
+  }
+  afterBodiesStep(bodies);
   return takeNewlyHeld();
 }
 
 void FiniteGuard::release(std::size_t index, const Body& body) {
+  if (held_[index]) --held_count_;
   held_[index] = 0;
   if (finiteState(body)) keep(index, body);
 }
@@ -134,14 +154,15 @@ void FiniteGuard::keepCurrent(const std::vector<Body>& bodies) {
 
 void FiniteGuard::add(const Body& body) {
   kept_.push_back(progressOf(body));
-  steps_since_.push_back(0);
+  kept_at_.push_back(steps_);
   held_.push_back(0);
 }
 
 void FiniteGuard::remove(std::size_t index) {
   const auto at = static_cast<std::ptrdiff_t>(index);
+  if (held_[index]) --held_count_;
   kept_.erase(kept_.begin() + at);
-  steps_since_.erase(steps_since_.begin() + at);
+  kept_at_.erase(kept_at_.begin() + at);
   held_.erase(held_.begin() + at);
 }
 

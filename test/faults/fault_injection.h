@@ -1,9 +1,9 @@
 // A fault where the node's NaN guard looks, for sim_node_faults only: test/CMakeLists.txt builds the node's
-// sources once more with RBS_FAULT_INJECTION and this header included, and SimNode::afterBodyStep then calls
-// injectFault on each body after its step, before the guard looks at it. The installed sim_node has neither.
-// At the first step to a time at or after $RBS_FAULT_TIME (s), body $RBS_FAULT_BODY's x becomes NaN, as a
-// step gone wrong would leave it; without RBS_FAULT_BODY nothing happens. (Environment variables: the node
-// refuses a private parameter that is not one of its keys.)
+// sources once more with RBS_FAULT_INJECTION and this header included, and SimNode::afterBodiesStep then
+// calls injectFault on each body after the step, before the guard looks at it. The installed sim_node has
+// neither. At the first step to a time at or after $RBS_FAULT_TIME (s), body $RBS_FAULT_BODY's x becomes NaN,
+// as a step gone wrong would leave it; without RBS_FAULT_BODY nothing happens. (Environment variables: the
+// node refuses a private parameter that is not one of its keys.)
 #pragma once
 
 #include <cstdlib>
@@ -15,8 +15,8 @@
 
 namespace rigid_body_sim {
 
-// `body` has just stepped to time `t`.
-inline void injectFault(Body& body, double t) {
+// `body` has just stepped to time `t`. True when it made the body's x NaN.
+inline bool injectFault(Body& body, double t) {
   struct Fault {
     std::string body;
     double time = 0.0;
@@ -31,7 +31,7 @@ inline void injectFault(Body& body, double t) {
     planned.done = planned.body.empty();
     return planned;
   }();
-  if (fault.done || t < fault.time || body.name != fault.body) return;
+  if (fault.done || t < fault.time || body.name != fault.body) return false;
   std::visit(
       [](auto& model) {
         auto state = model.state();
@@ -40,6 +40,7 @@ inline void injectFault(Body& body, double t) {
       },
       body.model);
   fault.done = true;
+  return true;
 }
 
 }  // namespace rigid_body_sim

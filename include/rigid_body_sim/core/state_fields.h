@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <tuple>
@@ -80,6 +81,21 @@ constexpr auto settableMembers() {
     if (field.settable()) members[i++] = field.motion;
   }
   return members;
+}
+
+// Every field of the motion finite and at most kSurelyFiniteMotion in size: then, with parameters in their
+// validated ranges, every quantity a body's messages carry is finite (the energies stay below 1e230, the
+// forces follow from the parameters). World::step checks this on each body right after its step, while it
+// is at hand in the cache, and names to its observer (the node's NaN guard) only the bodies that fail it.
+inline constexpr double kSurelyFiniteMotion = 1e100;
+// The settable fields are the motion; the rest follow from it. std::abs(NaN) <= bound is false: a NaN is
+// never surely finite. The members are picked at compile time: the check runs over these alone, unrolled.
+template <class Model>
+bool surelyFiniteModel(const Model& model) {
+  static constexpr auto kMembers = settableMembers<TypeOfModel<Model>>();
+  bool finite = true;
+  for (const auto member : kMembers) finite &= std::abs(model.state().*member) <= kSurelyFiniteMotion;
+  return finite;
 }
 
 // The motion's field named `name` among the settable ones of the model's table, or null.

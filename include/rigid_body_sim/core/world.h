@@ -39,12 +39,16 @@ struct EventKindInfo {
   std::string meaning;
 };
 
-// Looks at each body right after its step, while it is at hand in the cache (the node's NaN guard): one pass
-// over the bodies a step, not two.
+// Looks at the bodies after each step (the node's NaN guard). The world checks each body right after its
+// step, while it is at hand in the cache (surelyFiniteModel, core/state_fields.h), and names only those that
+// fail it: most steps cost the observer one call, not one a body.
 class BodyStepObserver {
  public:
-  virtual void afterBodyStep(std::size_t index, Body& body) = 0;
-  // The world itself moved the body in the step, after its step was observed (a race's next lap).
+  // A body whose motion is not surely finite right after its step (in the step, before the next body's).
+  virtual void afterUnsureStep(std::size_t index, Body& body) = 0;
+  // Once every body has stepped, before the world moves any itself (movedByWorld) and its clock advances.
+  virtual void afterBodiesStep(std::vector<Body>& bodies) = 0;
+  // The world itself moved the body in the step, after afterBodiesStep (a race's next lap).
   virtual void movedByWorld(std::size_t index, Body& body) = 0;
 
  protected:
@@ -59,7 +63,7 @@ class World {
   // Validates (with the names a body may not take beside the world keys); throws ConfigError.
   explicit World(const WorldConfig& config, std::vector<std::string> reserved_names = {});
 
-  // One step of dt = 1 / rate for every body; `observer` sees each body after its step and its events.
+  // One step of dt = 1 / rate for every body; `observer` sees the bodies after it (BodyStepObserver).
   void step(BodyStepObserver* observer = nullptr);
   void reset();  // every body back to its initial conditions (a race's new lap); time goes on
 

@@ -77,8 +77,10 @@ class SimNode : private BodyStepObserver {
   // --- The stepping thread
   void stepLoop();
   // The step hook: the NaN guard (one ERROR line per body it holds), then the step's events (DEBUG).
-  void afterBodyStep(std::size_t index, Body& body) override;  // the guard (and a test's fault) on each body
-  void movedByWorld(std::size_t index, Body& body) override;   // the guard keeps it
+  // World::step's observer: the guard (and, in a test's build, its fault) on the bodies after each step.
+  void afterUnsureStep(std::size_t index, Body& body) override;
+  void afterBodiesStep(std::vector<Body>& bodies) override;
+  void movedByWorld(std::size_t index, Body& body) override;  // the guard keeps it
   void afterStep(World& world);
   void waitForStart();
   // The node's own recorder could not write: the run ends with one ERROR line (kRecordingFailedStatus).

@@ -21,21 +21,6 @@ namespace rigid_body_sim {
 std::optional<std::string> nonFiniteField(const Body& body);
 inline bool finiteState(const Body& body) { return !nonFiniteField(body).has_value(); }
 
-// Every field of the body's motion finite and at most kSurelyFiniteMotion in size: then, with parameters
-// in their validated ranges, every quantity its messages carry is finite (the energies stay below 1e230,
-// the forces follow from the parameters). The guard's check after every step, far cheaper than
-// nonFiniteField, which it calls only when this fails.
-inline constexpr double kSurelyFiniteMotion = 1e100;
-// The settable fields are the motion; the rest follow from it. std::abs(NaN) <= bound is false: a NaN is
-// never surely finite. The members are picked at compile time: the check after every step runs over these
-// alone, unrolled, inline in the step's loop.
-template <class Model>
-bool surelyFiniteModel(const Model& model) {
-  static constexpr auto kMembers = settableMembers<TypeOfModel<Model>>();
-  bool finite = true;
-  for (const auto member : kMembers) finite &= std::abs(model.state().*member) <= kSurelyFiniteMotion;
-  return finite;
-}
 inline bool surelyFinite(const Body& body) {
   return std::visit([](const auto& model) { return surelyFiniteModel(model); }, body.model);
 }
@@ -51,30 +36,26 @@ struct NonFinite {
 
 // Holds every body whose state became non-finite at its last finite state. It keeps what a step changes
 // (Model::Progress), not whole bodies: a step changes nothing else; and it keeps it every kStepsPerKeep
-// steps only, with the count of finite steps since: a step is deterministic, so the last finite state is
-// the kept one stepped again that many times (a copy after every step was most of the guard's cost).
+// steps only, with the step it kept it at: a step is deterministic, so the last finite state is the kept one
+// stepped again as many times as the world stepped since (a copy after every step was most of the guard's
+// cost). World::step names it only the bodies not surely finite; the others cost it nothing.
 class FiniteGuard : public BodyStepObserver {
  public:
-  static constexpr std::uint32_t kStepsPerKeep = 64;
+  static constexpr std::uint64_t kStepsPerKeep = 64;
 
   // The current states are the last finite ones; `dt` is the world's step.
   FiniteGuard(const std::vector<Body>& bodies, double dt);
 
-  // Call on each body after its step (World::step's observer). A body that became non-finite is put back
-  // to its last finite state and held there at every later call; takeNewlyHeld() gives it once.
-  void afterBodyStep(std::size_t index, Body& body) override {
-    // Most calls: a body not held, surely finite. Its kept progress is not even looked at (the kept array
-    // through the cache at every step was most of what the guard cost).
-    if (!held_[index] && surelyFinite(body)) {
-      if (++steps_since_[index] == kStepsPerKeep) keep(index, body);
-      return;
-    }
-    afterUnsureStep(index, body);
-  }
+  // A body not surely finite after its step: one that became non-finite is put back to its last finite
+  // state and held there (afterBodiesStep puts it back after every later step); takeNewlyHeld() gives it
+  // once.
+  void afterUnsureStep(std::size_t index, Body& body) override;
+  // Every held body back to its last finite state; every kStepsPerKeep steps, every other body kept.
+  void afterBodiesStep(std::vector<Body>& bodies) override;
   void movedByWorld(std::size_t index, Body& body) override;  // kept as it is now
   // The bodies that became non-finite since the last call.
   std::vector<NonFinite> takeNewlyHeld();
-  // afterBodyStep on every body, then takeNewlyHeld(): after a step taken without the guard as observer.
+  // What World::step tells the guard as its observer, then takeNewlyHeld(): after a step taken without it.
   std::vector<NonFinite> afterStep(std::vector<Body>& bodies);
 
   bool held(std::size_t index) const { return held_[index] != 0; }
@@ -92,12 +73,13 @@ class FiniteGuard : public BodyStepObserver {
  private:
   using Progress = BodyTypes::Progresses;
   static Progress progressOf(const Body& body);
-  void keep(std::size_t index, const Body& body);       // its progress now, the count of steps since 0
-  void afterUnsureStep(std::size_t index, Body& body);  // afterBodyStep of a body held or not surely finite
+  void keep(std::size_t index, const Body& body);  // its progress now, at the current step
 
   double dt_;
-  std::vector<Progress> kept_;              // a finite progress of each body (a held one's last finite)
-  std::vector<std::uint32_t> steps_since_;  // the finite steps since it was kept
+  std::uint64_t steps_ = 0;             // the steps observed (afterBodiesStep calls)
+  std::vector<Progress> kept_;          // a finite progress of each body (a held one's last finite)
+  std::vector<std::uint64_t> kept_at_;  // steps_ when it was kept
+  std::size_t held_count_ = 0;          // how many are held (most steps: none)
   std::vector<NonFinite> newly_held_;
   std::vector<char> held_;  // not vector<bool>: its bit arithmetic was a sixth of the guard's time
 };
