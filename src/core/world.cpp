@@ -252,9 +252,11 @@ void World::step(BodyStepObserver* observer) {
   if (observer) observer->afterBodiesStep(bodies_);
   ++steps_;
   if (events_.size() != first_event) {
-    // In time order: bodies stepped one after another may have their events in either order within a step.
-    std::stable_sort(events_.begin() + static_cast<std::ptrdiff_t>(first_event), events_.end(),
-                     [](const BodyEvent& a, const BodyEvent& b) { return a.t < b.t; });
+    // In time order: bodies stepped one after another may have their events in either order within a step
+    // (most steps' are in order already: a rod's are all at the step's end; the sort takes a buffer).
+    const auto first = events_.begin() + static_cast<std::ptrdiff_t>(first_event);
+    const auto earlier = [](const BodyEvent& a, const BodyEvent& b) { return a.t < b.t; };
+    if (!std::is_sorted(first, events_.end(), earlier)) std::stable_sort(first, events_.end(), earlier);
     if (config_.race) placeFinishers(first_event);
   }
   if (!config_.race || !raceOver()) return;
@@ -285,7 +287,6 @@ void World::record(std::size_t index, double t, std::size_t kind, const Model& a
   const auto fields = stateFields(at);
   event.state.reserve(fields.size());
   for (const auto& field : fields) event.state.push_back(EventValue{field.name, field.number, field.text});
-  event.values.reserve(event.values.size() + 3);  // room for a lap_time, a closed_form and a place
   if (what.role == EventRole::Finish) event.values.push_back(EventValue{"lap_time", t - body.lap_start});
   // The kind's instant in closed form since the lap's start, as its type computes it (none for most kinds):
   // it holds only while the lap runs as configured.

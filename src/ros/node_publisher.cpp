@@ -160,7 +160,6 @@ void NodePublisher::happened(const std::vector<BodyEvent>& events, const World&)
   const bool watched = events_.watched();
   for (const auto& event : events) {
     if (watched) events_.publisher.publish(toEventMsg(event, stampOf(event.t)));
-    if (run_events_.size() == kKeptEvents) run_events_.pop_front();
     run_events_.push_back(event);
   }
 }

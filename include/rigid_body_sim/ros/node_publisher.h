@@ -12,13 +12,13 @@
 
 #include <atomic>
 #include <cstdint>
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <boost/circular_buffer.hpp>
 
 #include "rigid_body_sim/ros/params.h"
 #include "rigid_body_sim/ros/snapshot.h"
@@ -42,7 +42,7 @@ class NodePublisher : public SampleSink {
   // The events of the current run (since the start or the last reset or config), at most kKeptEvents, the
   // latest: what ~get_events answers.
   static constexpr std::size_t kKeptEvents = 10000;
-  const std::deque<BodyEvent>& runEvents() const { return run_events_; }
+  const boost::circular_buffer<BodyEvent>& runEvents() const { return run_events_; }
 
   void publishConfig(const World& world);  // ~commands' entry 0, the world at the start
   void publishPaused(bool paused);         // ~paused (latched)
@@ -92,7 +92,8 @@ class NodePublisher : public SampleSink {
 
   ros::Publisher commands_;
   CountedPublisher events_;
-  std::deque<BodyEvent> run_events_;
+  // Full, a new event is copied over the oldest: into its strings' and vectors' room, without allocating.
+  boost::circular_buffer<BodyEvent> run_events_{kKeptEvents};
   ros::Publisher paused_;
   CountedPublisher markers_;
   ros::Publisher scene_;
