@@ -11,24 +11,26 @@ its lap time and place, a restart, each at its exact instant) go to every page a
 (`<node>/get_events`, read when the node is found and kept since) to a page that opens: the page draws them
 and computes none.
 
-With `~control` a page opened with `?token=<the token this node prints>` may pause, run, step, reset and
-change the keys a lesson changes, each through the node's own services and reconfigure servers, choose the
-body every following page plots and switch to another lesson part the bodies can take (its config's keys,
-from the config/ beside ~web_root); any other request, or any from a page without the token, is refused in
-one line (rigid_body_sim.web_protocol), on that page alone. The token goes only to this process's standard output (the
-launching terminal), never to /rosout or a log file; the page that brings it gets it back as an HttpOnly
-cookie for its WebSocket alone (a reload stays the teacher's page) and an address without it.
+With `~control` the teacher's browser, once the token this node prints is typed into the form at /login,
+may pause, run, step, reset and change the keys a lesson changes, each through the node's own services and
+reconfigure servers, choose the body every following page plots and switch to another lesson part the bodies
+can take (its config's keys, from the config/ beside ~web_root); any other request, or any from a page without
+the token, is refused in one line (rigid_body_sim.web_protocol), on that page alone. The token goes only to this
+process's standard output (the launching terminal), never to /rosout or a log file, and never into an address:
+a browser keeps every address it visits in its history (a shared laptop's would keep the token), so the form
+POSTs it (tornado's XSRF check: no other site's form can) and the answer is an HttpOnly cookie for the page's
+WebSocket alone (a reload stays the teacher's page). An address with ?token= gives no control.
 
 The Host a request names must be one of this machine's names or addresses (on every address too: DNS
 rebinding); a request's head must come whole within HEAD_TIMEOUT, and an overlong target or header is
-answered 414 or 431.
+answered 414 or 431, a body over MAX_BODY 413.
 
 Every page may open a lab of its own (rigid_body_sim.labs): a private rigid_body_sim.core.World of the class's
 config (as it runs now, or its lesson part's file), stepped in real time at the frame timer on the server's loop
 (within LAB_TICK_SHARE of a frame: a lab left out catches up at the next tick), its requests carried out on a
-worker thread, its frames and events to its page(s) alone; a page acts on its own lab only (the `rbs_lab`
-cookie, HttpOnly, that GET / gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of
-its run so far).
+worker thread (each page's paced to LAB_THREAD_SHARE of it: rigid_body_sim.web_protocol), its frames and
+events to its page(s) alone; a page acts on its own lab only (the `rbs_lab` cookie, HttpOnly, that GET /
+gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of its run so far).
 The teacher's page gets the class's results and the curves they lie on, asks the class a question and shows
 one lab to every page. web_protocol's docstring is the protocol.
 
@@ -42,6 +44,7 @@ from __future__ import annotations
 
 import asyncio
 import concurrent.futures
+import functools
 import hmac
 import io
 import ipaddress
@@ -81,10 +84,10 @@ from rigid_body_sim import description, labs
 from rigid_body_sim.msg import Command, Event
 from rigid_body_sim.runs import event_record
 from rigid_body_sim.sim_tools import WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
-from rigid_body_sim.web_protocol import (LAB_OPS, LESSON_KEYS, MAX_REQUEST_BYTES, EventLog, FrameQueue, Record,
-                                         Refusal, Request, event_roles, events_message, frame_message,
-                                         lab_events_message, lab_frame_message, parse_request, part_config,
-                                         part_of_config, websocket_text_frame)
+from rigid_body_sim.web_protocol import (LAB_OPS, LAB_THREAD_SHARE, LESSON_KEYS, MAX_REQUEST_BYTES, EventLog,
+                                         FrameQueue, Pacer, Record, Refusal, Request, event_roles, events_message,
+                                         frame_message, lab_events_message, lab_frame_message, parse_request,
+                                         part_config, part_of_config, websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, GetEvents, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
@@ -111,14 +114,14 @@ CLASS_PERIOD = 1.0  # s: the class's results go to the teacher at most this ofte
 # not a worker thread: there a tick waits for the loop's GIL at each core step (some 30 ms for the 2 ms of 60
 # labs' work), and a frame that finds it still running has none for the labs' pages.
 LAB_TICK_SHARE = 0.5
-# Of the time, what the lab thread's requests take at most (after one, it rests three times as long): their
-# Python holds the GIL from the loop, which waits for it at every page's write (a page asking for long steps
-# over and over would take most of every page's frames).
-LAB_THREAD_SHARE = 0.25
 MAX_DOWNLOADS = 2  # simulate runs for downloads at once
 SIMULATE_TIMEOUT = 120.0  # s
 SEND_BUFFER = 64 * 1024  # bytes of a page's socket buffer (Linux doubles it): some 3 s of frames at 50 Hz
 CONTROL_COOKIE = "rbs_control"
+LOGIN_PAGE = "login.html"  # the teacher's form at /login (a tornado template: its XSRF field, its refusal)
+MAX_BODY = 4 * 1024  # bytes of a request's body (the login form's is some 100): more is answered 413
+LOGIN_LOG_PERIOD = 10.0  # s: a refused login is logged at most this often (those between are counted)
+NO_CONTROL = "refused control: this web view gives none (started without web_control:=true): every page only shows"
 MAX_URL = 8 * 1024  # bytes of a request's target: longer is answered 414
 MAX_HEADERS = 16 * 1024  # bytes of its header lines: more is answered 431
 # What tornado reads of a request's head before it gives up and closes the socket without a status: past
@@ -191,8 +194,16 @@ class World:
                            "settings": self.settings, "bodies": bodies, "parts": self.parts(), "part": self.part()})
 
 
+def summary_without_query(handler: tornado.web.RequestHandler) -> str:
+    """What tornado's warnings say of a request (a refused Host, a failed XSRF check): its path, not its query
+    (log_request)."""
+    return f"{handler.request.method} {handler.request.path} ({handler.request.remote_ip})"
+
+
 class Page(tornado.websocket.WebSocketHandler):
     """One open page."""
+
+    _request_summary = summary_without_query
 
     view: "WebView"
     pages_opened = 0
@@ -216,11 +227,12 @@ class Page(tornado.websocket.WebSocketHandler):
         self.writing = False  # send_loop waits for a write of this page's
         self.refused: Dict[str, int] = {}
         token = self.get_cookie(CONTROL_COOKIE, "") or ""
-        self.control = bool(self.view.token) and bool(token) and hmac.compare_digest(token, self.view.token)
+        self.control = self.view.is_token(token)
         refused_token = None
-        if token and not self.control:  # a link from before a restart (a new token each start), or a guess
-            refused_token = Refusal("token", "refused control: the token is not this view's (a link from before "
-                                             "it restarted?): this page only shows")
+        if token and not self.control:  # a login from before a restart (a new token each start), or a guess
+            refused_token = Refusal("token", "refused control: this browser's token is not this view's (a login "
+                                             "from before it restarted? log in again at /login): this page only "
+                                             "shows")
             self.note_refusal(refused_token)
         # tornado closes the connection on a message over its limit without a word to the handler.
         connection: Any = self.ws_connection
@@ -440,7 +452,9 @@ class WebView:
         # wait for them, so that a page gets a run's `lab` message before the run's samples.
         self.lab_busy: Dict[str, int] = {}
         self.tick_budget = LAB_TICK_SHARE / self.frame_rate  # s of CPU time
-        self.lab_thread_rests_until = 0.0  # perf_counter s (paced)
+        self.lab_pacer = Pacer(self.lab_thread, LAB_THREAD_SHARE)  # each page's (lab cookie's) requests
+        self.login_refusals = 0  # refused logins not logged yet (LOGIN_LOG_PERIOD)
+        self.login_logged_at = -math.inf  # monotonic s
         self.shown: Optional[str] = None  # the lab the teacher shows every page
         self.poll = labs.Poll()
         self.curves = labs.Curves()
@@ -710,31 +724,24 @@ class WebView:
         return True, f"part {part}: every body's keys set, the race started again"
 
     # --- labs: the tick on the loop, every other world call on the lab thread ----------------------------------
-    async def on_lab_thread(self, cookies: List[str], work: Callable[..., T], *args: Any) -> T:
-        """work(*args) on the lab thread; the labs of these cookies send nothing meanwhile (tick_labs): the
-        caller's messages of its result, sent before it awaits anything else, come before their news."""
-        for cookie in cookies:
-            self.lab_busy[cookie] = self.lab_busy.get(cookie, 0) + 1
-        try:
-            return await asyncio.get_running_loop().run_in_executor(self.lab_thread, self.paced, work, *args)
-        finally:
+    async def on_lab_thread(self, page: Page, cookies: List[str], work: Callable[..., T], *args: Any) -> T:
+        """work(*args) on the lab thread in the page's turn: once the page's (its lab cookie's) rest after its
+        last request there is over (lab_pacer, on the loop: other pages' requests wait for none of it). From
+        then until it is done the labs of these cookies send nothing (tick_labs): the caller's messages of its
+        result, sent before it awaits anything else, come before their news."""
+        held: List[str] = []
+
+        def hold() -> None:
             for cookie in cookies:
+                self.lab_busy[cookie] = self.lab_busy.get(cookie, 0) + 1
+                held.append(cookie)
+        try:
+            return await self.lab_pacer.run(page.lab_cookie, functools.partial(work, *args), hold)
+        finally:
+            for cookie in held:
                 self.lab_busy[cookie] -= 1
                 if not self.lab_busy[cookie]:
                     del self.lab_busy[cookie]
-
-    def paced(self, work: Callable[..., T], *args: Any) -> T:
-        """On the lab thread: work(*args), once the thread has rested after the work before it (its time times
-        (1 - LAB_THREAD_SHARE) / LAB_THREAD_SHARE)."""
-        rest = self.lab_thread_rests_until - time.perf_counter()
-        if rest > 0:
-            time.sleep(rest)
-        started = time.perf_counter()
-        try:
-            return work(*args)
-        finally:
-            took = time.perf_counter() - started
-            self.lab_thread_rests_until = time.perf_counter() + took * (1.0 - LAB_THREAD_SHARE) / LAB_THREAD_SHARE
 
     def pages_of(self, lab: labs.Lab) -> List[Page]:
         return list(self.lab_pages.get(lab.cookie, ()))
@@ -762,8 +769,8 @@ class WebView:
 
     async def send_labs(self, page: Page, own: Optional[labs.Lab], shown: Optional[labs.Lab]) -> None:
         """A page's own lab and the shown one, whole: each lab message and its run's events."""
-        texts = await self.on_lab_thread([lab.cookie for lab in (own, shown) if lab is not None], self.lab_texts,
-                                         own, shown)
+        texts = await self.on_lab_thread(page, [lab.cookie for lab in (own, shown) if lab is not None],
+                                         self.lab_texts, own, shown)
         if page in self.pages:
             for text in texts:
                 page.reply_text(text)
@@ -842,7 +849,7 @@ class WebView:
         try:
             if op == "lab_open":
                 config = self.lab_config(request.source)
-                news, old = await self.on_lab_thread([page.lab_cookie], self.open_lab, page, request, config)
+                news, old = await self.on_lab_thread(page, [page.lab_cookie], self.open_lab, page, request, config)
                 lab = news[0]
                 if old is not None:
                     self.lab_gone(old, f"lab {old.id} closed: a new one opened")
@@ -866,9 +873,9 @@ class WebView:
                 self.broadcast(self.poll.answers_message())
                 return True, line
             if op == "show_lab":
-                return self.show_lab(request.lab)
+                return await self.show_lab(page, request.lab)
             if op == "class_clear":
-                await self.on_lab_thread([], self.room.clear_results)
+                await self.on_lab_thread(page, [], self.room.clear_results)
                 self.class_due = True
                 return True, "the class's results cleared (the labs go on)"
             own = self.room.of(page.lab_cookie)
@@ -878,7 +885,7 @@ class WebView:
                 self.room.close(own.cookie)
                 self.lab_gone(own, f"lab {own.id} closed")
                 return True, f"lab {own.id} closed"
-            line, news = await self.on_lab_thread([own.cookie], self.lab_op, own, request)
+            line, news = await self.on_lab_thread(page, [own.cookie], self.lab_op, own, request)
             self.send_news(news)
             return True, line
         except labs.LabRefusal as refusal:
@@ -886,7 +893,9 @@ class WebView:
         except OSError as error:  # a lesson part's config that cannot be read
             return False, f"refused: {error}"
 
-    def show_lab(self, lab_id: Optional[str]) -> Tuple[bool, str]:
+    async def show_lab(self, teacher: Page, lab_id: Optional[str]) -> Tuple[bool, str]:
+        """The lab every page shows (None: the class's world): its messages, made once on the lab thread in the
+        teacher's turn, to every page."""
         if lab_id is None:
             self.shown = None
             self.broadcast({"type": "shown_lab", "lab": None})
@@ -894,9 +903,12 @@ class WebView:
         lab = self.room.by_id.get(lab_id)
         if lab is None:
             raise labs.LabRefusal(f"refused: no lab {lab_id!r}")
-        self.shown = lab.id
-        for page in list(self.pages):
-            asyncio.ensure_future(self.send_labs(page, None, lab))
+        texts = await self.on_lab_thread(teacher, [lab.cookie], self.lab_texts, None, lab)
+        if self.room.by_id.get(lab.id) is not lab:
+            raise labs.LabRefusal(f"refused: lab {lab_id!r} closed meanwhile")
+        self.shown = lab.id  # from now on its frames and events go to every page, after these
+        for text in texts:
+            self.broadcast_text(text)
         return True, f"the class sees {lab.name}'s lab"
 
     def tick_labs(self, frame_time: float) -> None:
@@ -999,7 +1011,7 @@ class WebView:
     # --- HTTP -----------------------------------------------------------------------------------------------
     def application(self) -> tornado.web.Application:
         root = os.path.realpath(self.web_root)
-        missing = [name for name in WEB_FILES if not os.path.isfile(os.path.join(root, name))]
+        missing = [name for name in (*WEB_FILES, LOGIN_PAGE) if not os.path.isfile(os.path.join(root, name))]
         if missing:
             raise FileNotFoundError(f"web view: {', '.join(missing)} not in {root}")
         return tornado.web.Application(
@@ -1007,11 +1019,15 @@ class WebView:
              (r"/()", File, {"path": root, "default_filename": "index.html", "view": self}),
              (r"/(" + "|".join(re.escape(name) for name in WEB_FILES if name != "index.html") + ")", File,
               {"path": root, "view": self}),
+             (r"/login", Login, {"view": self}),
              (r"/qr\.svg", QrCode, {"view": self}),
              (r"/lab/([0-9a-f]{1,40})\.zip", LabZip, {"view": self})],
             # Beyond the size tornado closes the connection; a page that answers no ping for 20 s is closed.
             websocket_max_message_size=64 * MAX_REQUEST_BYTES, websocket_ping_interval=5, websocket_ping_timeout=20,
-            log_function=log_request)
+            # A POST (the login's, the only one) carries the _xsrf cookie's value as a field: another site's form
+            # cannot. GET and the WebSocket's handshake are not checked.
+            xsrf_cookies=True, xsrf_cookie_kwargs={"httponly": True, "samesite": "Strict", "path": "/login"},
+            template_path=root, compiled_template_cache=False, log_function=log_request)
 
     def offer_only(self, families: Set[int]) -> None:
         """The addresses offered: only those of the families it listens on."""
@@ -1019,13 +1035,29 @@ class WebView:
         self.watch_urls = listened or self.watch_urls
 
     def urls(self) -> Tuple[str, str]:
+        """The class's address and the teacher's login form."""
         base = self.watch_urls[0]
-        return base, f"{base}?token={self.token}"
+        return base, f"{base}login"
+
+    def is_token(self, given: str) -> bool:
+        """Whether `given` is this view's token (none without ~control), in time that tells nothing of it."""
+        return bool(self.token) and bool(given) and hmac.compare_digest(given.encode(), self.token.encode())
+
+    def note_login_refusal(self, address: str, refusal: str) -> None:
+        """A refused login's line, at most every LOGIN_LOG_PERIOD s (a guesser's would fill the log), with the
+        count of those not logged since; never the token given."""
+        self.login_refusals += 1
+        now = time.monotonic()
+        if now < self.login_logged_at + LOGIN_LOG_PERIOD:
+            return
+        more = self.login_refusals - 1
+        rospy.logwarn(f"web view: login from {address}: {refusal}{f' ({more} more refused since)' if more else ''}")
+        self.login_refusals, self.login_logged_at = 0, now
 
 
 def log_request(handler: tornado.web.RequestHandler) -> None:
-    """tornado's access log line without the query: the teacher's link carries the token, and rospy writes
-    this log to a file every user can read."""
+    """tornado's access log line without the query (an address someone typed a token into) and without any
+    body (the login form's token): rospy writes this log to a file every user can read."""
     request = handler.request
     status = handler.get_status()
     log = tornado.log.access_log.info if status < 400 else tornado.log.access_log.warning
@@ -1076,8 +1108,11 @@ def loopback_literal(host: str, port: int) -> bool:
 
 
 class File(tornado.web.StaticFileHandler):
-    """The page's four files, never cached (a rebuilt package serves its new page), with nothing but this
-    server allowed to the page (no script, style or connection from anywhere else)."""
+    """The page's files, never cached (a rebuilt package serves its new page), with nothing but this server
+    allowed to the page (no script, style or connection from anywhere else). An address's ?token= gives no
+    control (the page says where the token goes: Login)."""
+
+    _request_summary = summary_without_query
 
     def initialize(self, path: str, default_filename: Optional[str] = None,
                    view: Optional["WebView"] = None) -> None:
@@ -1085,14 +1120,6 @@ class File(tornado.web.StaticFileHandler):
         self.view = view
 
     async def get(self, path: str, include_body: bool = True) -> None:
-        token = self.get_query_argument("token", None)
-        if token is not None and path == "":
-            # The teacher's link: the token as a cookie that only the page's WebSocket gets back (the page's
-            # script cannot read it), and the address without it (a projected address bar, the history).
-            self.set_cookie(CONTROL_COOKIE, token, path="/ws", httponly=True, samesite="Strict", expires_days=1)
-            self.set_header("Cache-Control", "no-store")
-            self.redirect("/", status=303)
-            return
         if path == "" and not self.get_cookie(LAB_COOKIE):
             # The page's lab is the cookie's: a random secret its script cannot read; a reload keeps it.
             self.set_cookie(LAB_COOKIE, secrets.token_urlsafe(18), path="/", httponly=True, samesite="Strict",
@@ -1112,8 +1139,52 @@ class File(tornado.web.StaticFileHandler):
                         "img-src 'self'; frame-ancestors 'none'")
 
 
+class Login(tornado.web.RequestHandler):
+    """GET /login: the teacher's form (web/login.html: one password field). POST /login with this view's token:
+    the token as a cookie that only the page's WebSocket gets back (the page's script cannot read it), then
+    303 to the page; a wrong or empty one: the form again with its one-line refusal (403), logged without it.
+    The token never in an address: a browser keeps every address it visits in its history."""
+
+    _request_summary = summary_without_query
+
+    def initialize(self, view: "WebView") -> None:
+        self.view = view
+
+    def prepare(self) -> None:
+        refuse_foreign_host(self, self.view)
+
+    def set_default_headers(self) -> None:
+        self.set_header("Cache-Control", "no-store")
+        self.set_header("X-Content-Type-Options", "nosniff")
+        self.set_header("Referrer-Policy", "no-referrer")
+        self.set_header("Content-Security-Policy", "default-src 'none'; style-src 'self'; img-src 'self'; "
+                                                   "form-action 'self'; frame-ancestors 'none'")
+
+    def get(self) -> None:
+        self.form("" if self.view.token else NO_CONTROL)
+
+    def post(self) -> None:
+        given = self.get_body_argument("token", "") or ""
+        if self.view.is_token(given):
+            self.set_cookie(CONTROL_COOKIE, given, path="/ws", httponly=True, samesite="Strict", expires_days=1)
+            rospy.loginfo(f"web view: login from {self.request.remote_ip}: control")
+            self.redirect("/", status=303)
+            return
+        refusal = (NO_CONTROL if not self.view.token else
+                   "refused control: no token given (the one the web view printed on its terminal)" if not given
+                   else "refused control: not this web view's token (a new one at each start: see its terminal)")
+        self.view.note_login_refusal(self.request.remote_ip or "", refusal)
+        self.set_status(403)
+        self.form(refusal)
+
+    def form(self, refusal: str) -> None:
+        self.render(LOGIN_PAGE, refusal=refusal, control=bool(self.view.token))
+
+
 class QrCode(tornado.web.RequestHandler):
     """The address a student's phone uses (the first of watch_urls), as a QR code the teacher's page shows."""
+
+    _request_summary = summary_without_query
 
     def initialize(self, view: "WebView") -> None:
         self.view = view
@@ -1134,6 +1205,8 @@ class QrCode(tornado.web.RequestHandler):
 class LabZip(tornado.web.RequestHandler):
     """GET /lab/<id>.zip: the cookie's own lab (any other is 404): its config.yaml and the files `simulate
     config.yaml --duration <its last sample's t>` writes, its run so far."""
+
+    _request_summary = summary_without_query
 
     def initialize(self, view: "WebView") -> None:
         self.view = view
@@ -1162,8 +1235,9 @@ class LabZip(tornado.web.RequestHandler):
 
 
 class SizeGuard(tornado.httputil.HTTPMessageDelegate):
-    """Answers a request whose target or header lines are too long with 414 or 431 (RFC 6585) and closes
-    its connection, before any handler sees it."""
+    """Answers a request whose target or header lines are too long with 414 or 431 (RFC 6585), or whose
+    Content-Length is over MAX_BODY with 413, and closes its connection, before any handler sees it (tornado
+    itself answers a chunked body over MAX_BODY 400)."""
 
     def __init__(self, inner: tornado.httputil.HTTPMessageDelegate,
                  connection: tornado.httputil.HTTPConnection) -> None:
@@ -1173,8 +1247,10 @@ class SizeGuard(tornado.httputil.HTTPMessageDelegate):
 
     def headers_received(self, start_line: Any, headers: tornado.httputil.HTTPHeaders) -> Optional[Any]:
         size = sum(len(name) + len(value) + 4 for name, value in headers.get_all())
+        length = headers.get("Content-Length", "0")
         status = (414, "URI Too Long") if len(start_line.path) > MAX_URL else (
-            (431, "Request Header Fields Too Large") if size > MAX_HEADERS else None)
+            (431, "Request Header Fields Too Large") if size > MAX_HEADERS else
+            (413, "Content Too Large") if length.isdigit() and int(length) > MAX_BODY else None)
         if status is None:
             return self.inner.headers_received(start_line, headers)
         self.refused = True
@@ -1248,7 +1324,7 @@ async def serve(view: WebView) -> None:
     try:
         # An idle or half-sent request's connection is closed HEAD_TIMEOUT s after it began.
         server = Server(view.application(), xheaders=False, max_header_size=READ_HEAD_LIMIT,
-                        idle_connection_timeout=HEAD_TIMEOUT, body_timeout=HEAD_TIMEOUT)
+                        idle_connection_timeout=HEAD_TIMEOUT, body_timeout=HEAD_TIMEOUT, max_body_size=MAX_BODY)
         sockets = listening_sockets(view.host, view.port)
     except OSError as error:
         rospy.logfatal(f"web view: cannot listen on {view.host}:{view.port}: {error}")
@@ -1257,15 +1333,15 @@ async def serve(view: WebView) -> None:
     view.offer_only({s.family for s in sockets})
     view.start_ros()
     frame_timer(view)
-    watch, control = view.urls()
+    watch, login = view.urls()
     rospy.loginfo(f"web view of {view.node} on {view.host}:{view.port}: watch at {watch}")
     if view.host not in ("127.0.0.1", "localhost"):
         rospy.logwarn(f"web view: open to the network on {view.host}:{view.port} (plain HTTP): the class watches "
                       f"at {' or '.join(view.watch_urls)}")
     if view.control:
         # Standard output alone: the launching terminal. rospy's log would put it on /rosout and in log files
-        # every user can read.
-        print(f"[INFO] web view: control (keep it to the teacher): {control}", flush=True)
+        # every user can read; an address would keep it in the browser's history: the teacher types it in.
+        print(f"[INFO] web view: control (keep it to the teacher): {login} token {view.token}", flush=True)
     rospy.on_shutdown(lambda: view.loop.add_callback(done.set))
     await done.wait()
 

@@ -980,8 +980,13 @@ function instantLine(ctx, x, y1, y2, dash) {
   ctx.setLineDash([]);
 }
 
-// The teacher's link, /?token=..., comes here by the server's redirect (its cookie set): the tab's history has
-// this address alone. An address with a query (a link without the redirect) is replaced by this one.
+// The token goes in the form at /login, never in an address (a browser keeps every address it visits in its
+// history): an address with ?token= gives no control, and the page says where it goes. An address with a query
+// is replaced by the page's own (what the address bar shows, the tab's later entries).
+if (new URLSearchParams(location.search).has("token")) {
+  showLine("no control from an address: the token goes in the form at /login (an address stays in the "
+           + "browser's history)", false);
+}
 if (location.search || location.hash) history.replaceState(null, "", location.pathname);
 wireControls();
 // Once every script of the page has run (lab.js and class.js hook into the messages).

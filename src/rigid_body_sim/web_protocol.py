@@ -1,6 +1,7 @@
 """What the web view's server and its pages say to each other, without ROS or a network: the requests a page
 may send (each checked whole before anything is done with it), the messages the server sends, the bounded
-queue of frames each page has, and the run's events the server keeps for a page that opens late.
+queue of frames each page has, the run's events the server keeps for a page that opens late, and the pacing
+of each page's lab requests on the lab thread (Pacer).
 
 A request is one JSON object of at most MAX_REQUEST_BYTES, {"op": ..., "id": N, ...} with exactly the keys
 of its op. The teacher's page (the token's cookie) alone may send:
@@ -87,12 +88,16 @@ HTTP: GET /lab/<lab id>.zip (that lab's cookie only; else 404): config.yaml and 
 config.yaml --duration <its last sample's t> --out-dir` writes (one CSV a body, events.csv): its run so far."""
 from __future__ import annotations
 
+import asyncio
 import collections
+import concurrent.futures
 import json
 import math
 import re
+import time
 from dataclasses import dataclass
-from typing import Any, Collection, Deque, Dict, List, Mapping, Optional, Sequence, Set, Tuple, Union
+from typing import (Any, Callable, Collection, Deque, Dict, List, Mapping, Optional, Sequence, Set, Tuple, TypeVar,
+                    Union)
 
 from rigid_body_sim import description
 
@@ -214,7 +219,7 @@ def _parse(message: Dict[str, Any], control: bool, bodies: Mapping[str, str], pa
     if not _whole(message["id"]) or not 0 <= message["id"] < 2**53:
         raise Refusal("id", "refused: id is a whole number in [0, 2^53)")
     if not control and op not in PAGE_OPS:
-        raise Refusal("control", "refused: this page only shows (control needs the link with the token)")
+        raise Refusal("control", "refused: this page only shows (control needs the token, typed in at /login)")
     request = Request(op, message["id"])
     if op in LAB_OPS and lab_bodies is None:
         raise Refusal("no lab", "refused: this page has no lab (open one first)")
@@ -436,3 +441,70 @@ def websocket_text_frame(text: str) -> bytes:
     else:
         head = bytes((0x81, 127)) + n.to_bytes(8, "big")
     return head + payload
+
+
+T = TypeVar("T")
+# Of the web view's lab thread's time, what one page's lab requests take at most (after each, that page's next
+# waits three times as long, on the loop; other pages' wait for none of it): their Python holds the GIL from the
+# loop, which waits for it at every page's write (a page asking for long steps over and over would take most of
+# every page's frames).
+LAB_THREAD_SHARE = 0.25
+
+
+class _Turns:
+    """A key's works: one at a time, in order (the lock), and when its rest after the last one ends."""
+
+    def __init__(self) -> None:
+        self.lock = asyncio.Lock()
+        self.users = 0  # its works waiting or under way
+        self.rests_until = 0.0  # perf_counter s
+
+
+class Pacer:
+    """One worker thread's time shared among keys (the web view's lab thread among its pages' lab cookies): a
+    key's works run one at a time, in order, each once the key has rested after its previous one that one's
+    time on the thread (its start to its end) times (1 - share) / share, so that no key takes more than `share`
+    of the thread, however long its works take on a busy machine. The rest is awaited on the loop
+    (asyncio.sleep): another key's work waits for none of it, only for the works ahead of it on the thread."""
+
+    def __init__(self, executor: concurrent.futures.Executor, share: float) -> None:
+        if not 0.0 < share <= 1.0:
+            raise ValueError(f"share {share} not in (0, 1]")
+        self.executor = executor
+        self.rest_per_second = (1.0 - share) / share
+        self.keys: Dict[str, _Turns] = {}
+
+    async def run(self, key: str, work: Callable[[], T], starting: Optional[Callable[[], Any]] = None) -> T:
+        """work() on the executor in the key's turn, once its rest is over; starting() on the loop just before
+        work goes to the executor."""
+        turns = self.keys.get(key)
+        if turns is None:
+            turns = self.keys[key] = _Turns()
+        turns.users += 1
+        try:
+            async with turns.lock:
+                rest = turns.rests_until - time.perf_counter()
+                while rest > 0:  # the loop's timer may wake a hair early
+                    await asyncio.sleep(rest)
+                    rest = turns.rests_until - time.perf_counter()
+                if starting is not None:
+                    starting()
+                timing: List[float] = []
+
+                def timed() -> T:
+                    timing.append(time.perf_counter())
+                    try:
+                        return work()
+                    finally:
+                        timing.append(time.perf_counter())
+                try:
+                    return await asyncio.get_running_loop().run_in_executor(self.executor, timed)
+                finally:
+                    if len(timing) == 2:
+                        started, ended = timing
+                        turns.rests_until = ended + (ended - started) * self.rest_per_second
+        finally:
+            turns.users -= 1
+            now = time.perf_counter()
+            for name in [name for name, t in self.keys.items() if not t.users and t.rests_until <= now]:
+                del self.keys[name]

@@ -14,22 +14,31 @@
 - the class's outcomes against the closed forms: each roller's slip -> roll instant against
   t = (v0 + omega0 R) / (mu_d g cos(phi) (1 + c) / c - g sin(phi)), its lap time against the finish event's
   closed_form; the curve over a key's grid passes through each lab's point exactly and follows the closed form;
-- the poll: choices counted, numbers listed, one answer a voter, refusals.
+- the poll: choices counted, numbers listed, one answer a voter, refusals;
+- the lab requests' pacing (web_protocol.Pacer, as the web view runs it on its lab thread): a page that asks for
+  lab_step MAX_LAB_STEPS over and over, its requests sent at once, gets them one at a time, in order, each after
+  a rest of three times the one before it on the thread (LAB_THREAD_SHARE of it); another page's request waits
+  for none of that rest; many pages' requests at once run back to back; a key at rest with nothing asked is
+  forgotten.
 Usage: test_labs.py [SIMULATE_EXE]   (with the package's devel or install space sourced; without the argument,
 simulate is found as catkin finds it)"""
+import asyncio
+import concurrent.futures
 import math
 import os
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
-from typing import Any, Dict, List, Tuple, cast
+from typing import Any, Callable, Dict, List, Tuple, cast
 
 import numpy
 import yaml
 
 import rigid_body_sim.core as core
 from rigid_body_sim import labs, runs
+from rigid_body_sim.web_protocol import LAB_THREAD_SHARE, MAX_LAB_STEPS, Pacer
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CONFIG_DIR = os.path.join(HERE, "..", "..", "config")
@@ -421,6 +430,109 @@ class Polls(unittest.TestCase):
             with self.assertRaises(labs.LabRefusal):
                 poll.answer("c", cast(Any, bad))  # True: a bool, which JSON's true would be
         self.assertEqual(poll.answers_message(), {"type": "answers", "n": 2, "values": [1.9, 2.0]})
+
+
+class Timed:
+    """Works on the pacer's thread, each's start and end (perf_counter s) as it ran, by key, in their order."""
+
+    def __init__(self) -> None:
+        self.runs: List[Tuple[str, float, float]] = []
+
+    def work(self, key: str, body: Callable[[], Any]) -> Callable[[], None]:
+        def timed() -> None:
+            started = time.perf_counter()
+            body()
+            self.runs.append((key, started, time.perf_counter()))
+        return timed
+
+    def of(self, key: str) -> List[Tuple[float, float]]:
+        return [(start, end) for k, start, end in self.runs if k == key]
+
+
+class Pacing(unittest.TestCase):
+    REST = (1.0 - LAB_THREAD_SHARE) / LAB_THREAD_SHARE  # a key's rest per second of its work
+
+    def assert_rested(self, runs: List[Tuple[float, float]]) -> None:
+        """Each of a key's works began once the key had rested REST times the one before it."""
+        for (start, end), (after, _) in zip(runs, runs[1:]):
+            self.assertGreaterEqual(after - end, self.REST * (end - start), (start, end, after))
+
+    def test_a_page_asking_for_long_steps_keeps_to_its_share(self) -> None:
+        room = labs.LabRoom(clock=Clock())
+        spammer, _ = room.open("spammer", "10.0.0.5", "Ada", "start", config_text("race_slip.yaml"))
+        spammer.pause()
+        timed = Timed()
+        thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+
+        def long_step() -> None:  # a lab_step request's work: the steps, then the samples its frame takes
+            with spammer.lock:
+                spammer.step(MAX_LAB_STEPS)
+                spammer.take_samples()
+
+        async def spam(pacer: Pacer, rounds: int) -> None:
+            for _ in range(rounds):  # a page's most pending requests at once, again and again
+                await asyncio.gather(*(pacer.run("spammer", timed.work("spammer", long_step)) for _ in range(8)))
+        try:
+            pacer = Pacer(thread, LAB_THREAD_SHARE)
+            asyncio.run(spam(pacer, 3))
+        finally:
+            thread.shutdown()
+        runs = timed.of("spammer")
+        self.assertEqual(len(runs), 24)
+        self.assertEqual(spammer.world.steps, 24 * MAX_LAB_STEPS, "each request carried out once")
+        self.assertTrue(all(end <= after for (_, end), (after, _) in zip(runs, runs[1:])), "one at a time")
+        self.assert_rested(runs)
+        busy = sum(end - start for start, end in runs)
+        span = runs[-1][1] + self.REST * (runs[-1][1] - runs[-1][0]) - runs[0][0]  # to the end of the last rest
+        self.assertLessEqual(busy, LAB_THREAD_SHARE * span + 1e-9)
+        print(f"lab_step {MAX_LAB_STEPS} x 24 at once: {1000 * busy / len(runs):.1f} ms each on the thread, "
+              f"{busy / span:.3f} of it over {span:.2f} s", file=sys.stderr)
+
+    def test_other_pages_wait_for_no_rest_but_their_own(self) -> None:
+        timed = Timed()
+        thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+        took = 0.2  # s of a long request's work: its page rests three times that, on the loop
+        asked: Dict[str, float] = {}
+
+        async def lesson(pacer: Pacer) -> None:
+            await pacer.run("long", timed.work("long", lambda: time.sleep(took)))
+            asked["student"] = time.perf_counter()  # in the long page's rest
+            await asyncio.gather(pacer.run("long", timed.work("long", lambda: time.sleep(took))),
+                                 pacer.run("student", timed.work("student", lambda: None)))
+            # A class at once: one request each, back to back on the thread, then each page's own rest.
+            await asyncio.gather(*(pacer.run(f"page {i}", timed.work(f"page {i}", lambda: time.sleep(0.02)))
+                                   for i in range(30)))
+            await asyncio.gather(*(pacer.run(f"page {i}", timed.work(f"page {i}", lambda: None)) for i in range(3)))
+        try:
+            pacer = Pacer(thread, LAB_THREAD_SHARE)
+            asyncio.run(lesson(pacer))
+        finally:
+            thread.shutdown()
+        (start, end), after = timed.of("long")[0], timed.of("long")[1][0]
+        student = timed.of("student")[0][0]
+        self.assertGreaterEqual(after - end, self.REST * (end - start))
+        self.assertLess(student, end + self.REST * (end - start), "the student's request waited for another's rest")
+        self.assertLess(student, after)
+        page_runs = [(k, s, e) for k, s, e in timed.runs if k.startswith("page ")][:30]
+        self.assertEqual(sorted(k for k, _, _ in page_runs), sorted(f"page {i}" for i in range(30)))
+        for (_, began, ended), (_, next_began, _) in zip(page_runs, page_runs[1:]):
+            self.assertLess(next_began - ended, self.REST * (ended - began), "the thread rested between two pages' "
+                            "requests")
+        for i in range(3):
+            self.assert_rested(timed.of(f"page {i}"))
+        # Every key at rest with nothing asked is forgotten once another's request ends, its rest over.
+        self.assertTrue(pacer.keys, "no page's rest under way")
+        time.sleep(max(0.0, max(turns.rests_until for turns in pacer.keys.values()) - time.perf_counter()))
+        thread = concurrent.futures.ThreadPoolExecutor(max_workers=1)
+        try:
+            pacer.executor = thread
+            asyncio.run(pacer.run("last", lambda: None))
+        finally:
+            thread.shutdown()
+        self.assertEqual(set(pacer.keys) - {"last"}, set())
+        print(f"a student's request {1000 * (student - asked['student']):.1f} ms after it was asked, in another's "
+              f"rest of {1000 * self.REST * (end - start):.0f} ms; 30 pages' requests back to back in "
+              f"{page_runs[-1][2] - page_runs[0][1]:.2f} s", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -1,16 +1,19 @@
 """Debian's Chromium, headless, driven over the DevTools protocol (websocket-client): load a page, evaluate
-JavaScript in it, click and type as a person does (mouse and key events at an element's place), resize it
-to a phone's screen, and take screenshots. Every wait has a deadline and names what it waited for."""
+JavaScript in it, click and type as a person does (mouse and key events at an element's place), log in as the
+teacher through the web view's form, resize it to a phone's screen, take screenshots, and read what its profile
+kept of the addresses it visited (its History database). Every wait has a deadline and names what it waited
+for."""
 import base64
 import json
 import os
 import shutil
 import signal
+import sqlite3
 import subprocess
 import tempfile
 import time
 import urllib.request
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, NamedTuple, Optional
 
 import websocket
 
@@ -35,6 +38,13 @@ def chromium_binary() -> str:
         if found:
             return found
     raise FileNotFoundError("no chromium on PATH (scripts/install-deps test installs Debian's)")
+
+
+class History(NamedTuple):
+    """What a profile's History database holds: the addresses of its `urls` table, and the bytes of its files
+    (the database and any journal: every table, and what SQLite has not overwritten yet)."""
+    urls: List[str]
+    raw: bytes
 
 
 class Browser:
@@ -77,6 +87,39 @@ class Browser:
             end(self.process, signal.SIGTERM, 20)
             shutil.rmtree(self.profile, ignore_errors=True)
 
+    def quit(self, timeout: float) -> None:
+        """Ends Chromium as its window's close does (Browser.close: it writes its profile's databases first),
+        the profile kept (close removes it)."""
+        with open(os.path.join(self.profile, "DevToolsActivePort")) as written:
+            port, path = written.read().split("\n")[:2]
+        self.socket.close()
+        browser = websocket.create_connection(f"ws://127.0.0.1:{port}{path.strip()}", timeout=timeout,
+                                              suppress_origin=True)
+        try:
+            browser.send(json.dumps({"id": 1, "method": "Browser.close"}))
+            self.process.wait(timeout=timeout)
+        finally:
+            browser.close()
+
+    def history(self) -> History:
+        """The profile's History database, read from a copy (Chromium locks it while it runs)."""
+        folder = os.path.join(self.profile, "Default")
+        names = [n for n in sorted(os.listdir(folder)) if n == "History" or n.startswith("History-")]
+        if "History" not in names:
+            raise FileNotFoundError(f"no History database in {folder}: {sorted(os.listdir(folder))}")
+        with tempfile.TemporaryDirectory(prefix="rbs_history_") as copy:
+            raw = b""
+            for name in names:
+                shutil.copy(os.path.join(folder, name), os.path.join(copy, name))
+                with open(os.path.join(copy, name), "rb") as file:
+                    raw += file.read()
+            database = sqlite3.connect(os.path.join(copy, "History"))
+            try:
+                urls = [str(row[0]) for row in database.execute("SELECT url FROM urls")]
+            finally:
+                database.close()
+        return History(urls, raw)
+
     def call(self, method: str, timeout: float = 30.0, **params: Any) -> Dict[str, Any]:
         self.next_id += 1
         self.socket.send(json.dumps({"id": self.next_id, "method": method, "params": params}))
@@ -114,6 +157,39 @@ class Browser:
 
     def navigate(self, url: str) -> None:
         self.call("Page.navigate", url=url)
+
+    def load(self, url: str, what: str, timeout: float) -> None:
+        """Navigates to `url` and waits for its page's load event."""
+        since = len(self.events)
+        self.navigate(url)
+        self.wait_event("Page.loadEventFired", since, what, timeout)
+
+    def log_in(self, login: str, token: str, timeout: float) -> None:
+        """The teacher's login: the form at `login` loaded, the token typed into its field and its button
+        clicked, then the page it leads to loading (its cookie given)."""
+        self.load(login, "the login form", timeout)
+        self.type_into("token", token)
+        self.submit("login-submit", timeout)
+        self.wait("the page after the login", "location.pathname === '/' && window.rbs !== undefined", timeout)
+
+    def submit(self, button_id: str, timeout: float) -> None:
+        """Clicks a form's button, then waits for the page its answer is to load (its load event: nothing is
+        asked of the tab meanwhile, whose old page goes away under any question)."""
+        since = len(self.events)
+        self.click(button_id)
+        self.wait_event("Page.loadEventFired", since, f"the answer to #{button_id} loaded", timeout)
+
+    def wait_event(self, method: str, since: int, what: str, timeout: float) -> None:
+        """Until an event `method` came, after the first `since` events."""
+        deadline = time.monotonic() + timeout
+        while not any(event["method"] == method for event in self.events[since:]):
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TimeoutError(f"timed out after {timeout:g} s waiting for {what} ({method})")
+            self.socket.settimeout(left)
+            message = json.loads(self.socket.recv())
+            if "method" in message:
+                self.events.append(message)
 
     def console_errors(self) -> List[str]:
         """What the page logged as an error or threw, so far."""

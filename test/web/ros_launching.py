@@ -1,10 +1,11 @@
 """What the web tests share to start ROS: the environment of a master of their own, that master, a
-roslaunch whose lines are read as they come, and the teacher's link the web view prints."""
+roslaunch whose lines are read as they come, and the teacher's login (the form's address and the token) that
+the web view prints."""
 import os
 import re
 import subprocess
 import threading
-from typing import Any, Dict, List
+from typing import Any, Dict, List, NamedTuple, Optional
 
 from rigid_body_sim.sim_tools import wait_for
 
@@ -43,16 +44,36 @@ def launch_reading(words: List[str], env: Dict[str, str], log: List[str]) -> "su
     return launch
 
 
-def control_link(log: List[str], web_port: int) -> str:
-    """The teacher's link (http://HOST:PORT/?token=...) the web view on `web_port` printed into `log`."""
-    pattern = re.compile(rf"(http://[^/\s]+:{web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
-    found: List[str] = []
+class Teacher(NamedTuple):
+    """What the web view prints for the teacher: its login form's address and the token to type into it."""
+    login: str  # http://HOST:PORT/login
+    token: str
+
+    @property
+    def base(self) -> str:
+        """The page's address, http://HOST:PORT/."""
+        return self.login[:-len("login")]
+
+
+def teacher_in(lines: List[str], web_port: int) -> Optional[Teacher]:
+    """The teacher's login the web view on `web_port` printed into `lines` (`[INFO] web view: control (keep it to
+    the teacher): http://HOST:PORT/login token TOKEN`), or None."""
+    pattern = re.compile(rf"web view: control \(keep it to the teacher\): (http://[^/\s]+:{web_port}/login) "
+                         r"token ([A-Za-z0-9_-]{24})\s*$")
+    found = [m for m in (pattern.search(line) for line in list(lines)) if m]
+    return Teacher(found[0].group(1), found[0].group(2)) if found else None
+
+
+def teacher_login(log: List[str], web_port: int) -> Teacher:
+    """The teacher's login the web view on `web_port` printed into `log`, once it has."""
+    found: List[Teacher] = []
 
     def printed() -> bool:
-        found[:] = [m.group(1) for m in (pattern.search(line) for line in list(log)) if m]
+        teacher = teacher_in(log, web_port)
+        found[:] = [teacher] if teacher else []
         return bool(found)
     try:
-        wait_for("the web view's control link in the launch's log", printed, DEADLINE)
+        wait_for("the web view's teacher's login in the launch's log", printed, DEADLINE)
     except TimeoutError as error:
         raise AssertionError(f"{error}; the launch's log:\n" + "".join(list(log)[-60:])) from None
     return found[0]

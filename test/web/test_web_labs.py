@@ -3,7 +3,10 @@
 paused: the class's world stands still), the teacher's page and STUDENTS students' pages in one Debian headless
 Chromium, each student's page in a browser context of its own (its own cookies, as a phone of its own has).
 
-- The teacher's page came by the link with the token: no address of its tab's history holds the token.
+- The teacher logs in through the form at /login (the token typed in, the button clicked): no address of its
+  tab's history holds the token, and once the teacher has used the page through the whole lesson and Chromium
+  has ended (writing its profile), its profile's History database holds the addresses the tab visited (the
+  page's, the form's) and the token nowhere (no address, no byte of its files).
 - Each student types a name, opens a lab from the lesson's start, sets the sphere's mu_d to a value of their own
   (MU_D) with the controls the page made from the description, runs it until the sphere's slip_to_roll event
   and pauses it. The event's instant is the closed form's, t = (v0 + omega0 R) / (mu_d g cos(phi) (1 + c) / c
@@ -50,7 +53,7 @@ import websocket
 from rigid_body_sim.sim_tools import INERTIA_FACTORS, free_port, load_config, wait_for, with_defaults
 
 from browser import Browser, end
-from ros_launching import control_link, launch_reading, ros_env
+from ros_launching import Teacher, launch_reading, ros_env, teacher_login
 
 ARGS: Any = None
 DEADLINE = 60.0  # s for any one wait
@@ -143,25 +146,26 @@ class Labs(unittest.TestCase):
             end(self.launch, signal.SIGINT, 60)
         shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def start(self) -> str:
+    def start(self) -> Teacher:
         """lesson.launch part:=slip with the web view (control on), paused, on ports of its own: the teacher's
-        link it prints."""
+        login it prints."""
         port = free_port()
         self.launch = launch_reading(
             ["-p", str(port), "rigid_body_sim", "lesson.launch", "part:=slip", "rviz:=false", "start_paused:=true",
              "web:=true", f"web_port:={self.web_port}", "web_control:=true"], ros_env(port, self.tmp), self.log)
-        return control_link(self.log, self.web_port)
+        return teacher_login(self.log, self.web_port)
 
     def test_labs(self) -> None:
         started = time.monotonic()
-        url = self.start()
+        login = self.start()
         wait_for("the web view", lambda: self.http_status("/") == 200, DEADLINE, period=0.1)
         self.browser = teacher = Browser(1600, 900)
         teacher.resize(1600, 900, 1, False)
-        teacher.navigate(url)
+        teacher.log_in(login.login, login.token, DEADLINE)
         teacher.wait("the teacher's page with the class's world",
                      "window.rbs && rbs.control && rbs.world && Object.keys(rbs.world.bodies).length === 3", DEADLINE)
-        self.check_history(teacher)
+        self.check_tab_history(teacher, login)
+        print(f"the teacher's page in {time.monotonic() - started:.1f} s", file=sys.stderr)
         students = open_pages(teacher, self.base, STUDENTS, STUDENT_SIZE)
         self.tabs.extend(students)
         names = [f"Student {i + 1:02d}" for i in range(STUDENTS)]
@@ -170,7 +174,7 @@ class Labs(unittest.TestCase):
                          "window.rbs && rbs.world && Object.keys(rbs.world.bodies).length === 3 && "
                          "document.readyState === 'complete'", DEADLINE)
         print(f"{STUDENTS} students' pages open in {time.monotonic() - started:.1f} s", file=sys.stderr)
-        self.open_labs(students, names)
+        self.open_labs(students, names, started)
         labs = [student.evaluate("rbs.lab.info.lab") for student in students]
         self.assertEqual(len(set(labs)), STUDENTS, "a lab each")
         self.run_labs(students)
@@ -194,6 +198,8 @@ class Labs(unittest.TestCase):
         for page in [teacher, *students]:
             self.check_ids(page)
             self.assertEqual(page.console_errors(), [])
+        self.check_tab_history(teacher, login)
+        self.check_profile_history(teacher, login)
         print(f"the whole test in {time.monotonic() - started:.1f} s", file=sys.stderr)
 
     # --- the steps ---------------------------------------------------------------------------------------------
@@ -204,15 +210,33 @@ class Labs(unittest.TestCase):
         except OSError:
             return 0
 
-    def check_history(self, teacher: Browser) -> None:
-        """The token in no address of the tab's history (the server's redirect, the page's replaceState)."""
+    def check_tab_history(self, teacher: Browser, login: Teacher) -> None:
+        """The token in no address of the tab's history: the form's, then the page's."""
         self.assertEqual(teacher.evaluate("location.search"), "")
         history = teacher.call("Page.getNavigationHistory")
         addresses = [entry["url"] for entry in history["entries"]]
-        self.assertFalse([a for a in addresses if "token=" in a], addresses)
+        self.assertIn(login.login, addresses)
+        self.assertEqual(addresses[-1], self.base)
+        self.assertFalse([a for a in addresses if login.token in a or "token=" in a], addresses)
         self.assertEqual(teacher.evaluate("history.length"), len(history["entries"]))
 
-    def open_labs(self, students: List[Tab], names: List[str]) -> None:
+    def check_profile_history(self, teacher: Browser, login: Teacher) -> None:
+        """Chromium ended as a window's close ends it (its databases written): its profile's History holds the
+        addresses the teacher's tab visited, and the token nowhere. (The students' pages, each in a context of
+        its own, keep no history.)"""
+        for tab in self.tabs:
+            tab.close()
+        self.tabs = []
+        teacher.quit(DEADLINE)
+        history = teacher.history()
+        self.assertIn(self.base, history.urls, "the History database holds none of this lesson's addresses")
+        self.assertIn(login.login, history.urls)
+        self.assertFalse([u for u in history.urls if login.token in u or "token=" in u], history.urls)
+        self.assertNotIn(login.token.encode(), history.raw, "the token in the profile's History database")
+        print(f"the profile's History: {len(history.urls)} addresses ({', '.join(sorted(history.urls))}), "
+              f"{len(history.raw)} bytes, the token in none", file=sys.stderr)
+
+    def open_labs(self, students: List[Tab], names: List[str], started: float) -> None:
         """Each student types a name and opens a lab from the lesson's start, then sets the sphere's mu_d: the
         first with the mouse and the keys, the others by the page's elements (act)."""
         first = students[0]
@@ -226,6 +250,7 @@ class Labs(unittest.TestCase):
         for student, name in zip(students, names):
             student.wait("the student's lab", f"rbs.lab.info && rbs.lab.info.name === {json.dumps(name)} && "
                          "rbs.showing === 'lab' && rbs.world.source === 'lab'", DEADLINE)
+        print(f"{STUDENTS} labs open in {time.monotonic() - started:.1f} s", file=sys.stderr)
         first.choose("lab-body", "sphere")
         first.choose("lab-key", "mu_d")
         first.type_into("lab-value", f"{MU_D[0]}")
@@ -240,6 +265,7 @@ class Labs(unittest.TestCase):
                          "rbs.replies.some((r) => r.ok && r.line.startsWith('lab: sphere: mu_d'))", DEADLINE)
             self.assertEqual(student.evaluate("rbs.lab.line"), student.evaluate(
                 "rbs.replies.filter((r) => r.ok).map((r) => r.line).pop()"))
+        print(f"{STUDENTS} labs' mu_d set in {time.monotonic() - started:.1f} s", file=sys.stderr)
 
     def run_labs(self, students: List[Tab]) -> None:
         """Run each lab until the sphere rolls, then pause it; the instant is the closed form's."""

@@ -28,7 +28,6 @@ import argparse
 import json
 import math
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -53,7 +52,7 @@ from rigid_body_sim.sim_tools import (INERTIA_FACTORS, free_port, load_config, r
 from rigid_body_sim.web_protocol import event_roles, part_config
 
 from browser import Browser, end
-from ros_launching import ros_env, start_master
+from ros_launching import Teacher, ros_env, start_master, teacher_in
 
 rospy_on_python39()
 ARGS: Any = None
@@ -216,34 +215,33 @@ class Layout(unittest.TestCase):
             end(self.master, signal.SIGINT, 60)
         shutil.rmtree(self.tmp, ignore_errors=True)
 
-    def start_all(self) -> Dict[str, str]:
+    def start_all(self) -> Dict[str, Teacher]:
         """Every part at once on one master, each lesson.launch in its namespace (ns:=PART), paused at t = 0,
-        with its web view: {part: the teacher's link}."""
+        with its web view: {part: the teacher's login}."""
         port = free_port()
         env = ros_env(port, self.tmp)
         os.environ.update({k: env[k] for k in ("ROS_MASTER_URI", "ROS_HOME", "ROS_IP")})
         self.master = start_master(env)
         logs: Dict[str, List[str]] = {}
-        patterns = {}
+        web_ports = {}
         for part in PARTS:
-            web_port = free_port()
+            web_port = web_ports[part] = free_port()
             logs[part] = []
-            patterns[part] = re.compile(rf"(http://127\.0\.0\.1:{web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
             self.launches[part] = subprocess.Popen(
                 ["roslaunch", "rigid_body_sim", "lesson.launch", f"part:={part}", f"ns:={part}", "rviz:=false",
                  "start_paused:=true", "web:=true", f"web_port:={web_port}", "web_control:=true"],
                 env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             threading.Thread(target=self.read_log, args=(self.launches[part], logs[part]), daemon=True).start()
-        links: Dict[str, str] = {}
+        logins: Dict[str, Teacher] = {}
 
         def printed() -> bool:
             for part in PARTS:
-                found = [m.group(1) for m in (patterns[part].search(line) for line in list(logs[part])) if m]
+                found = teacher_in(logs[part], web_ports[part])
                 if found:
-                    links[part] = found[0]
-            return len(links) == len(PARTS)
-        wait_for("every part's control link", printed, DEADLINE)
-        return links
+                    logins[part] = found
+            return len(logins) == len(PARTS)
+        wait_for("every part's teacher's login", printed, DEADLINE)
+        return logins
 
     @staticmethod
     def read_log(launch: "subprocess.Popen[str]", log: List[str]) -> None:
@@ -268,14 +266,14 @@ class Layout(unittest.TestCase):
         begun = time.monotonic()
         self.browser = browser = Browser(1600, 900)
         checks = 0
-        links = self.start_all()
+        logins = self.start_all()
         rospy.init_node("web_layout_test", anonymous=True, disable_signals=True)
         for part in PARTS:
-            url = links[part]
+            login = logins[part]
             config = load_config(os.path.join(ROOT, "config", part_config(part)))
             bodies = sorted(config["bodies"])
             browser.resize(1600, 900, 1, False)
-            browser.navigate(url)
+            browser.log_in(login.login, login.token, DEADLINE)
             browser.wait("every body", f"window.rbs && rbs.world && Object.keys(rbs.world.bodies).length === "
                          f"{len(bodies)} && rbs.control", DEADLINE)
             rospy.wait_for_service(f"/{part}/sim/step", timeout=DEADLINE)
@@ -338,7 +336,7 @@ class Layout(unittest.TestCase):
         begun = time.monotonic()
         rng = random.Random(SEED)
         first = {"first": self.generated("rod", 0, rng)}
-        link = self.start_generated({"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "bodies": first})
+        login = self.start_generated({"rate": 1000.0, "publish_rate": 50.0, "gravity": 9.8, "bodies": first})
         rospy.init_node("web_layout_test", anonymous=True, disable_signals=True)
         rospy.wait_for_service("/gen/sim/step", timeout=DEADLINE)
         self.step = rospy.ServiceProxy("/gen/sim/step", Step)
@@ -346,7 +344,7 @@ class Layout(unittest.TestCase):
         self.delete = rospy.ServiceProxy("/gen/sim/delete", Delete)
         self.browser = browser = Browser(1600, 900)
         browser.resize(1600, 900, 1, False)
-        browser.navigate(link)
+        browser.log_in(login.login, login.token, DEADLINE)
         browser.wait("the page", "window.rbs && rbs.world && rbs.control", DEADLINE)
         # The lesson's race of three and a block: every screen at every text size.
         race = {shape: self.lesson_roller(shape) for shape in ("sphere", "cylinder", "ring")}
@@ -412,8 +410,8 @@ class Layout(unittest.TestCase):
             body["size"] = size(0.001, 10.0)
         return body
 
-    def start_generated(self, config: Dict[str, Any]) -> str:
-        """sim.launch with `config` in ns:=gen, paused at t = 0, with its web view: the teacher's link."""
+    def start_generated(self, config: Dict[str, Any]) -> Teacher:
+        """sim.launch with `config` in ns:=gen, paused at t = 0, with its web view: the teacher's login."""
         path = os.path.join(self.tmp, "generated.yaml")
         with open(path, "w") as out:
             yaml.safe_dump(config, out)
@@ -427,18 +425,18 @@ class Layout(unittest.TestCase):
              "web:=true", f"web_port:={web_port}", "web_control:=true"],
             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         threading.Thread(target=self.read_log, args=(self.launches["gen"], log), daemon=True).start()
-        pattern = re.compile(rf"(http://127\.0\.0\.1:{web_port}/\?token=[A-Za-z0-9_-]{{24}})\s*$")
-        links: List[str] = []
+        logins: List[Teacher] = []
 
         def printed() -> bool:
-            links.extend(m.group(1) for m in map(pattern.search, list(log)) if m)
-            return bool(links)
+            found = teacher_in(log, web_port)
+            logins[:] = [found] if found else []
+            return bool(logins)
         try:
-            wait_for("the control link", printed, DEADLINE)
+            wait_for("the teacher's login", printed, DEADLINE)
         except TimeoutError:
             print("".join(log), file=sys.stderr)
             raise
-        return links[0]
+        return logins[0]
 
     def become(self, browser: Browser, world: Dict[str, Dict[str, Any]], steps: int) -> None:
         """The node's world made `world` (these spawned, its bodies, of other names, deleted), run `steps` steps

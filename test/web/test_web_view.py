@@ -2,9 +2,10 @@
 """The web view in a real browser: sim.launch web:=true web_control:=true on config/demo.yaml (a rod and four
 rollers), its page loaded in Debian's headless Chromium over the DevTools protocol.
 
-- The log prints the control link with a random token; the page opened with it shows the controls, has the
-  token as a cookie its script cannot read and not in its address bar, and stays the teacher's page on a
-  reload; a page opened without it (its cookie cleared) shows no controls and plots the teacher's body.
+- The log prints the teacher's login form's address and a random token; the token typed into that form (keys
+  and clicks) gives the page the controls, as a cookie its script cannot read, never in an address (the tab's
+  history holds none with it), and the page stays the teacher's on a reload; a page opened without it (its
+  cookie cleared) shows no controls and plots the teacher's body.
 - Pause clicked: the node's ~paused says true; the page's drawn state of every body is the last state the test
   received from the node, field for field, exactly; each body is drawn where the page's own view puts that
   state (a roller on its slope, r above it; a rod's centre and ends); each plot's last point is that state
@@ -24,16 +25,22 @@ rollers), its page loaded in Debian's headless Chromium over the DevTools protoc
   another Origin, or another Host (DNS rebinding), gets no connection and no page.
 - Screenshots at 1600x900 and at a phone's 390x844 (a scale of 3): the page shows every body.
 - Run: ~paused says false again; Step then is refused, and the page shows the node's own line. The page
-  without the token shows the world and no control; with a wrong one it also says that the token is not this
-  view's. Nothing was thrown or logged as an error in the page, and it asked nothing of any server but its own.
+  without the token shows the world and no control; opened at an address with the very token (?token=) it gives
+  no control and says that the token goes in the form at /login; with a wrong token's cookie (a login from before
+  a restart) it says that the token is not this view's; the form refuses a wrong token in one line, logged
+  without it. Nothing was thrown or logged as an error in the page, and it asked nothing of any server but its
+  own.
 
 And playback.launch web:=true of a bag `simulate` wrote, started paused: the page's Run and Pause drive the player
 (its pause_playback); the page finds the recording's bodies and their keys (the played config), draws the played
 states exactly, plots them, and refuses Step in one line; at the recording's end it keeps the last frame and
 says so.
 
-And web.launch web_host:=0.0.0.0 alone (test_network): the class's addresses and QR code, the Host check on
-every address, 414 and 431, half-sent and idle connections closed, the token in no log file and not on /rosout.
+And web.launch web_host:=0.0.0.0 alone (test_network), over raw HTTP: the login form (its password field, its
+XSRF cookie and field), the token POSTed answered 303 with the control cookie, a POST without the XSRF field, a
+wrong or an empty token refused (403, no cookie), a body over 4 KiB 413, an address with ?token= no control;
+the class's addresses and QR code, the Host check on every address, 414 and 431, half-sent and idle
+connections closed, the token in no log file and not on /rosout.
 
 Each click's answer is the reply that names its request's id.
 
@@ -44,6 +51,7 @@ import http.client
 import json
 import math
 import os
+import re
 import shutil
 import signal
 import socket
@@ -54,6 +62,7 @@ import threading
 import time
 import unittest
 import urllib.error
+import urllib.parse
 import urllib.request
 from typing import Any, Dict, List, NamedTuple, Optional
 
@@ -69,7 +78,7 @@ from rigid_body_sim.sim_tools import (free_port, load_config, rospy_on_python39,
                                       with_defaults)
 
 from browser import Browser, end
-from ros_launching import control_link, launch_reading, ros_env
+from ros_launching import Teacher, launch_reading, ros_env, teacher_login
 
 rospy_on_python39()
 ARGS: Any = None
@@ -123,6 +132,7 @@ class Answer(NamedTuple):
     status: int
     headers: Dict[str, str]
     body: bytes
+    cookies: List[str]  # its Set-Cookie headers
 
 
 def fields(msg: Any) -> Dict[str, Any]:
@@ -215,23 +225,26 @@ class WebView(unittest.TestCase):
     def log_lines(self, words: str) -> List[str]:
         return [line for line in list(self.log) if words in line]
 
-    def control_url(self) -> str:
-        return control_link(self.log, self.web_port)
+    def teacher(self) -> Teacher:
+        return teacher_login(self.log, self.web_port)
 
     def test_node(self) -> None:
         """The page follows and drives sim_node (the module's docstring)."""
         self.start("sim.launch", f"config:={ARGS.config}")
-        url = self.control_url()
+        teacher = self.teacher()
         rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
         node = Listener(self.kinds)
         wait_for("a state of every body", lambda: all(node.last(b) for b in self.kinds), DEADLINE)
         self.browser = browser = Browser(1600, 900)
         browser.resize(1600, 900, 1, False)
         browser.call("Network.enable")
-        browser.navigate(url)
+        browser.log_in(teacher.login, teacher.token, DEADLINE)
         browser.wait("every body drawn", "window.rbs && rbs.world && Object.keys(rbs.world.bodies).length === "
                      f"{len(self.kinds)} && Object.keys(rbs.drawn).length === {len(self.kinds)}", DEADLINE)
-        self.assertEqual(browser.evaluate("location.search"), "", "the token stays on the address bar")
+        self.assertEqual(browser.evaluate("location.href"), teacher.base)
+        addresses = [entry["url"] for entry in browser.call("Page.getNavigationHistory")["entries"]]
+        self.assertEqual(addresses[-2:], [teacher.login, teacher.base])
+        self.assertFalse([a for a in addresses if teacher.token in a or "token=" in a], addresses)
         self.assertTrue(browser.evaluate("rbs.control && !document.getElementById('controls').hidden"))
 
         # Reset, then Pause after 1.5 s: the bowler slips, then rolls (0.57 s after its launch). Meanwhile a page
@@ -282,13 +295,13 @@ class WebView(unittest.TestCase):
         self.assertEqual([reply["line"]], node.warnings[warnings:])
         self.assertTrue(reply["line"].startswith("~step refused"), reply)
         # A reload keeps the teacher's page a teacher's page (its cookie), the token nowhere in its address.
-        browser.navigate(url.split("?")[0])
+        browser.navigate(teacher.base)
         browser.wait("the teacher's page again", "window.rbs && rbs.control === true", DEADLINE)
         self.assertIsNotNone(browser.centre("controls"))
         self.assertEqual(browser.evaluate("document.cookie"), "", "the page's script reads the token")
         # The class's page (no token, no cookie): the world, and no control in sight.
         browser.call("Network.clearBrowserCookies")
-        browser.navigate(url.split("?")[0])
+        browser.navigate(teacher.base)
         browser.wait("the class's page", f"window.rbs && Object.keys(rbs.drawn).length === {len(self.kinds)}",
                      DEADLINE)
         self.assertFalse(browser.evaluate("rbs.control"))
@@ -296,25 +309,20 @@ class WebView(unittest.TestCase):
                          "the class plots the teacher's body")
         # A student's own choice stands until the teacher chooses again.
         browser.choose("plot-body", "rod")
-        teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
-                                              origin=f"http://127.0.0.1:{self.web_port}",
-                                              cookie=f"rbs_control={url.split('token=')[1]}")
-        self.assertTrue(self.read_until(teacher, "hello")["control"])
-        teacher.send(json.dumps({"op": "view", "id": 1, "plot_body": "bowler"}))
-        self.assertEqual(self.read_until(teacher, "reply"),
+        teachers = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
+                                               origin=f"http://127.0.0.1:{self.web_port}",
+                                               cookie=f"rbs_control={teacher.token}")
+        self.assertTrue(self.read_until(teachers, "hello")["control"])
+        teachers.send(json.dumps({"op": "view", "id": 1, "plot_body": "bowler"}))
+        self.assertEqual(self.read_until(teachers, "reply"),
                          {"type": "reply", "id": 1, "ok": True, "line": "the class plots bowler"})
-        teacher.close()
+        teachers.close()
         browser.wait("the teacher's new choice on the class's page",
                      "document.getElementById('plot-body').value === 'bowler' && rbs.plotLast.body === 'bowler'",
                      DEADLINE)
         for control in ("controls", "pause", "run", "step", "reset", "set"):
             self.assertIsNone(browser.centre(control), f"#{control} shown on the class's page")
-        # A wrong token (a link from before a restart): the page only shows, and says why.
-        browser.navigate(url.split("?")[0] + "?token=" + "x" * 24)
-        browser.wait("the page's line about the token", "window.rbs && rbs.line.includes('token')", DEADLINE)
-        self.assertFalse(browser.evaluate("rbs.control"))
-        self.assertIsNone(browser.centre("controls"))
-        self.assertEqual(len(self.log_lines("refused control: the token is not this view's")), 1)
+        self.check_no_control(browser, teacher)
         self.assertEqual(browser.console_errors(), [])
         # Nothing from the internet: every request the page made went to its own server.
         asked = {e["params"]["request"]["url"] for e in browser.events if e["method"] == "Network.requestWillBeSent"}
@@ -331,11 +339,11 @@ class WebView(unittest.TestCase):
         subprocess.run([ARGS.simulate, ARGS.config, "--duration", "20", "--bag", bag, "--out-dir", self.tmp],
                        check=True, timeout=120, stdout=subprocess.DEVNULL)
         self.start("playback.launch", f"bag:={bag}", "rviz:=false", "start_paused:=true")
-        url = self.control_url()
+        teacher = self.teacher()
         rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
         node = Listener(self.kinds)
         self.browser = browser = Browser(1600, 900)
-        browser.navigate(url)
+        browser.log_in(teacher.login, teacher.token, DEADLINE)
         browser.wait("the recording's bodies", "window.rbs && rbs.world && rbs.world.source === 'replay' && "
                      f"Object.keys(rbs.world.bodies).length === {len(self.kinds)}", DEADLINE)
         # The page's Run and Pause drive the player (its pause_playback), as rviz's panel does.
@@ -368,22 +376,14 @@ class WebView(unittest.TestCase):
         """web.launch web_host:=0.0.0.0 web_control:=true, no simulation: the class's addresses, the Host
         check, the answers to overlong and half-sent requests, and the token kept off every log."""
         self.start("web.launch", "web_host:=0.0.0.0")
-        url = self.control_url()
-        token = url.split("token=")[1]
+        token = self.teacher().token
         rospy.init_node("web_view_test", anonymous=True, disable_signals=True)
         rosout: List[str] = []
         rospy.Subscriber("/rosout", Log, lambda m: rosout.append(m.msg), queue_size=1000)
         addresses = self.addresses()
         self.assertTrue(addresses, "no address but the loopback's on this machine")
         urls = [f"http://[{a}]:{self.web_port}/" if ":" in a else f"http://{a}:{self.web_port}/" for a in addresses]
-        # The teacher's page: a cookie for its WebSocket alone, then the address without the token.
-        answer = self.http("GET", f"/?token={token}")
-        self.assertEqual(answer.status, 303)
-        self.assertEqual(answer.headers["Location"], "/")
-        cookie = answer.headers["Set-Cookie"]
-        self.assertRegex(cookie, rf"^rbs_control={token};")
-        for attribute in ("HttpOnly", "Path=/ws", "SameSite=Strict"):
-            self.assertIn(attribute.lower(), cookie.lower())
+        cookie = self.check_login(token)
         teacher = websocket.create_connection(f"ws://127.0.0.1:{self.web_port}/ws", timeout=DEADLINE,
                                               origin=f"http://127.0.0.1:{self.web_port}",
                                               cookie=cookie.split(";")[0])
@@ -434,16 +434,110 @@ class WebView(unittest.TestCase):
         print(f"addresses {addresses}; half-sent and idle connections closed after {closed_after:.1f} s",
               file=sys.stderr)
 
+    def check_login(self, token: str) -> str:
+        """The teacher's login over raw HTTP: the form; the token POSTed with its XSRF field answered 303 to the
+        page with the control cookie (HttpOnly, for /ws alone); without that field, wrong, empty or too long
+        refused, no cookie given; an address with the token gives none either. The control cookie."""
+        page = self.http("GET", f"/?token={token}")
+        self.assertEqual(page.status, 200)
+        self.assertFalse([c for c in page.cookies if c.startswith("rbs_control=")], page.cookies)
+        form = self.http("GET", "/login")
+        self.assertEqual(form.status, 200)
+        self.assertEqual(form.headers["Cache-Control"], "no-store")
+        text = form.body.decode()
+        field = re.search(r"<input [^>]*name=\"token\"[^>]*>", text)
+        assert field is not None, text
+        for attribute in ('type="password"', 'autocomplete="off"'):
+            self.assertIn(attribute, field.group(0))
+        hidden = re.search(r'name="_xsrf" value="([^"]+)"', text)
+        assert hidden is not None, text
+        xsrf_cookie = next(c for c in form.cookies if c.startswith("_xsrf="))
+        for attribute in ("HttpOnly", "Path=/login", "SameSite=Strict"):
+            self.assertIn(attribute.lower(), xsrf_cookie.lower())
+        headers = {"Content-Type": "application/x-www-form-urlencoded", "Cookie": xsrf_cookie.split(";")[0]}
+
+        def post(fields: Dict[str, str]) -> Answer:
+            return self.http("POST", "/login", headers=headers, body=urllib.parse.urlencode(fields).encode())
+        refusals = {"no XSRF field": ({"token": token}, ""),
+                    "a wrong token": ({"_xsrf": hidden.group(1), "token": "x" * 24},
+                                      "refused control: not this web view's token"),
+                    "no token": ({"_xsrf": hidden.group(1), "token": ""}, "refused control: no token given")}
+        began = time.monotonic()
+        for case, (fields, line) in refusals.items():
+            answer = post(fields)
+            self.assertEqual(answer.status, 403, case)
+            self.assertFalse([c for c in answer.cookies if c.startswith("rbs_control=")], case)
+            refusal = re.search(r'<p id="refusal"[^>]*>([^<]*)</p>', answer.body.decode())
+            if line:  # the form again, with its one line
+                assert refusal is not None, answer.body
+                self.assertTrue(refusal.group(1).replace("&#39;", "'").startswith(line), refusal.group(1))
+                self.assertIn('name="token"', answer.body.decode())
+            else:
+                self.assertIsNone(refusal, case)
+        refused_within = time.monotonic() - began
+        # A body announced over 4 KiB: answered at its head, before any of it is read.
+        answer = self.http("POST", "/login", headers=dict(headers, **{"Content-Length": str(4097)}))
+        self.assertEqual(answer.status, 413)
+        logged = "web view: login from 127.0.0.1: refused control"
+        wait_for("the refused login's line in the log", lambda: bool(self.log_lines(logged)), DEADLINE)
+        if refused_within < 10.0:  # the web view's LOGIN_LOG_PERIOD
+            self.assertEqual(len(self.log_lines(logged)), 1, "a login refused again within 10 s: counted, not logged")
+        answer = post({"_xsrf": hidden.group(1), "token": token})
+        self.assertEqual((answer.status, answer.headers["Location"]), (303, "/"))
+        cookie = next(c for c in answer.cookies if c.startswith("rbs_control="))
+        self.assertRegex(cookie, rf"^rbs_control={token};")
+        for attribute in ("HttpOnly", "Path=/ws", "SameSite=Strict"):
+            self.assertIn(attribute.lower(), cookie.lower())
+        print(f"login: {len(refusals)} POSTs refused, the token's answered 303 with the control cookie",
+              file=sys.stderr)
+        return cookie
+
+    def check_no_control(self, browser: Browser, teacher: Teacher) -> None:
+        """Without the token's cookie: an address with the very token gives no control and the page says where
+        the token goes; a wrong token's cookie (a login from before a restart) says that it is not this view's;
+        the form refuses a wrong token in one line, logged without it."""
+        browser.navigate(f"{teacher.base}?token={teacher.token}")
+        browser.wait("the page's line about the login form", "window.rbs && rbs.line.includes('/login') && "
+                     "rbs.world !== null", DEADLINE)
+        self.assertEqual(browser.evaluate("location.search"), "")
+        self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertIsNone(browser.centre("controls"))
+        browser.call("Network.setCookie", name="rbs_control", value="x" * 24, url=f"{teacher.base}ws", httpOnly=True,
+                     sameSite="Strict")
+        browser.navigate(teacher.base)
+        browser.wait("the page's line about the token", "window.rbs && rbs.line.includes(\"token is not this "
+                     "view's\")", DEADLINE)
+        self.assertFalse(browser.evaluate("rbs.control"))
+        self.assertIsNone(browser.centre("controls"))
+        self.assertEqual(len(self.log_lines("refused control: this browser's token is not this view's")), 1)
+        browser.call("Network.clearBrowserCookies")
+        browser.load(teacher.login, "the login form", DEADLINE)
+        browser.type_into("token", "y" * 24)
+        browser.submit("login-submit", DEADLINE)
+        refusal = browser.evaluate("document.getElementById('refusal').textContent")
+        self.assertEqual(refusal, "refused control: not this web view's token (a new one at each start: see its "
+                                  "terminal)")
+        self.assertEqual(browser.evaluate("location.pathname"), "/login")
+        self.assertIsNotNone(browser.centre("token"), "the form again")
+        logged = "web view: login from 127.0.0.1: refused control: not this web view's token"
+        wait_for("the refused login's line in the log", lambda: bool(self.log_lines(logged)), DEADLINE)
+        self.assertEqual(len(self.log_lines(logged)), 1)
+        self.assertFalse([line for line in self.log_lines("login from") if "y" * 24 in line])
+        print("no control from an address with the token, a stale cookie or a wrong token in the form",
+              file=sys.stderr)
+
     def http(self, method: str, path: str, host: Optional[str] = None,
-             headers: Optional[Dict[str, str]] = None) -> Answer:
+             headers: Optional[Dict[str, str]] = None, body: Optional[bytes] = None) -> Answer:
         connection = http.client.HTTPConnection("127.0.0.1", self.web_port, timeout=DEADLINE)
         connection.putrequest(method, path, skip_host=True)
         connection.putheader("Host", host or f"127.0.0.1:{self.web_port}")
         for name, value in (headers or {}).items():
             connection.putheader(name, value)
-        connection.endheaders()
+        if body is not None:
+            connection.putheader("Content-Length", str(len(body)))
+        connection.endheaders(body)
         answer = connection.getresponse()
-        return Answer(answer.status, dict(answer.getheaders()), answer.read())
+        return Answer(answer.status, dict(answer.getheaders()), answer.read(), answer.msg.get_all("Set-Cookie") or [])
 
     @staticmethod
     def addresses() -> List[str]:
