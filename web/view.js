@@ -775,12 +775,12 @@ function plotSpecs(name) {
   const shown = list.filter((p) => p.t >= t0).concat(instants)
     .sort((p, q) => p.t - q.t || (q.event ? 1 : 0) - (p.event ? 1 : 0));
   const series = (key) => shown.map((p) => [p.t, p[key], p.gap]);
-  const motion = type ? type.motion(series) : { title: "", unit: "", lines: [] };
+  // No body to plot (no simulation found yet): the plots' frames, titled so, with no line.
+  const motion = type ? type.motion(series) : { title: "no body to plot", unit: "", lines: [] };
   const dotKey = motion.lines.length ? motion.lines[0].key : "";
   motion.dots = dotted.map(([p, words]) => [p.t, p[dotKey], words]);
   motion.finishes = finishes;
-  const zero = type ? type.potentialZero : "";
-  const energy = { title: `energy, potential 0 at ${zero}`, unit: "J",
+  const energy = { title: type ? `energy, potential 0 at ${type.potentialZero}` : "energy", unit: "J",
                    lines: [{ key: "energy", name: "total", colour: PLOT_COLOURS.first, pts: series("energy") },
                            { key: "kinetic", name: "kinetic", colour: PLOT_COLOURS.second, pts: series("kinetic") },
                            { key: "potential", name: "potential", colour: PLOT_COLOURS.third, dash: [10, 6],
@@ -820,7 +820,7 @@ function chartHead(ctx, spec, W, drawn) {
   const fs = textPx();
   const lineH = 1.25 * fs;
   let y = 4;
-  for (const line of wrap(ctx, [`${spec.title} (${spec.unit})`], W - 12, true)) {
+  for (const line of wrap(ctx, [spec.unit ? `${spec.title} (${spec.unit})` : spec.title], W - 12, true)) {
     if (drawn) text(ctx, line, 6, y, "#f2f2f2", true);
     y += lineH;
   }
