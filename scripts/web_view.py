@@ -28,7 +28,8 @@ answered 414 or 431, a body over MAX_BODY 413.
 Every page may open a lab of its own (rigid_body_sim.labs): a private rigid_body_sim.core.World of the class's
 config (as it runs now, or its lesson part's file), stepped in real time at the frame timer on the server's loop
 (within LAB_TICK_SHARE of a frame: a lab left out catches up at the next tick), its requests carried out on a
-worker thread (each page's paced to LAB_THREAD_SHARE of it: rigid_body_sim.web_protocol), its frames and
+worker thread (each page's paced to LAB_THREAD_SHARE of it, all together to LAB_THREAD_TOTAL_SHARE:
+rigid_body_sim.web_protocol), its frames and
 events to its page(s) alone; a page acts on its own lab only (the `rbs_lab` cookie, HttpOnly, that GET /
 gives), and downloads it at /lab/<id>.zip (its config and `simulate`'s files of its run so far).
 The teacher's page gets the class's results and the curves they lie on, asks the class a question and shows
@@ -84,10 +85,11 @@ from rigid_body_sim import description, labs
 from rigid_body_sim.msg import Command, Event
 from rigid_body_sim.runs import event_record
 from rigid_body_sim.sim_tools import WORLD_DEFAULTS, rospy_on_python39, state_message, with_defaults
-from rigid_body_sim.web_protocol import (LAB_OPS, LAB_THREAD_SHARE, LESSON_KEYS, MAX_REQUEST_BYTES, EventLog,
-                                         FrameQueue, Pacer, Record, Refusal, Request, event_roles, events_message,
-                                         frame_message, lab_events_message, lab_frame_message, parse_request,
-                                         part_config, part_of_config, websocket_text_frame)
+from rigid_body_sim.web_protocol import (LAB_OPS, LAB_THREAD_SHARE, LAB_THREAD_TOTAL_SHARE, LESSON_KEYS,
+                                         MAX_REQUEST_BYTES, EventLog, FrameQueue, Pacer, Record, Refusal, Request,
+                                         event_roles, events_message, frame_message, lab_events_message,
+                                         lab_frame_message, parse_request, part_config, part_of_config,
+                                         websocket_text_frame)
 from rigid_body_sim.srv import GetConfig, GetEvents, Step
 from rosgraph_msgs.msg import Log
 from std_msgs.msg import Bool
@@ -452,7 +454,8 @@ class WebView:
         # wait for them, so that a page gets a run's `lab` message before the run's samples.
         self.lab_busy: Dict[str, int] = {}
         self.tick_budget = LAB_TICK_SHARE / self.frame_rate  # s of CPU time
-        self.lab_pacer = Pacer(self.lab_thread, LAB_THREAD_SHARE)  # each page's (lab cookie's) requests
+        # Each page's (lab cookie's) requests, and all of them together.
+        self.lab_pacer = Pacer(self.lab_thread, LAB_THREAD_SHARE, LAB_THREAD_TOTAL_SHARE)
         self.login_refusals = 0  # refused logins not logged yet (LOGIN_LOG_PERIOD)
         self.login_logged_at = -math.inf  # monotonic s
         self.shown: Optional[str] = None  # the lab the teacher shows every page
@@ -790,7 +793,7 @@ class WebView:
         if source == "now":
             if self.world.source != "node" or not self.world.bodies:
                 raise labs.LabRefusal(f"refused: no simulation's config to open a lab from ({self.node})")
-            return yaml.safe_dump({**self.world.settings, "bodies": self.world.bodies}, sort_keys=False)
+            return labs.dump_yaml({**self.world.settings, "bodies": self.world.bodies})
         if not self.last_part:
             raise labs.LabRefusal("refused: the world has had no lesson part's keys: open a lab from now")
         with open(os.path.join(self.config_dir, part_config(self.last_part))) as text:

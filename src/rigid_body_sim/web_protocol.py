@@ -1,7 +1,7 @@
 """What the web view's server and its pages say to each other, without ROS or a network: the requests a page
 may send (each checked whole before anything is done with it), the messages the server sends, the bounded
 queue of frames each page has, the run's events the server keeps for a page that opens late, and the pacing
-of each page's lab requests on the lab thread (Pacer).
+of each page's lab requests, and of all of them, on the lab thread (Pacer).
 
 A request is one JSON object of at most MAX_REQUEST_BYTES, {"op": ..., "id": N, ...} with exactly the keys
 of its op. The teacher's page (the token's cookie) alone may send:
@@ -449,10 +449,16 @@ T = TypeVar("T")
 # loop, which waits for it at every page's write (a page asking for long steps over and over would take most of
 # every page's frames).
 LAB_THREAD_SHARE = 0.25
+# Of the lab thread's time, what all pages' lab requests take together at most (after each, no page's next
+# starts until the thread has rested (1 - total) / total times as long, on the loop): a class's pages, each
+# within LAB_THREAD_SHARE, would still fill the thread, its Python holding the GIL from the loop for most of
+# every frame; half leaves the loop the GIL between requests as long as their Python holds it.
+LAB_THREAD_TOTAL_SHARE = 0.5
 
 
 class _Turns:
-    """A key's works: one at a time, in order (the lock), and when its rest after the last one ends."""
+    """A key's (or the whole thread's) works: one at a time, in order (the lock), and when its rest after the last
+    one ends."""
 
     def __init__(self) -> None:
         self.lock = asyncio.Lock()
@@ -464,47 +470,63 @@ class Pacer:
     """One worker thread's time shared among keys (the web view's lab thread among its pages' lab cookies): a
     key's works run one at a time, in order, each once the key has rested after its previous one that one's
     time on the thread (its start to its end) times (1 - share) / share, so that no key takes more than `share`
-    of the thread, however long its works take on a busy machine. The rest is awaited on the loop
-    (asyncio.sleep): another key's work waits for none of it, only for the works ahead of it on the thread."""
+    of the thread, however long its works take on a busy machine; and each once the thread has rested after
+    the last work of any key its time times (1 - total) / total, so that all keys together take no more than
+    `total` of it. The rests are awaited on the loop (asyncio.sleep), never on the thread: another key's work
+    waits for none of a key's rest, and the works whose key's rest is over take the thread in the order they
+    came to it (a fair lock: none starves)."""
 
-    def __init__(self, executor: concurrent.futures.Executor, share: float) -> None:
-        if not 0.0 < share <= 1.0:
-            raise ValueError(f"share {share} not in (0, 1]")
+    def __init__(self, executor: concurrent.futures.Executor, share: float, total: float = 1.0) -> None:
+        for name, value in (("share", share), ("total", total)):
+            if not 0.0 < value <= 1.0:
+                raise ValueError(f"{name} {value} not in (0, 1]")
         self.executor = executor
         self.rest_per_second = (1.0 - share) / share
+        self.thread_rest_per_second = (1.0 - total) / total
         self.keys: Dict[str, _Turns] = {}
+        # Every key's works, in the order their key's rest ended; made on the loop (Python 3.9's asyncio.Lock
+        # takes the loop it is made on).
+        self.thread: Optional[_Turns] = None
 
     async def run(self, key: str, work: Callable[[], T], starting: Optional[Callable[[], Any]] = None) -> T:
-        """work() on the executor in the key's turn, once its rest is over; starting() on the loop just before
-        work goes to the executor."""
+        """work() on the executor in the key's turn, once its rest and the thread's are over; starting() on the
+        loop just before work goes to the executor."""
         turns = self.keys.get(key)
         if turns is None:
             turns = self.keys[key] = _Turns()
+        thread = self.thread = self.thread or _Turns()
         turns.users += 1
         try:
             async with turns.lock:
-                rest = turns.rests_until - time.perf_counter()
-                while rest > 0:  # the loop's timer may wake a hair early
-                    await asyncio.sleep(rest)
-                    rest = turns.rests_until - time.perf_counter()
-                if starting is not None:
-                    starting()
-                timing: List[float] = []
+                await self._rest(turns)
+                async with thread.lock:
+                    await self._rest(thread)
+                    if starting is not None:
+                        starting()
+                    timing: List[float] = []
 
-                def timed() -> T:
-                    timing.append(time.perf_counter())
-                    try:
-                        return work()
-                    finally:
+                    def timed() -> T:
                         timing.append(time.perf_counter())
-                try:
-                    return await asyncio.get_running_loop().run_in_executor(self.executor, timed)
-                finally:
-                    if len(timing) == 2:
-                        started, ended = timing
-                        turns.rests_until = ended + (ended - started) * self.rest_per_second
+                        try:
+                            return work()
+                        finally:
+                            timing.append(time.perf_counter())
+                    try:
+                        return await asyncio.get_running_loop().run_in_executor(self.executor, timed)
+                    finally:
+                        if len(timing) == 2:
+                            started, ended = timing
+                            turns.rests_until = ended + (ended - started) * self.rest_per_second
+                            thread.rests_until = ended + (ended - started) * self.thread_rest_per_second
         finally:
             turns.users -= 1
             now = time.perf_counter()
             for name in [name for name, t in self.keys.items() if not t.users and t.rests_until <= now]:
                 del self.keys[name]
+
+    @staticmethod
+    async def _rest(turns: _Turns) -> None:
+        rest = turns.rests_until - time.perf_counter()
+        while rest > 0:  # the loop's timer may wake a hair early
+            await asyncio.sleep(rest)
+            rest = turns.rests_until - time.perf_counter()
