@@ -537,7 +537,8 @@ class WebView(unittest.TestCase):
             connection.putheader("Content-Length", str(len(body)))
         connection.endheaders(body)
         answer = connection.getresponse()
-        return Answer(answer.status, dict(answer.getheaders()), answer.read(), answer.msg.get_all("Set-Cookie") or [])
+        cookies: List[str] = list(answer.msg.get_all("Set-Cookie") or ())
+        return Answer(answer.status, dict(answer.getheaders()), answer.read(), cookies)
 
     @staticmethod
     def addresses() -> List[str]:
