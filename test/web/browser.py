@@ -101,12 +101,13 @@ class Browser:
         finally:
             browser.close()
 
-    def history(self) -> History:
-        """The profile's History database, read from a copy (Chromium locks it while it runs)."""
+    def history(self) -> Optional[History]:
+        """The profile's History database, read from a copy (Chromium locks it while it runs); None where this
+        Chromium keeps none (its old headless mode, Debian 11's: it records no visit)."""
         folder = os.path.join(self.profile, "Default")
         names = [n for n in sorted(os.listdir(folder)) if n == "History" or n.startswith("History-")]
         if "History" not in names:
-            raise FileNotFoundError(f"no History database in {folder}: {sorted(os.listdir(folder))}")
+            return None
         with tempfile.TemporaryDirectory(prefix="rbs_history_") as copy:
             raw = b""
             for name in names:
@@ -119,6 +120,18 @@ class Browser:
             finally:
                 database.close()
         return History(urls, raw)
+
+    def profile_files(self) -> Dict[str, bytes]:
+        """Every file of the profile (its databases, caches, sessions, storage), by its path in the profile, once
+        Chromium has ended (quit)."""
+        files: Dict[str, bytes] = {}
+        for folder, _, names in os.walk(self.profile):
+            for name in names:
+                path = os.path.join(folder, name)
+                if os.path.isfile(path) and not os.path.islink(path):
+                    with open(path, "rb") as file:
+                        files[os.path.relpath(path, self.profile)] = file.read()
+        return files
 
     def call(self, method: str, timeout: float = 30.0, **params: Any) -> Dict[str, Any]:
         self.next_id += 1

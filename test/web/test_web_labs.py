@@ -5,8 +5,9 @@ Chromium, each student's page in a browser context of its own (its own cookies, 
 
 - The teacher logs in through the form at /login (the token typed in, the button clicked): no address of its
   tab's history holds the token, and once the teacher has used the page through the whole lesson and Chromium
-  has ended (writing its profile), its profile's History database holds the addresses the tab visited (the
-  page's, the form's) and the token nowhere (no address, no byte of its files).
+  has ended (writing its profile), no file of its profile holds the token but its cookie store, and its History
+  database (where this Chromium keeps one) holds the addresses the tab visited (the page's, the form's) and
+  the token nowhere (no address, no byte of its files).
 - Each student types a name, opens a lab from the lesson's start, sets the sphere's mu_d to a value of their own
   (MU_D) with the controls the page made from the description, runs it until the sphere's slip_to_roll event
   and pauses it. The event's instant is the closed form's, t = (v0 + omega0 R) / (mu_d g cos(phi) (1 + c) / c
@@ -221,20 +222,28 @@ class Labs(unittest.TestCase):
         self.assertEqual(teacher.evaluate("history.length"), len(history["entries"]))
 
     def check_profile_history(self, teacher: Browser, login: Teacher) -> None:
-        """Chromium ended as a window's close ends it (its databases written): its profile's History holds the
-        addresses the teacher's tab visited, and the token nowhere. (The students' pages, each in a context of
-        its own, keep no history.)"""
+        """Chromium ended as a window's close ends it (its databases written): no file of its profile holds the
+        token but its cookie store (where the login puts it, for the page's WebSocket alone), and its History
+        database, where this Chromium keeps one, holds the addresses the teacher's tab visited and the token
+        nowhere. (The students' pages, each in a context of its own, keep no history.)"""
         for tab in self.tabs:
             tab.close()
         self.tabs = []
         teacher.quit(DEADLINE)
         history = teacher.history()
-        self.assertIn(self.base, history.urls, "the History database holds none of this lesson's addresses")
-        self.assertIn(login.login, history.urls)
-        self.assertFalse([u for u in history.urls if login.token in u or "token=" in u], history.urls)
-        self.assertNotIn(login.token.encode(), history.raw, "the token in the profile's History database")
-        print(f"the profile's History: {len(history.urls)} addresses ({', '.join(sorted(history.urls))}), "
-              f"{len(history.raw)} bytes, the token in none", file=sys.stderr)
+        if history is not None:
+            self.assertIn(self.base, history.urls, "the History database holds none of this lesson's addresses")
+            self.assertIn(login.login, history.urls)
+            self.assertFalse([u for u in history.urls if login.token in u or "token=" in u], history.urls)
+            self.assertNotIn(login.token.encode(), history.raw, "the token in the profile's History database")
+        files = teacher.profile_files()
+        self.assertTrue(files, "an empty profile")
+        holding = [name for name, data in files.items()
+                   if login.token.encode() in data and os.path.basename(name) not in ("Cookies", "Cookies-journal")]
+        self.assertFalse(holding, "the token in the profile's files beside its cookie store")
+        kept = f"{len(history.urls)} addresses in its History ({', '.join(sorted(history.urls))})" if history \
+            else "no History database (this Chromium keeps none)"
+        print(f"the profile: {len(files)} files, {kept}, the token in none but its cookie store", file=sys.stderr)
 
     def open_labs(self, students: List[Tab], names: List[str], started: float) -> None:
         """Each student types a name and opens a lab from the lesson's start, then sets the sphere's mu_d: the
