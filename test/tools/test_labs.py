@@ -16,7 +16,7 @@
   closed_form; the curve over a key's grid passes through each lab's point exactly and follows the closed form;
 - the poll: choices counted, numbers listed, one answer a voter, refusals;
 - the lab requests' pacing (web_protocol.Pacer, as the web view runs it on its lab thread): a page that asks for
-  lab_step MAX_LAB_STEPS over and over, its requests sent at once, gets them one at a time, in order, each after
+  long lab_steps over and over, its requests sent at once, gets them one at a time, in order, each after
   a rest of three times the one before it on the thread (LAB_THREAD_SHARE of it); another page's request waits
   for none of that rest; a key at rest with nothing asked is forgotten; and after every request of any page
   the thread rests as long as it took (LAB_THREAD_TOTAL_SHARE of it): 8 pages asking for long steps together
@@ -458,6 +458,9 @@ class Pacing(unittest.TestCase):
     # s the loop takes at most to start the next work once a rest is over (the work's future, the lock, the
     # timer: some 0.1 ms on an idle machine; 10 ms on a loaded one of 2 cores).
     HANDOFF = 0.01
+    # Steps of a long request: a tenth of the most a lab_step may ask, some ms of a lab's work (the shares do not
+    # depend on its length; the full count made the suite outlast its minute under AddressSanitizer).
+    LONG_STEPS = MAX_LAB_STEPS // 10
 
     def assert_rested(self, runs: List[Tuple[float, float]], rest: float = REST) -> None:
         """Each work began once `rest` times the one before it had passed since its end."""
@@ -472,7 +475,7 @@ class Pacing(unittest.TestCase):
     def long_step(lab: labs.Lab) -> Callable[[], None]:
         def step() -> None:  # a lab_step request's work: the steps, then the samples its frame takes
             with lab.lock:
-                lab.step(MAX_LAB_STEPS)
+                lab.step(Pacing.LONG_STEPS)
                 lab.take_samples()
         return step
 
@@ -493,13 +496,13 @@ class Pacing(unittest.TestCase):
             thread.shutdown()
         runs = timed.of("spammer")
         self.assertEqual(len(runs), 24)
-        self.assertEqual(spammer.world.steps, 24 * MAX_LAB_STEPS, "each request carried out once")
+        self.assertEqual(spammer.world.steps, 24 * self.LONG_STEPS, "each request carried out once")
         self.assertTrue(all(end <= after for (_, end), (after, _) in zip(runs, runs[1:])), "one at a time")
         self.assert_rested(runs)
         busy = sum(end - start for start, end in runs)
         span = runs[-1][1] + self.REST * (runs[-1][1] - runs[-1][0]) - runs[0][0]  # to the end of the last rest
         self.assertLessEqual(busy, LAB_THREAD_SHARE * span + 1e-9)
-        print(f"lab_step {MAX_LAB_STEPS} x 24 at once: {1000 * busy / len(runs):.1f} ms each on the thread, "
+        print(f"lab_step {self.LONG_STEPS} x 24 at once: {1000 * busy / len(runs):.1f} ms each on the thread, "
               f"{busy / span:.3f} of it over {span:.2f} s", file=sys.stderr)
 
     def test_pages_asking_for_long_steps_together_keep_to_the_total_share(self) -> None:
@@ -521,7 +524,7 @@ class Pacing(unittest.TestCase):
         runs = [(start, end) for _, start, end in timed.runs]
         self.assertEqual(len(runs), 24)
         for lab in spammers:
-            self.assertEqual(lab.world.steps, 3 * MAX_LAB_STEPS, "each request carried out once")
+            self.assertEqual(lab.world.steps, 3 * self.LONG_STEPS, "each request carried out once")
             self.assert_rested(timed.of(lab.cookie))
         self.assertTrue(all(end <= after for (_, end), (after, _) in zip(runs, runs[1:])), "one at a time")
         self.assert_rested(runs, self.THREAD_REST)
@@ -530,7 +533,7 @@ class Pacing(unittest.TestCase):
         busy = sum(end - start for start, end in runs)
         span = runs[-1][1] + self.THREAD_REST * (runs[-1][1] - runs[-1][0]) - runs[0][0]
         self.assertLessEqual(busy, LAB_THREAD_TOTAL_SHARE * span + 1e-9)
-        print(f"8 pages' lab_step {MAX_LAB_STEPS} x 3 at once: {1000 * busy / len(runs):.1f} ms each on the "
+        print(f"8 pages' lab_step {self.LONG_STEPS} x 3 at once: {1000 * busy / len(runs):.1f} ms each on the "
               f"thread, {busy / span:.3f} of it over {span:.2f} s", file=sys.stderr)
 
     def test_other_pages_wait_for_no_rest_but_their_own(self) -> None:
