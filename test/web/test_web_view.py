@@ -47,6 +47,7 @@ Each click's answer is the reply that names its request's id.
 Usage: test_web_view.py CONFIG.yaml OUT_DIR SIMULATE WebView.test_node | WebView.test_replay | WebView.test_network
 (with the package's devel space sourced; OUT_DIR gets the screenshots; one test a process: rospy joins one master)"""
 import argparse
+import html
 import http.client
 import json
 import math
@@ -470,7 +471,7 @@ class WebView(unittest.TestCase):
             refusal = re.search(r'<p id="refusal"[^>]*>([^<]*)</p>', answer.body.decode())
             if line:  # the form again, with its one line
                 assert refusal is not None, answer.body
-                self.assertTrue(refusal.group(1).replace("&#39;", "'").startswith(line), refusal.group(1))
+                self.assertTrue(html.unescape(refusal.group(1)).startswith(line), refusal.group(1))
                 self.assertIn('name="token"', answer.body.decode())
             else:
                 self.assertIsNone(refusal, case)
