@@ -114,12 +114,14 @@ def core(report: Report, build: str, out: str) -> Dict[str, List[float]]:
         runs = [b for b in json.load(f)["benchmarks"] if b.get("run_type") == "iteration"]
     times: Dict[str, List[float]] = {}
     for b in runs:
-        times.setdefault(b["run_name"], []).append(b["cpu_time"] / b.get("bodies", 1))
+        times.setdefault(b["run_name"], []).append(b["cpu_time"] / b.get("body_steps", 1))
     targets = {"rodStep/euler_cromer": "<= 30", "rollerStep/rolling": "<= 15", "rollerStep/slipping": "<= 15"}
     for name, values in times.items():
         label = name.replace("rodStep/", "rod, ").replace("rollerStep/", "roller, ")
         if name.startswith("worldStep/"):
             label = f"world of n = {name.split('/')[1]} bodies (half rods, half rollers), per body-step"
+        if name.startswith("worldStepAfterSleep"):
+            label = "the same n = 1000, 20 steps after 20 ms asleep (as the node steps), per body-step"
         report.row("1 core", label, values, "ns/step (CPU)", targets.get(name, ""))
     report.note("core figures are CPU time per step (Google Benchmark's cpu_time): on a shared machine wall time "
                 "per step runs higher with the load. Debian's libbenchmark is built as DEBUG (its own warning); "
