@@ -187,10 +187,11 @@ class Labs(unittest.TestCase):
         self.check_not_anothers(students[0], students[1], labs[1])
         self.check_predict(teacher, students[:5])
         self.check_show_lab(teacher, students[3], students[4], labs[3], MU_D[3])
-        # A reload attaches the page to its lab again (its cookie).
+        # A reload attaches the page to its lab again (its cookie). The page's scripts run one after another:
+        # view.js makes window.rbs, lab.js adds rbs.lab after it, and the wait may look in between.
         students[0].navigate(self.base)
-        students[0].wait("the reloaded page at its lab", f"window.rbs && rbs.lab.info && rbs.lab.info.lab === "
-                         f"{json.dumps(labs[0])}", DEADLINE)
+        students[0].wait("the reloaded page at its lab", "window.rbs && rbs.lab && rbs.lab.info && rbs.lab.info.lab "
+                         f"=== {json.dumps(labs[0])}", DEADLINE)
         self.assertEqual(students[0].evaluate("rbs.lab.info.settings.sphere.mu_d"), MU_D[0])
         # Clear: every result forgotten, the labs go on.
         teacher.click("class-clear")
